@@ -1,0 +1,26 @@
+"""Exceptions shared by every layer of linkage_sym."""
+
+from __future__ import annotations
+
+
+class SceneError(ValueError):
+    """A scene that cannot be analysed.
+
+    Carries every problem found, each as ``"field: reason"``, so that a user
+    sees all of them at once instead of fixing one per run.
+
+    Examples
+    --------
+    >>> err = SceneError(["links[0].mass: must be >= 0, got -1"])
+    >>> err.problems
+    ['links[0].mass: must be >= 0, got -1']
+    >>> print(err)
+    invalid scene (1 problem):
+      links[0].mass: must be >= 0, got -1
+    """
+
+    def __init__(self, problems: list[str]):
+        self.problems = list(problems)
+        n = len(self.problems)
+        head = f"invalid scene ({n} problem{'s' if n != 1 else ''}):"
+        super().__init__("\n  ".join([head, *self.problems]))

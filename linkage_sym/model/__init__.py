@@ -1,0 +1,15 @@
+"""Plain data: the scene classes every layer reads. No computation here."""
+
+from linkage_sym.model.scene import (
+    GROUND,
+    OUTPUTS,
+    STAGES,
+    Driver,
+    Effects,
+    Joint,
+    Link,
+    Load,
+    Scene,
+)
+
+__all__ = ["GROUND", "OUTPUTS", "STAGES", "Driver", "Effects", "Joint", "Link", "Load", "Scene"]

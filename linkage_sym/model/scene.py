@@ -1,0 +1,149 @@
+"""Plain data classes for a scene (see ``shared/spec/scene-format.md``).
+
+Nothing here computes: these classes are what :func:`linkage_sym.scene.load_scene`
+produces after validation, and what every solver reads.  Angles are stored in
+radians (the file's ``*_deg`` keys are converted on loading), everything else in
+SI units, points as ``(x, y)`` tuples in the global frame of the assembly
+configuration.
+
+Link frames
+-----------
+Every link's local frame coincides with the global frame in the assembly
+configuration.  A point fixed on a link therefore has, as local coordinates,
+the global coordinates it has in the assembly configuration, and a link's
+rotation angle is its rotation *from* the assembly configuration.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+GROUND = "ground"
+"""Name of the fixed link; never listed in ``Scene.links``."""
+
+OUTPUTS = ("kinematics", "reactions", "driving", "frame")
+"""Every output a scene may ask for, in the order results list them."""
+
+STAGES = ("position", "velocity", "acceleration", "forces")
+"""Every computation stage, in the order they run."""
+
+Point = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Link:
+    """A rigid moving link.
+
+    ``com`` is ``None`` only for a massless link; ``inertia`` is the moment of
+    inertia about the centre of mass.
+    """
+
+    name: str
+    mass: float = 0.0
+    com: Point | None = None
+    inertia: float = 0.0
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A lower pair between ``links[0]`` and ``links[1]``.
+
+    For a ``P`` joint ``axis`` is the slide direction in radians, fixed on
+    ``links[0]``; ``at`` is the reference point, fixed on ``links[1]``.
+    ``axis`` is ``None`` for an ``R`` joint.
+    """
+
+    name: str
+    type: str  # "R" or "P"
+    links: tuple[str, str]
+    at: Point
+    axis: float | None = None
+
+
+@dataclass(frozen=True)
+class Driver:
+    """A prescribed relative coordinate of one joint.
+
+    ``start`` and ``stop`` are in radians for an ``R`` joint (the angle of the
+    vector from the joint to ``toward``, measured from the x-axis of the joint's
+    ``links[0]``) and in metres for a ``P`` joint (displacement along the axis,
+    zero in the assembly configuration).  ``speed`` and ``acceleration`` hold
+    at every step of the sweep.
+    """
+
+    joint: str
+    kind: str  # "R" or "P": the type of the driven joint
+    start: float
+    stop: float
+    steps: int
+    speed: float
+    acceleration: float = 0.0
+    toward: str | None = None
+
+
+@dataclass(frozen=True)
+class Load:
+    """An external load on one link: a force at a point and/or a torque."""
+
+    link: str
+    force: Point | None = None
+    at: Point | None = None
+    torque: float = 0.0
+
+
+@dataclass(frozen=True)
+class Effects:
+    """Which physical effects a scene asks to simulate."""
+
+    inertia: bool = False
+    gravity: Point | None = None
+    loads: bool = True
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated scene: the mechanism, its drivers, loads, effects and outputs."""
+
+    name: str
+    links: tuple[Link, ...]
+    joints: tuple[Joint, ...]
+    drivers: tuple[Driver, ...]
+    loads: tuple[Load, ...] = ()
+    effects: Effects = field(default_factory=Effects)
+    outputs: tuple[str, ...] = OUTPUTS
+
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        """Names of the moving links, in scene order."""
+        return tuple(link.name for link in self.links)
+
+    def link(self, name: str) -> Link:
+        """The moving link called ``name``."""
+        for link in self.links:
+            if link.name == name:
+                return link
+        raise KeyError(name)
+
+    def joint(self, name: str) -> Joint:
+        """The joint called ``name``."""
+        for joint in self.joints:
+            if joint.name == name:
+                return joint
+        raise KeyError(name)
+
+    @property
+    def steps(self) -> int:
+        """Number of steps of the sweep (shared by every driver)."""
+        return self.drivers[0].steps
+
+    def characteristic_length(self) -> float:
+        """Largest distance between two joints of the assembly configuration.
+
+        Used to make lengths dimensionless (singularity test of the spec).
+        """
+        pts = [j.at for j in self.joints]
+        best = 0.0
+        for i, (xi, yi) in enumerate(pts):
+            for xj, yj in pts[i + 1 :]:
+                best = max(best, ((xi - xj) ** 2 + (yi - yj) ** 2) ** 0.5)
+        return best

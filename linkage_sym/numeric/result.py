@@ -1,0 +1,174 @@
+"""Result containers of a numeric analysis: arrays over the steps of a sweep.
+
+Every array's first axis is the step index (length ``N``).  Values of a step
+whose ``status`` is not ``"ok"`` are NaN in these arrays and are *left out*
+of :meth:`Analysis.to_dict` (the contract's JSON), so no NaN is ever passed
+off as a result.  A ``"singular"`` step keeps its positions (the velocity
+problem has no unique solution there, the position problem does).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+OK = "ok"
+UNASSEMBLABLE = "unassemblable"
+SINGULAR = "singular"
+
+
+@dataclass
+class JointKinematics:
+    """Motion of a joint's point fixed on its ``links[1]``; each array (N, 2)."""
+
+    position: np.ndarray
+    velocity: np.ndarray | None = None
+    acceleration: np.ndarray | None = None
+
+
+@dataclass
+class LinkKinematics:
+    """Motion of one moving link.
+
+    ``rotation`` is the rotation from the assembly configuration (rad,
+    continuous along the sweep); ``origin`` is the global position of the point
+    of the link that sits at the global origin in the assembly configuration.
+    ``com*`` are ``None`` for a link without a centre of mass.
+    """
+
+    rotation: np.ndarray
+    origin: np.ndarray
+    omega: np.ndarray | None = None
+    alpha: np.ndarray | None = None
+    origin_velocity: np.ndarray | None = None
+    origin_acceleration: np.ndarray | None = None
+    com: np.ndarray | None = None
+    com_velocity: np.ndarray | None = None
+    com_acceleration: np.ndarray | None = None
+
+    def point(self, local) -> np.ndarray:
+        """Global position (N, 2) of the link point whose assembly position is ``local``."""
+        c, s = np.cos(self.rotation), np.sin(self.rotation)
+        x, y = local
+        return self.origin + np.stack([c * x - s * y, s * x + c * y], axis=-1)
+
+    def point_velocity(self, local) -> np.ndarray:
+        """Velocity (N, 2) of the link point whose assembly position is ``local``."""
+        rx, ry = _rotated(self.rotation, local)
+        w = self.omega
+        return self.origin_velocity + np.stack([-w * ry, w * rx], axis=-1)
+
+    def point_acceleration(self, local) -> np.ndarray:
+        """Acceleration (N, 2) of the link point whose assembly position is ``local``."""
+        rx, ry = _rotated(self.rotation, local)
+        w, a = self.omega, self.alpha
+        return self.origin_acceleration + np.stack(
+            [-a * ry - w * w * rx, a * rx - w * w * ry], axis=-1
+        )
+
+
+def _rotated(theta, local):
+    c, s = np.cos(theta), np.sin(theta)
+    x, y = local
+    return c * x - s * y, s * x + c * y
+
+
+@dataclass
+class Analysis:
+    """Everything one run of a solving plan computed.
+
+    Attributes
+    ----------
+    scene : str
+        Name of the scene.
+    stages : tuple of str
+        The stages that actually ran, in order (``position``, ``velocity``,
+        ``acceleration``, ``forces``).
+    status : ndarray of str, shape (N,)
+        ``"ok"``, ``"unassemblable"`` or ``"singular"``.
+    messages : list of (str or None)
+        Why a step is not ``ok``; ``None`` for ``ok`` steps.
+    drivers : dict
+        ``{joint: {"q": (N,), "qd": (N,), "qdd": (N,)}}``.
+    joints, links : dict
+        :class:`JointKinematics` / :class:`LinkKinematics` by name.
+    condition : ndarray, shape (N,)
+        Dimensionless condition-number estimate of the constraint Jacobian
+        (exact where it matters: see :mod:`linkage_sym.numeric.singularity`).
+    outputs : tuple of str
+        The outputs the scene asked for.
+    warnings : list of str
+        Things the caller must know (e.g. an output not computed).
+    """
+
+    scene: str
+    stages: tuple[str, ...]
+    status: np.ndarray
+    messages: list
+    drivers: dict
+    joints: dict
+    links: dict
+    condition: np.ndarray
+    outputs: tuple[str, ...]
+    warnings: list = field(default_factory=list)
+
+    @property
+    def ok(self) -> np.ndarray:
+        """Boolean mask of the steps whose status is ``ok``."""
+        return self.status == OK
+
+    @property
+    def n_steps(self) -> int:
+        return len(self.status)
+
+    def to_dict(self) -> dict:
+        """The result in the JSON layout of the scene-format contract."""
+        steps = []
+        want_kin = "kinematics" in self.outputs
+        has_vel = "velocity" in self.stages
+        has_acc = "acceleration" in self.stages
+        for i in range(self.n_steps):
+            st = str(self.status[i])
+            step: dict = {"status": st}
+            if self.messages[i] is not None:
+                step["message"] = self.messages[i]
+            step["drivers"] = {
+                name: {k: float(v[i]) for k, v in d.items()} for name, d in self.drivers.items()
+            }
+            positions = st in (OK, SINGULAR)
+            rates = st == OK
+            if want_kin and positions:
+                joints = {}
+                for name, jk in self.joints.items():
+                    rec = {"position": _vec(jk.position[i])}
+                    if rates and has_vel:
+                        rec["velocity"] = _vec(jk.velocity[i])
+                    if rates and has_acc:
+                        rec["acceleration"] = _vec(jk.acceleration[i])
+                    joints[name] = rec
+                links = {}
+                for name, lk in self.links.items():
+                    rec = {"rotation": float(lk.rotation[i])}
+                    if rates and has_vel:
+                        rec["omega"] = float(lk.omega[i])
+                    if rates and has_acc:
+                        rec["alpha"] = float(lk.alpha[i])
+                    if lk.com is not None:
+                        rec["com"] = _vec(lk.com[i])
+                        if rates and has_vel:
+                            rec["com_velocity"] = _vec(lk.com_velocity[i])
+                        if rates and has_acc:
+                            rec["com_acceleration"] = _vec(lk.com_acceleration[i])
+                    links[name] = rec
+                step["joints"] = joints
+                step["links"] = links
+            steps.append(step)
+        out = {"scene": self.scene, "stages": list(self.stages), "steps": steps}
+        if self.warnings:
+            out["warnings"] = list(self.warnings)
+        return out
+
+
+def _vec(v) -> list:
+    return [float(v[0]), float(v[1])]
