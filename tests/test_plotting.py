@@ -1,0 +1,316 @@
+"""The plotting layer writes readable PNGs from hand-made results.
+
+The results here are built by hand (closed-form slider-crank and four-bar
+positions, finite-difference rates), not by the solver, so these tests only
+depend on the plain data classes and the result container.
+"""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+pytest.importorskip("matplotlib")
+
+from linkage_sym.model import Driver, Joint, Link, Scene  # noqa: E402
+from linkage_sym.numeric.result import (  # noqa: E402
+    OK,
+    SINGULAR,
+    UNASSEMBLABLE,
+    Analysis,
+    JointKinematics,
+    LinkKinematics,
+)
+from linkage_sym.plotting import coupler_curves, mechanism_snapshot, motion_diagrams, plot_all  # noqa: E402
+from linkage_sym.plotting.style import status_runs  # noqa: E402
+
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+N = 37
+OMEGA = 10.0
+
+
+def _rot(theta, p):
+    c, s = np.cos(theta), np.sin(theta)
+    return np.stack([c * p[0] - s * p[1], s * p[0] + c * p[1]], axis=-1)
+
+
+def _rates(theta, values):
+    """Time derivatives of values sampled over theta at constant crank speed OMEGA."""
+    return np.gradient(values, theta, axis=0) * OMEGA
+
+
+def _link(rotation, local_a, global_a, theta, com=None):
+    """LinkKinematics of a link whose point local_a is at global_a (N, 2)."""
+    origin = global_a - _rot(rotation, local_a)
+    omega = _rates(theta, rotation)
+    lk = LinkKinematics(rotation=rotation, origin=origin, omega=omega,
+                        alpha=_rates(theta, omega), origin_velocity=_rates(theta, origin))
+    lk.origin_acceleration = _rates(theta, lk.origin_velocity)
+    if com is not None:
+        lk.com = lk.point(com)
+        lk.com_velocity = lk.point_velocity(com)
+        lk.com_acceleration = lk.point_acceleration(com)
+    return lk
+
+
+def _joint(lk, at):
+    return JointKinematics(lk.point(at), lk.point_velocity(at), lk.point_acceleration(at))
+
+
+def _blank(analysis, step, status, keep_positions=False):
+    """Mark one step as not ok, with NaN where the result contract says so."""
+    analysis.status[step] = status
+    analysis.messages[step] = f"test: {status}"
+    for lk in analysis.links.values():
+        names = ["omega", "alpha", "origin_velocity", "origin_acceleration",
+                 "com_velocity", "com_acceleration"]
+        if not keep_positions:
+            names += ["rotation", "origin", "com"]
+        for name in names:
+            arr = getattr(lk, name)
+            if arr is not None:
+                arr[step] = np.nan
+    for jk in analysis.joints.values():
+        for name in ["velocity", "acceleration"] + ([] if keep_positions else ["position"]):
+            getattr(jk, name)[step] = np.nan
+
+
+def slider_crank():
+    """Offset-free slider-crank, crank 30 mm, coupler 100 mm; steps 9 and 20 not ok."""
+    r, l = 0.03, 0.10
+    scene = Scene(
+        name="test slider-crank",
+        links=(Link("crank", 0.1, (0.015, 0.0), 1e-5), Link("rod", 0.3, (0.08, 0.0), 2e-4),
+               Link("piston", 0.5, (0.13, 0.0), 1e-4)),
+        joints=(Joint("A", "R", ("ground", "crank"), (0.0, 0.0)),
+                Joint("B", "R", ("crank", "rod"), (r, 0.0)),
+                Joint("C", "R", ("rod", "piston"), (r + l, 0.0)),
+                Joint("D", "P", ("ground", "piston"), (r + l, 0.0), axis=0.0)),
+        drivers=(Driver("A", "R", 0.0, 2 * math.pi, N, OMEGA, toward="B"),),
+    )
+    theta = np.linspace(0.0, 2 * math.pi, N)
+    b = np.stack([r * np.cos(theta), r * np.sin(theta)], axis=-1)
+    c = np.stack([b[:, 0] + np.sqrt(l**2 - b[:, 1] ** 2), np.zeros(N)], axis=-1)
+    phi = np.arctan2(c[:, 1] - b[:, 1], c[:, 0] - b[:, 0])
+    links = {
+        "crank": _link(theta.copy(), (r, 0.0), b, theta, com=(0.015, 0.0)),
+        "rod": _link(phi, (r, 0.0), b, theta, com=(0.08, 0.0)),
+        "piston": _link(np.zeros(N), (r + l, 0.0), c, theta, com=(0.13, 0.0)),
+    }
+    joints = {"A": _joint(links["crank"], (0.0, 0.0)), "B": _joint(links["rod"], (r, 0.0)),
+              "C": _joint(links["piston"], (r + l, 0.0)),
+              "D": _joint(links["piston"], (r + l, 0.0))}
+    analysis = Analysis(
+        scene=scene.name, stages=("position", "velocity", "acceleration"),
+        status=np.array([OK] * N, dtype=object), messages=[None] * N,
+        drivers={"A": {"q": theta.copy(), "qd": np.full(N, OMEGA), "qdd": np.zeros(N)}},
+        joints=joints, links=links, condition=np.ones(N), outputs=("kinematics",),
+    )
+    _blank(analysis, 9, UNASSEMBLABLE)
+    _blank(analysis, 20, SINGULAR, keep_positions=True)
+    return scene, analysis
+
+
+def four_bar():
+    """The crank-rocker of the scene-format contract, drawn from closed-form positions."""
+    A, B, C, D = (np.array(p) for p in ((0.0, 0.0), (0.024, 0.0), (0.066, 0.047), (0.078, 0.0)))
+    scene = Scene(
+        name="test crank-rocker",
+        links=(Link("crank", 0.2, (0.012, 0.0), 1e-5), Link("coupler", 0.5, (0.045, 0.02), 2e-4),
+               Link("rocker", 0.3, (0.07, 0.024), 6e-5)),
+        joints=(Joint("A", "R", ("ground", "crank"), tuple(A)),
+                Joint("B", "R", ("crank", "coupler"), tuple(B)),
+                Joint("C", "R", ("coupler", "rocker"), tuple(C)),
+                Joint("D", "R", ("rocker", "ground"), tuple(D))),
+        drivers=(Driver("A", "R", 0.0, 2 * math.pi, N, OMEGA, toward="B"),),
+    )
+    theta = np.linspace(0.0, 2 * math.pi, N)
+    r1, l2, l3 = np.linalg.norm(B - A), np.linalg.norm(C - B), np.linalg.norm(D - C)
+    bs = np.stack([r1 * np.cos(theta), r1 * np.sin(theta)], axis=-1)
+    cs = []
+    prev = C
+    for b in bs:  # circle-circle intersection, branch nearest the previous step
+        d = np.linalg.norm(D - b)
+        a = (l2**2 - l3**2 + d**2) / (2 * d)
+        h = math.sqrt(max(l2**2 - a**2, 0.0))
+        e = (D - b) / d
+        mid = b + a * e
+        cands = [mid + h * np.array([-e[1], e[0]]), mid - h * np.array([-e[1], e[0]])]
+        prev = min(cands, key=lambda p: np.linalg.norm(p - prev))
+        cs.append(prev)
+    cs = np.array(cs)
+    ang = lambda v: np.unwrap(np.arctan2(v[:, 1], v[:, 0]))  # noqa: E731
+    rot2 = ang(cs - bs) - math.atan2(*(C - B)[::-1])
+    rot3 = ang(cs - D) - math.atan2(*(C - D)[::-1])
+    links = {
+        "crank": _link(theta.copy(), tuple(B), bs, theta, com=(0.012, 0.0)),
+        "coupler": _link(rot2, tuple(B), bs, theta, com=(0.045, 0.02)),
+        "rocker": _link(rot3, tuple(D), np.tile(D, (N, 1)), theta, com=(0.07, 0.024)),
+    }
+    joints = {"A": _joint(links["crank"], tuple(A)), "B": _joint(links["coupler"], tuple(B)),
+              "C": _joint(links["rocker"], tuple(C)),
+              "D": JointKinematics(np.tile(D, (N, 1)), np.zeros((N, 2)), np.zeros((N, 2)))}
+    analysis = Analysis(
+        scene=scene.name, stages=("position", "velocity", "acceleration"),
+        status=np.array([OK] * N, dtype=object), messages=[None] * N,
+        drivers={"A": {"q": theta.copy(), "qd": np.full(N, OMEGA), "qdd": np.zeros(N)}},
+        joints=joints, links=links, condition=np.ones(N), outputs=("kinematics",),
+    )
+    return scene, analysis
+
+
+def shaper():
+    """Shaper of example 3-7 (l1 = 125, l3 = 600, l4 = 150 mm): a slider on a swinging guide."""
+    l1, l3, l4 = 0.125, 0.600, 0.150
+    th3_0, th4_0 = math.radians(65.55610), math.radians(169.93820)
+    l6 = l1 * math.tan(th3_0)
+    l6p = l3 * math.sin(th3_0) + l4 * math.sin(th4_0)
+    A, B, C = np.array([0.0, l6]), np.array([l1, l6]), np.zeros(2)
+    D = l3 * np.array([math.cos(th3_0), math.sin(th3_0)])
+    E = D + l4 * np.array([math.cos(th4_0), math.sin(th4_0)])
+    t = lambda p: tuple(float(v) for v in p)  # noqa: E731
+    scene = Scene(
+        name="test shaper",
+        links=(Link("crank"), Link("block", 1.0, t(B)), Link("rocker", 5.0, t(D / 2), 0.15),
+               Link("rod", 1.0, t((D + E) / 2), 2e-3), Link("ram", 10.0, t(E))),
+        joints=(Joint("A", "R", ("ground", "crank"), t(A)),
+                Joint("B", "R", ("crank", "block"), t(B)),
+                Joint("B'", "P", ("rocker", "block"), t(B), axis=th3_0),
+                Joint("C", "R", ("ground", "rocker"), t(C)),
+                Joint("D", "R", ("rocker", "rod"), t(D)),
+                Joint("E", "R", ("rod", "ram"), t(E)),
+                Joint("F", "P", ("ground", "ram"), t(E), axis=0.0)),
+        drivers=(Driver("A", "R", 0.0, 2 * math.pi, N, OMEGA, toward="B"),),
+    )
+    th1 = np.linspace(0.0, 2 * math.pi, N)
+    bs = np.stack([l1 * np.cos(th1), l6 + l1 * np.sin(th1)], axis=-1)
+    th3 = np.arctan2(bs[:, 1], bs[:, 0])
+    ds = l3 * np.stack([np.cos(th3), np.sin(th3)], axis=-1)
+    th4 = math.pi - np.arcsin((l6p - ds[:, 1]) / l4)
+    es = ds + l4 * np.stack([np.cos(th4), np.sin(th4)], axis=-1)
+    links = {
+        "crank": _link(th1.copy(), t(A), np.tile(A, (N, 1)), th1),
+        "block": _link(th3 - th3_0, t(B), bs, th1, com=t(B)),
+        "rocker": _link(th3 - th3_0, t(C), np.zeros((N, 2)), th1, com=t(D / 2)),
+        "rod": _link(th4 - th4_0, t(D), ds, th1, com=t((D + E) / 2)),
+        "ram": _link(np.zeros(N), t(E), es, th1, com=t(E)),
+    }
+    joints = {"A": _joint(links["crank"], t(A)), "B": _joint(links["block"], t(B)),
+              "B'": _joint(links["block"], t(B)), "C": _joint(links["rocker"], t(C)),
+              "D": _joint(links["rod"], t(D)), "E": _joint(links["ram"], t(E)),
+              "F": _joint(links["ram"], t(E))}
+    analysis = Analysis(
+        scene=scene.name, stages=("position", "velocity", "acceleration"),
+        status=np.array([OK] * N, dtype=object), messages=[None] * N,
+        drivers={"A": {"q": th1.copy(), "qd": np.full(N, OMEGA), "qdd": np.zeros(N)}},
+        joints=joints, links=links, condition=np.ones(N), outputs=("kinematics",),
+    )
+    return scene, analysis
+
+
+def _assert_png(path):
+    assert path.exists()
+    data = path.read_bytes()
+    assert len(data) > 1000
+    assert data[:8] == PNG_SIGNATURE
+
+
+@pytest.mark.parametrize("make", [slider_crank, four_bar, shaper])
+def test_motion_diagrams_write_three_pngs(tmp_path, make):
+    scene, analysis = make()
+    out = tmp_path / "nested" / "dir"
+    paths = motion_diagrams(scene, analysis, out)
+    assert [p.name for p in paths] == [
+        f"{scene.name.replace(' ', '_')}_{k}.png"
+        for k in ("positions", "velocities", "accelerations")
+    ]
+    for p in paths:
+        _assert_png(p)
+
+
+def test_prefix_names_the_files(tmp_path):
+    scene, analysis = slider_crank()
+    paths = motion_diagrams(scene, analysis, tmp_path, prefix="run1")
+    assert {p.name for p in paths} == {"run1_positions.png", "run1_velocities.png",
+                                       "run1_accelerations.png"}
+    assert all(p.parent == tmp_path for p in paths)
+
+
+def test_a_stage_that_did_not_run_is_not_drawn(tmp_path):
+    scene, analysis = slider_crank()
+    analysis.stages = ("position",)
+    paths = motion_diagrams(scene, analysis, tmp_path)
+    assert [p.name.rsplit("_", 1)[1] for p in paths] == ["positions.png"]
+
+
+@pytest.mark.parametrize("make", [slider_crank, four_bar, shaper])
+def test_coupler_curves_write_one_png(tmp_path, make):
+    scene, analysis = make()
+    out = tmp_path / "sub" / "paths.png"
+    assert coupler_curves(scene, analysis, out) == out
+    _assert_png(out)
+
+
+def test_nan_gaps_and_all_bad_steps_do_not_raise(tmp_path):
+    scene, analysis = slider_crank()
+    assert np.isnan(analysis.links["rod"].rotation[9])
+    assert np.isnan(analysis.links["rod"].omega[20])
+    assert np.isfinite(analysis.links["rod"].rotation[20])
+    for p in plot_all(scene, analysis, tmp_path / "gaps"):
+        _assert_png(p)
+    for step in range(N):  # nothing solved at all
+        _blank(analysis, step, UNASSEMBLABLE)
+    for p in plot_all(scene, analysis, tmp_path / "nothing"):
+        _assert_png(p)
+
+
+def test_snapshot_of_an_unsolved_step_draws_nothing():
+    from matplotlib.figure import Figure
+
+    scene, analysis = slider_crank()
+    ax = Figure().subplots()
+    assert mechanism_snapshot(scene, analysis, 9, ax) == []
+    assert mechanism_snapshot(scene, analysis, 20, ax)  # singular: positions known
+    assert mechanism_snapshot(scene, analysis, None, ax)  # assembly configuration
+
+
+def test_a_prismatic_driver_puts_millimetres_on_the_x_axis():
+    from dataclasses import replace
+
+    from linkage_sym.plotting.motion import driver_axis, motion_figure
+
+    scene, analysis = slider_crank()
+    scene = replace(scene, drivers=(Driver("D", "P", 0.0, -0.06, N, 1.0),))
+    analysis.drivers = {"D": {"q": np.linspace(0.0, -0.06, N), "qd": np.ones(N),
+                              "qdd": np.zeros(N)}}
+    x, label, unit = driver_axis(scene, analysis)
+    assert unit == "mm" and "(mm)" in label
+    assert x[-1] == pytest.approx(-60.0)
+    fig = motion_figure(scene, analysis, "velocity")
+    assert fig.axes[-1].get_xlabel() == label
+
+
+def test_status_runs_split_by_status():
+    status = [OK, UNASSEMBLABLE, UNASSEMBLABLE, SINGULAR, OK, UNASSEMBLABLE]
+    assert status_runs(status) == [(UNASSEMBLABLE, 1, 2), (SINGULAR, 3, 3), (UNASSEMBLABLE, 5, 5)]
+
+
+def test_plotting_changes_no_global_matplotlib_state():
+    """Importing and plotting neither imports pyplot nor switches the backend."""
+    code = (
+        "import sys, tempfile;"
+        "sys.path.insert(0, 'tests');"
+        "import test_plotting as t, linkage_sym.plotting as lp;"
+        "s, a = t.slider_crank();"
+        "lp.plot_all(s, a, tempfile.mkdtemp());"
+        "assert 'matplotlib.pyplot' not in sys.modules, 'pyplot imported';"
+        "assert 'sympy' not in sys.modules, 'sympy imported'"
+    )
+    import pathlib
+
+    root = pathlib.Path(__file__).resolve().parents[1]
+    subprocess.run([sys.executable, "-c", code], check=True, cwd=root)
