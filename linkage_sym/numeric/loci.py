@@ -1,0 +1,148 @@
+"""Loci of a dyad's internal point: circles and lines carried by known links.
+
+A dyad's internal point ``Y`` lies on two loci, each fixed to a link already
+solved: a *circle* (around an external revolute joint, radius the link's
+length) or a *line* (the slide of an external prismatic joint).  Positions
+come from closed forms written to stay accurate near tangency (no half-angle
+formula: the half-chord is computed from products of differences, Heron
+style); velocities and accelerations from the two differentiated locus
+equations, a 2x2 linear system solved by Cramer's rule over all steps.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+class Circle:
+    """Points at distance ``r`` from the point ``C`` (local) of link ``link``."""
+
+    def __init__(self, link, C, r):
+        self.link, self.C, self.r = link, C, r
+
+    def center(self, S):
+        return S[self.link].point(self.C)
+
+    def vel_row(self, S, Y, cache):
+        Cx, Cy = cache
+        vCx, vCy = S[self.link].point_velocity(self.C)
+        ax, ay = Y[0] - Cx, Y[1] - Cy
+        return ax, ay, ax * vCx + ay * vCy, (vCx, vCy)
+
+    def acc_row(self, S, Y, vY, cache, vcache):
+        Cx, Cy = cache
+        vCx, vCy = vcache
+        aCx, aCy = S[self.link].point_acceleration(self.C)
+        ax, ay = Y[0] - Cx, Y[1] - Cy
+        rvx, rvy = vY[0] - vCx, vY[1] - vCy
+        return ax, ay, ax * aCx + ay * aCy - (rvx * rvx + rvy * rvy)
+
+
+class Line:
+    """The line through the point ``Q`` (local) of ``link`` along its direction ``u0``."""
+
+    def __init__(self, link, Q, axis):
+        self.link, self.Q = link, Q
+        self.u0 = (math.cos(axis), math.sin(axis))
+
+    def frame(self, S):
+        st = S[self.link]
+        Qx, Qy = st.point(self.Q)
+        ux, uy = st.rot(self.u0)
+        return Qx, Qy, ux, uy
+
+    def vel_row(self, S, Y, cache):
+        Qx, Qy, ux, uy = cache
+        st = S[self.link]
+        vQx, vQy = st.point_velocity(self.Q)
+        nx, ny = -uy, ux
+        rx, ry = Y[0] - Qx, Y[1] - Qy
+        return nx, ny, nx * vQx + ny * vQy + st.w * (ux * rx + uy * ry), (vQx, vQy)
+
+    def acc_row(self, S, Y, vY, cache, vcache):
+        Qx, Qy, ux, uy = cache
+        vQx, vQy = vcache
+        st = S[self.link]
+        aQx, aQy = st.point_acceleration(self.Q)
+        nx, ny = -uy, ux
+        rx, ry = Y[0] - Qx, Y[1] - Qy
+        rvx, rvy = vY[0] - vQx, vY[1] - vQy
+        w = st.w
+        b = (
+            nx * aQx
+            + ny * aQy
+            + 2 * w * (ux * rvx + uy * rvy)
+            + st.al * (ux * rx + uy * ry)
+            + w * w * (nx * rx + ny * ry)
+        )
+        return nx, ny, b
+
+
+def circle_circle(C1, r1, C2, r2, sigma):
+    """Intersection of two circles on the side ``sigma`` of the line C1->C2.
+
+    Returns ``(Yx, Yy, h, d)``: the point, the half-chord (NaN where the
+    circles do not meet) and the distance of the centres.
+
+    Examples
+    --------
+    >>> Yx, Yy, h, d = circle_circle((0.0, 0.0), 5.0, (8.0, 0.0), 5.0, 1.0)
+    >>> float(Yx), float(Yy), float(h)
+    (4.0, 3.0, 3.0)
+    """
+    ex, ey = C2[0] - C1[0], C2[1] - C1[1]
+    d = np.hypot(ex, ey)
+    # Heron form of the half-chord: no cancellation near tangency
+    with np.errstate(invalid="ignore", divide="ignore"):
+        prod = (r1 + r2 - d) * (d + r1 - r2) * (d - r1 + r2) * (r1 + r2 + d)
+        h = np.sqrt(np.where(prod >= 0.0, prod, np.nan)) / (2.0 * d)
+        a = (d * d + r1 * r1 - r2 * r2) / (2.0 * d)
+        ex, ey = ex / d, ey / d
+    Yx = C1[0] + a * ex - sigma * h * ey
+    Yy = C1[1] + a * ey + sigma * h * ex
+    return Yx, Yy, h, d
+
+
+def circle_line(C, r, Qx, Qy, ux, uy, sigma):
+    """Intersection of a circle with a line, on the side ``sigma`` along ``u``.
+
+    Returns ``(Yx, Yy, h)`` with ``h`` the half-chord (NaN where they miss).
+
+    Examples
+    --------
+    >>> Yx, Yy, h = circle_line((0.0, 0.0), 5.0, 0.0, 3.0, 1.0, 0.0, 1.0)
+    >>> float(Yx), float(Yy), float(h)
+    (4.0, 3.0, 4.0)
+    """
+    nx, ny = -uy, ux
+    delta = nx * (C[0] - Qx) + ny * (C[1] - Qy)
+    with np.errstate(invalid="ignore"):
+        prod = (r - delta) * (r + delta)
+        h = np.sqrt(np.where(prod >= 0.0, prod, np.nan))
+    Fx, Fy = C[0] - delta * nx, C[1] - delta * ny
+    return Fx + sigma * h * ux, Fy + sigma * h * uy, h
+
+
+def line_line(Q1x, Q1y, u1x, u1y, Q2x, Q2y, u2x, u2y):
+    """Intersection of two lines; returns ``(Yx, Yy, sin_angle)``.
+
+    Examples
+    --------
+    >>> Yx, Yy, s = line_line(0.0, 1.0, 1.0, 0.0, 2.0, 0.0, 0.0, 1.0)
+    >>> float(Yx), float(Yy), float(s)
+    (2.0, 1.0, 1.0)
+    """
+    cr = u1x * u2y - u1y * u2x
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = ((Q2x - Q1x) * u2y - (Q2y - Q1y) * u2x) / cr
+    return Q1x + t * u1x, Q1y + t * u1y, cr
+
+
+def solve2(a1x, a1y, b1, a2x, a2y, b2):
+    """Solve ``[a1; a2] v = [b1; b2]`` for ``v`` by Cramer's rule (vectorised)."""
+    det = a1x * a2y - a1y * a2x
+    with np.errstate(invalid="ignore", divide="ignore"):
+        inv = 1.0 / det
+    return (b1 * a2y - b2 * a1y) * inv, (a1x * b2 - a2x * b1) * inv

@@ -1,0 +1,59 @@
+"""Plain-text report of a structural decomposition, as a person reads it."""
+
+from __future__ import annotations
+
+from linkage_sym.model import Scene
+from linkage_sym.structure.disconnection import disconnections
+from linkage_sym.structure.groups import Decomposition
+
+
+def structure_report(scene: Scene, dec: Decomposition) -> str:
+    """Describe drivers and Assur groups in solving order, with disconnection choices.
+
+    Examples
+    --------
+    >>> from linkage_sym.model import Scene, Link, Joint, Driver
+    >>> from linkage_sym.structure import decompose
+    >>> j = (Joint("A", "R", ("ground", "crank"), (0, 0)),
+    ...      Joint("B", "R", ("crank", "coupler"), (1, 0)),
+    ...      Joint("C", "R", ("coupler", "rocker"), (2, 1)),
+    ...      Joint("D", "R", ("rocker", "ground"), (3, 0)))
+    >>> s = Scene("4bar", (Link("crank"), Link("coupler"), Link("rocker")), j,
+    ...           (Driver("A", "R", 0.0, 6.28, 10, 1.0, toward="B"),))
+    >>> print(structure_report(s, decompose(s)))
+    Scene '4bar': 3 moving links, 4 joints, mobility 1, 1 driver
+    Solving order:
+      1. input link: crank; driven joint A (R); external joints A
+      2. dyad RRR (class II): coupler, rocker; external joints B, D; internal joints C
+    """
+    nd = len(scene.drivers)
+    lines = [
+        f"Scene '{scene.name}': {len(scene.links)} moving links, {len(scene.joints)} joints, "
+        f"mobility {dec.mobility}, {nd} driver{'s' if nd != 1 else ''}",
+        "Solving order:",
+    ]
+    roman = {2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI"}
+    jtype = {j.name: j.type for j in scene.joints}
+    for i, g in enumerate(dec.groups, 1):
+        head = g.label
+        if g.assur_class is not None and g.kind != "triad":
+            head += f" (class {roman.get(g.assur_class, g.assur_class)})"
+        text = f"  {i}. {head}: {', '.join(g.links)}"
+        if g.drivers:
+            text += "; driven joint" + ("s " if len(g.drivers) > 1 else " ")
+            text += ", ".join(f"{d} ({jtype[d]})" for d in g.drivers)
+        text += f"; external joints {', '.join(g.external)}"
+        if g.internal:
+            text += f"; internal joints {', '.join(g.internal)}"
+        lines.append(text)
+        if g.kind not in ("input", "dyad"):
+            choices = disconnections(scene, g)
+            if choices:
+                lines.append(
+                    "     disconnection choices (seed 000: virtual pure-dyad mechanism):"
+                )
+                for k, c in enumerate(choices, 1):
+                    lines.append(f"       {chr(96 + k) if k <= 26 else k}) {c.describe()}")
+            else:
+                lines.append("     no disconnection leaves a pure-dyad mechanism")
+    return "\n".join(lines)
