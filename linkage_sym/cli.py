@@ -1,0 +1,130 @@
+"""The ``linkage-sym`` command line (also ``python -m linkage_sym``).
+
+Commands
+--------
+analyze SCENE.json -o RESULT.json
+    Solve the scene's sweep and write the result of the contract.
+structure SCENE.json
+    Print the drivers and Assur groups in solving order, with the
+    disconnection choices of class-III groups.
+demo [-o DIR] [--example NAME]
+    Analyse shipped examples and write motion diagrams and coupler curves.
+examples
+    List the shipped example scenes.
+
+An invalid scene exits with status 2, a message naming each offending field
+on standard error, and writes nothing.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from linkage_sym.errors import SceneError
+
+DEMO_EXAMPLES = ("crank_rocker", "shaper")
+
+
+def _load(path):
+    from linkage_sym.scene import load_scene
+
+    return load_scene(path)
+
+
+def cmd_analyze(args) -> int:
+    from linkage_sym.numeric.plan import compile_plan
+
+    scene = _load(args.scene)
+    result = compile_plan(scene).run().to_dict()
+    for w in result.get("warnings", []):
+        print(f"warning: {w}", file=sys.stderr)
+    text = json.dumps(result, indent=1 if args.pretty else None)
+    if args.output in (None, "-"):
+        print(text)
+    else:
+        Path(args.output).write_text(text + "\n")
+        n_bad = sum(s["status"] != "ok" for s in result["steps"])
+        print(
+            f"wrote {args.output}: {len(result['steps'])} steps, stages {', '.join(result['stages'])}"
+            + (f", {n_bad} steps not ok (see their 'message')" if n_bad else "")
+        )
+    return 0
+
+
+def cmd_structure(args) -> int:
+    from linkage_sym.structure import decompose, structure_report
+
+    scene = _load(args.scene)
+    print(structure_report(scene, decompose(scene)))
+    return 0
+
+
+def cmd_examples(args) -> int:
+    from linkage_sym.examples import example_names, example_path
+
+    for name in example_names():
+        print(f"{name:28s} {example_path(name)}")
+    return 0
+
+
+def cmd_demo(args) -> int:
+    from linkage_sym.examples import example_path
+    from linkage_sym.numeric.plan import compile_plan
+    from linkage_sym.plotting import plot_all
+
+    out = Path(args.output)
+    out.mkdir(parents=True, exist_ok=True)
+    names = args.example or list(DEMO_EXAMPLES)
+    for name in names:
+        scene = _load(example_path(name))
+        analysis = compile_plan(scene).run()
+        (out / f"{name}_result.json").write_text(json.dumps(analysis.to_dict()) + "\n")
+        files = plot_all(scene, analysis, out, prefix=name)
+        n_ok = int(analysis.ok.sum())
+        print(f"{name}: {n_ok}/{analysis.n_steps} steps solved; wrote")
+        print(f"  {out / (name + '_result.json')}")
+        for f in files:
+            print(f"  {f}")
+    print(f"demo output is in {out.resolve()}")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="linkage-sym",
+        description="Symbolic-numeric analysis of planar linkages.",
+    )
+    sub = p.add_subparsers(dest="command", required=True)
+    a = sub.add_parser("analyze", help="solve a scene's sweep and write the result JSON")
+    a.add_argument("scene", help="scene JSON file")
+    a.add_argument("-o", "--output", help="result JSON file (default: standard output)")
+    a.add_argument("--pretty", action="store_true", help="indent the JSON")
+    a.set_defaults(func=cmd_analyze)
+    s = sub.add_parser("structure", help="print drivers and Assur groups in solving order")
+    s.add_argument("scene", help="scene JSON file")
+    s.set_defaults(func=cmd_structure)
+    d = sub.add_parser("demo", help="analyse shipped examples and write plots")
+    d.add_argument("-o", "--output", default="demo_out", help="output folder (default demo_out)")
+    d.add_argument(
+        "--example", action="append", help=f"example to run (repeatable; default {', '.join(DEMO_EXAMPLES)})"
+    )
+    d.set_defaults(func=cmd_demo)
+    e = sub.add_parser("examples", help="list the shipped example scenes")
+    e.set_defaults(func=cmd_examples)
+    return p
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except SceneError as err:
+        print(f"linkage-sym: {err}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
