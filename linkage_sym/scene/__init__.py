@@ -1,0 +1,18 @@
+"""Scenes in and out: loading and validating scene files, and writing them back.
+
+The layout is the contract of ``shared/spec/scene-format.md``; the result is
+the plain data of :mod:`linkage_sym.model.scene`.
+
+- :func:`load_scene` -- a JSON file path or a parsed mapping to a validated
+  :class:`~linkage_sym.model.scene.Scene`;
+- :func:`parse_scene` -- a parsed mapping to a validated scene;
+- :func:`dump_scene` -- a scene back to the file layout.
+
+Every problem of an invalid scene is reported at once, in one
+:class:`~linkage_sym.errors.SceneError`.
+"""
+
+from linkage_sym.scene.load import dump_scene, load_scene
+from linkage_sym.scene.validate import parse_scene
+
+__all__ = ["dump_scene", "load_scene", "parse_scene"]

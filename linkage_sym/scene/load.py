@@ -1,0 +1,204 @@
+"""Scene files: reading one into a validated :class:`Scene`, and writing a scene back.
+
+:func:`load_scene` reads JSON (a path) or takes an already-parsed mapping and
+hands it to :func:`~linkage_sym.scene.validate.parse_scene`; :func:`dump_scene`
+is its inverse, back to the file layout of ``shared/spec/scene-format.md``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from collections.abc import Mapping
+from typing import Any
+
+from linkage_sym.errors import SceneError
+from linkage_sym.model.scene import Driver, Effects, Joint, Link, Load, Scene
+from linkage_sym.scene.validate import parse_scene
+
+__all__ = ["dump_scene", "load_scene"]
+
+
+def load_scene(source: str | os.PathLike[str] | Mapping[str, Any]) -> Scene:
+    """Load and validate a scene from a JSON file or an already-parsed mapping.
+
+    Parameters
+    ----------
+    source : str, os.PathLike or Mapping
+        Path of a JSON scene file, or the scene itself as a mapping in the
+        file layout.
+
+    Returns
+    -------
+    Scene
+        The validated scene, angles in radians and defaults applied.
+
+    Raises
+    ------
+    SceneError
+        If the file is missing, unreadable or not valid JSON (naming the file,
+        and the line and column of a syntax error), or if the scene is invalid
+        (listing every problem as ``"field.path: reason"``).
+    TypeError
+        If ``source`` is neither a path nor a mapping.
+
+    Examples
+    --------
+    >>> scene = load_scene({
+    ...     "name": "slider",
+    ...     "links": [{"name": "block", "mass": 2.0, "com": [0.0, 0.0]}],
+    ...     "joints": [{"name": "S", "type": "P", "links": ["ground", "block"],
+    ...                 "at": [0.0, 0.0], "axis_deg": 0}],
+    ...     "drivers": [{"joint": "S", "start": 0.0, "stop": 0.1, "steps": 11, "speed": 0.5}],
+    ... })
+    >>> scene.drivers[0]
+    Driver(joint='S', kind='P', start=0.0, stop=0.1, steps=11, speed=0.5, acceleration=0.0, toward=None)
+    >>> scene.effects, scene.outputs
+    (Effects(inertia=False, gravity=None, loads=True), ('kinematics', 'reactions', 'driving', 'frame'))
+    >>> load_scene("no/such/scene.json")
+    Traceback (most recent call last):
+      ...
+    linkage_sym.errors.SceneError: invalid scene (1 problem):
+      no/such/scene.json: no such file
+    """
+    if isinstance(source, Mapping):
+        return parse_scene(source)
+    if isinstance(source, (str, os.PathLike)):
+        return parse_scene(_read_json(os.fspath(source)))
+    raise TypeError(f"load_scene() takes a path or a mapping, not {type(source).__name__}")
+
+
+def _read_json(path: str) -> Any:
+    """The parsed contents of a JSON file; any failure is a :class:`SceneError`."""
+    try:
+        with open(path, encoding="utf-8-sig") as file:
+            text = file.read()
+    except FileNotFoundError as err:
+        raise SceneError([f"{path}: no such file"]) from err
+    except OSError as err:
+        raise SceneError([f"{path}: cannot be read ({err.strerror or err})"]) from err
+    except UnicodeDecodeError as err:
+        raise SceneError([f"{path}: not UTF-8 text (byte {err.start})"]) from err
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as err:
+        raise SceneError([f"{path}: line {err.lineno}, column {err.colno}: invalid JSON: {err.msg}"]) from err
+
+
+def dump_scene(scene: Scene) -> dict[str, Any]:
+    """A scene in the file layout: the inverse of :func:`parse_scene`.
+
+    Angles go back to degrees (``axis_deg``, and ``start_deg``/``stop_deg`` of
+    ``R`` drivers; ``P`` drivers keep ``start``/``stop`` in metres).  Every
+    default is written out, except absent optional values (``com``, a load's
+    force, gravity).  ``parse_scene(dump_scene(s)) == s`` for every scene
+    ``s`` that :func:`parse_scene` produces.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene to write.
+
+    Returns
+    -------
+    dict
+        JSON-serialisable mapping (lists, not tuples).
+
+    Examples
+    --------
+    >>> from linkage_sym.model import Driver, Joint, Link
+    >>> scene = Scene("s", (Link("block"),),
+    ...               (Joint("S", "P", ("ground", "block"), (0.0, 0.0), math.pi / 2),),
+    ...               (Driver("S", "P", 0.0, 0.1, 11, 0.5),))
+    >>> dump_scene(scene)["joints"]
+    [{'name': 'S', 'type': 'P', 'links': ['ground', 'block'], 'at': [0.0, 0.0], 'axis_deg': 90.0}]
+    """
+    return {
+        "name": scene.name,
+        "links": [_dump_link(link) for link in scene.links],
+        "joints": [_dump_joint(joint) for joint in scene.joints],
+        "drivers": [_dump_driver(driver) for driver in scene.drivers],
+        "loads": [_dump_load(load) for load in scene.loads],
+        "effects": _dump_effects(scene.effects),
+        "outputs": list(scene.outputs),
+    }
+
+
+def _dump_link(link: Link) -> dict[str, Any]:
+    out: dict[str, Any] = {"name": link.name, "mass": link.mass}
+    if link.com is not None:
+        out["com"] = list(link.com)
+    out["inertia"] = link.inertia
+    return out
+
+
+def _dump_joint(joint: Joint) -> dict[str, Any]:
+    out: dict[str, Any] = {
+        "name": joint.name,
+        "type": joint.type,
+        "links": list(joint.links),
+        "at": list(joint.at),
+    }
+    if joint.axis is not None:
+        out["axis_deg"] = _degrees(joint.axis)
+    return out
+
+
+def _dump_driver(driver: Driver) -> dict[str, Any]:
+    out: dict[str, Any] = {"joint": driver.joint}
+    if driver.kind == "R":
+        out["toward"] = driver.toward
+        out["start_deg"] = _degrees(driver.start)
+        out["stop_deg"] = _degrees(driver.stop)
+    else:
+        out["start"] = driver.start
+        out["stop"] = driver.stop
+    out["steps"] = driver.steps
+    out["speed"] = driver.speed
+    out["acceleration"] = driver.acceleration
+    return out
+
+
+def _dump_load(load: Load) -> dict[str, Any]:
+    out: dict[str, Any] = {"link": load.link}
+    if load.force is not None:
+        out["force"] = list(load.force)
+    if load.at is not None:
+        out["at"] = list(load.at)
+    if load.torque != 0.0 or load.force is None:
+        out["torque"] = load.torque
+    return out
+
+
+def _dump_effects(effects: Effects) -> dict[str, Any]:
+    out: dict[str, Any] = {"inertia": effects.inertia}
+    if effects.gravity is not None:
+        out["gravity"] = list(effects.gravity)
+    out["loads"] = effects.loads
+    return out
+
+
+def _degrees(angle: float) -> float:
+    """Degrees that :func:`math.radians` turns back into exactly ``angle``.
+
+    ``math.radians(math.degrees(a)) == a`` does not always hold, so this picks,
+    among the values near ``math.degrees(angle)``, the shortest decimal that
+    converts back exactly (``360.0`` rather than ``359.99999999999994``).  For an
+    angle no degree value converts to, it returns ``math.degrees(angle)``.
+    """
+    approx = math.degrees(angle)
+    if not math.isfinite(approx):
+        return approx
+    for digits in range(18):
+        candidate = round(approx, digits)
+        if math.radians(candidate) == angle:
+            return candidate
+    below = above = approx
+    for _ in range(8):
+        below = math.nextafter(below, -math.inf)
+        above = math.nextafter(above, math.inf)
+        for candidate in (below, above):
+            if math.radians(candidate) == angle:
+                return candidate
+    return approx

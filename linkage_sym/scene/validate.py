@@ -1,0 +1,638 @@
+"""Validation of a scene mapping into the plain :mod:`linkage_sym.model` classes.
+
+One pass over the mapping (the layout of ``shared/spec/scene-format.md``)
+collects *every* problem, each as ``"field.path: reason"``, and raises a
+single :class:`~linkage_sym.errors.SceneError` listing them all.  Objects of
+:mod:`linkage_sym.model.scene` are only built for entries without problems,
+and a :class:`~linkage_sym.model.scene.Scene` only when there are none.
+
+Structural checks (connectivity to the ground, then the Gruebler-Kutzbach
+mobility against the number of drivers) run only when the names they rely on
+are valid, so that one typo does not cascade into a page of noise.
+"""
+
+from __future__ import annotations
+
+import difflib
+import json
+import math
+from collections import deque
+from collections.abc import Mapping
+from typing import Any, NamedTuple
+
+from linkage_sym.errors import SceneError
+from linkage_sym.model.scene import (
+    GROUND,
+    OUTPUTS,
+    Driver,
+    Effects,
+    Joint,
+    Link,
+    Load,
+    Point,
+    Scene,
+)
+
+__all__ = ["parse_scene"]
+
+TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs")
+LINK_KEYS = ("name", "mass", "com", "inertia")
+JOINT_KEYS = ("name", "type", "links", "at", "axis_deg")
+R_DRIVER_KEYS = ("toward", "start_deg", "stop_deg")
+P_DRIVER_KEYS = ("start", "stop")
+DRIVER_KEYS = ("joint", *R_DRIVER_KEYS, *P_DRIVER_KEYS, "steps", "speed", "acceleration")
+LOAD_KEYS = ("link", "force", "at", "torque")
+EFFECTS_KEYS = ("inertia", "gravity", "loads")
+JOINT_TYPES = ("R", "P")
+
+COINCIDENCE_TOLERANCE = 1e-9
+"""Two joint points closer than this fraction of the mechanism's size coincide."""
+
+_REQUIRED = object()
+"""Default marking a key that must be present."""
+
+_POINT = "an array of 2 finite numbers [x, y]"
+
+
+def parse_scene(data: Mapping[str, Any]) -> Scene:
+    """Validate a parsed scene mapping and build the :class:`Scene` it describes.
+
+    Angles given in degrees (``axis_deg``, ``start_deg``, ``stop_deg``) are
+    stored in radians, numbers as floats, points as ``(x, y)`` tuples, and
+    defaults are applied.
+
+    Parameters
+    ----------
+    data : Mapping
+        A scene in the file layout, e.g. the result of :func:`json.load`.
+
+    Returns
+    -------
+    Scene
+        The validated scene.
+
+    Raises
+    ------
+    SceneError
+        Listing every problem found, each as ``"field.path: reason"``.
+
+    Examples
+    --------
+    A slider on a vertical guide, driven along it:
+
+    >>> data = {
+    ...     "name": "slider",
+    ...     "links": [{"name": "block", "mass": 1, "com": [0, 0]}],
+    ...     "joints": [{"name": "S", "type": "P", "links": ["ground", "block"],
+    ...                 "at": [0, 0], "axis_deg": 90}],
+    ...     "drivers": [{"joint": "S", "start": 0, "stop": 0.1, "steps": 11, "speed": 1}],
+    ... }
+    >>> scene = parse_scene(data)
+    >>> scene.joints[0].axis == math.pi / 2, scene.drivers[0].kind, scene.links[0].mass
+    (True, 'P', 1.0)
+
+    Every problem is reported at once:
+
+    >>> parse_scene(dict(data, name="", drivers=[
+    ...     {"joint": "S", "start": 0, "stop": 0.1, "steps": 0, "spead": 1}]))
+    Traceback (most recent call last):
+      ...
+    linkage_sym.errors.SceneError: invalid scene (4 problems):
+      name: must be a non-empty string, got ""
+      drivers[0].spead: unknown key (did you mean 'speed'?)
+      drivers[0].steps: must be an integer >= 1, got 0
+      drivers[0].speed: required key is missing
+    """
+    return _SceneReader().read(data)
+
+
+class _JointInfo(NamedTuple):
+    """What later sections need to know of a joint; ``None`` marks an invalid field."""
+
+    index: int
+    type: str | None
+    links: tuple[str, str] | None
+    at: Point | None
+
+
+class _SceneReader:
+    """Reads one scene mapping, collecting every problem on the way.
+
+    ``link_index`` and ``joints`` are ``None`` when their section is not even
+    an array, in which case references to them are not resolved.
+    """
+
+    def __init__(self) -> None:
+        self.problems: list[str] = []
+        self.link_index: dict[str, int] | None = None
+        self.links_ok = False
+        self.joints: dict[str, _JointInfo] | None = None
+        self.joints_ok = False
+        self.drivers_ok = False
+
+    def add(self, path: str, reason: str) -> None:
+        self.problems.append(f"{path}: {reason}")
+
+    # -- sections ----------------------------------------------------------
+
+    def read(self, data: Any) -> Scene:
+        if not isinstance(data, Mapping):
+            raise SceneError([f"scene: must be an object, got {_kind(data)}"])
+        self.keys(data, "", TOP_KEYS)
+        name = self.name(data, "name", "")
+        links = self.read_links(data)
+        joints = self.read_joints(data)
+        drivers = self.read_drivers(data)
+        loads = self.read_loads(data)
+        effects = self.read_effects(data)
+        outputs = self.read_outputs(data)
+        if self.links_ok and self.joints_ok and self.check_connected() and self.drivers_ok:
+            self.check_mobility(len(data["drivers"]))
+        if self.problems:
+            raise SceneError(self.problems)
+        assert name is not None and effects is not None and outputs is not None
+        return Scene(name, links, joints, drivers, loads, effects, outputs)
+
+    def read_links(self, data: Mapping[str, Any]) -> tuple[Link, ...]:
+        entries = self.array(data, "links", "")
+        if entries is None:
+            return ()
+        self.link_index = {}
+        names_ok = True
+        links = []
+        for i, entry in enumerate(entries):
+            path = f"links[{i}]"
+            before = len(self.problems)
+            if not self.object(entry, path):
+                names_ok = False
+                continue
+            self.keys(entry, path, LINK_KEYS)
+            name = self.name(entry, "name", path)
+            if name == GROUND:
+                self.add(f"{path}.name", f"'{GROUND}' is the fixed link and is never listed in links")
+            elif name in self.link_index:
+                first = self.link_index[name]
+                self.add(f"{path}.name", f"duplicate link name '{name}' (first at links[{first}])")
+            elif name is not None:
+                self.link_index[name] = i
+            names_ok = names_ok and name is not None and self.link_index.get(name) == i
+            mass = self.number(entry, "mass", path, default=0.0, minimum=0.0)
+            com = self.point(entry, "com", path, default=None)
+            if mass is not None and mass > 0 and "com" not in entry:
+                self.missing(f"{path}.com", "a link with mass > 0 must give its centre of mass")
+            inertia = self.number(entry, "inertia", path, default=0.0, minimum=0.0)
+            if len(self.problems) == before:
+                links.append(Link(name, mass, com, inertia))
+        self.links_ok = names_ok
+        return tuple(links)
+
+    def read_joints(self, data: Mapping[str, Any]) -> tuple[Joint, ...]:
+        entries = self.array(data, "joints", "")
+        if entries is None:
+            return ()
+        self.joints = {}
+        structure_ok = True
+        joints = []
+        for i, entry in enumerate(entries):
+            path = f"joints[{i}]"
+            before = len(self.problems)
+            if not self.object(entry, path):
+                structure_ok = False
+                continue
+            self.keys(entry, path, JOINT_KEYS)
+            name = self.name(entry, "name", path)
+            if name in self.joints:
+                first = self.joints[name].index
+                self.add(f"{path}.name", f"duplicate joint name '{name}' (first at joints[{first}])")
+                structure_ok = False
+            jtype = self.joint_type(entry, path)
+            pair = self.joint_links(entry, path)
+            at = self.point(entry, "at", path)
+            axis = None
+            if jtype == "P":
+                why = "a P joint gives its slide direction"
+                axis = _radians(self.number(entry, "axis_deg", path, why=why))
+            elif jtype == "R" and "axis_deg" in entry:
+                self.add(f"{path}.axis_deg", "not allowed on an R joint (only a P joint has an axis)")
+            if name is not None and name not in self.joints:
+                self.joints[name] = _JointInfo(i, jtype, pair, at)
+            structure_ok = structure_ok and None not in (name, jtype, pair)
+            if len(self.problems) == before:
+                joints.append(Joint(name, jtype, pair, at, axis))
+        self.joints_ok = structure_ok
+        return tuple(joints)
+
+    def read_drivers(self, data: Mapping[str, Any]) -> tuple[Driver, ...]:
+        entries = self.array(data, "drivers", "")
+        if entries is None:
+            return ()
+        if not entries:
+            self.add("drivers", "must list at least one driver")
+        driven: dict[str, int] = {}
+        refs_ok = bool(entries)
+        shared_steps: tuple[int, int] | None = None  # (steps, index of the driver giving it)
+        drivers = []
+        for i, entry in enumerate(entries):
+            path = f"drivers[{i}]"
+            before = len(self.problems)
+            if not self.object(entry, path):
+                refs_ok = False
+                continue
+            self.keys(entry, path, DRIVER_KEYS)
+            joint = self.name(entry, "joint", path)
+            info = None
+            if joint is not None and self.joints is not None:
+                info = self.joints.get(joint)
+                if info is None:
+                    self.add(f"{path}.joint", f"unknown joint '{joint}'{_suggest(joint, self.joints)}")
+                elif joint in driven:
+                    first = driven[joint]
+                    self.add(f"{path}.joint", f"joint '{joint}' already has a driver (drivers[{first}])")
+                else:
+                    driven[joint] = i
+            refs_ok = refs_ok and driven.get(joint) == i
+            steps = self.integer(entry, "steps", path, minimum=1)
+            if steps is not None and shared_steps is None:
+                shared_steps = (steps, i)
+            elif steps is not None and shared_steps is not None and steps != shared_steps[0]:
+                self.add(
+                    f"{path}.steps",
+                    f"every driver must have the same steps: drivers[{shared_steps[1]}] has "
+                    f"{shared_steps[0]}, got {steps}",
+                )
+            speed = self.number(entry, "speed", path)
+            acceleration = self.number(entry, "acceleration", path, default=0.0)
+            kind = None if info is None else info.type
+            start, stop, toward = self.driver_range(entry, path, info)
+            if kind is not None and len(self.problems) == before:
+                drivers.append(Driver(joint, kind, start, stop, steps, speed, acceleration, toward))
+        self.drivers_ok = refs_ok
+        return tuple(drivers)
+
+    def driver_range(
+        self, entry: Mapping[str, Any], path: str, info: _JointInfo | None
+    ) -> tuple[float | None, float | None, str | None]:
+        """``start``, ``stop`` (radians or metres) and ``toward`` of a driver on joint ``info``."""
+        kind = None if info is None else info.type
+        joint = entry.get("joint")
+        if kind == "R":
+            where = f"on a driver of R joint '{joint}'"
+            self.forbid(entry, path, P_DRIVER_KEYS, f"{where} (give start_deg/stop_deg in degrees)")
+            why = f"a driver of R joint '{joint}' needs it"
+            assert info is not None
+            toward = self.toward(entry, path, joint, info)
+            start = self.number(entry, "start_deg", path, why=why)
+            stop = self.number(entry, "stop_deg", path, why=why)
+            return _radians(start), _radians(stop), toward
+        if kind == "P":
+            where = f"on a driver of P joint '{joint}'"
+            self.forbid(entry, path, ("toward",), where)
+            self.forbid(entry, path, ("start_deg", "stop_deg"), f"{where} (give start/stop in metres)")
+            why = f"a driver of P joint '{joint}' needs it"
+            start = self.number(entry, "start", path, why=why)
+            stop = self.number(entry, "stop", path, why=why)
+            return start, stop, None
+        # The kind is unknown (a problem already reported): check only what is given.
+        if "toward" in entry:
+            self.name(entry, "toward", path)
+        for key in (*R_DRIVER_KEYS[1:], *P_DRIVER_KEYS):
+            self.number(entry, key, path, default=None)
+        return None, None, None
+
+    def read_loads(self, data: Mapping[str, Any]) -> tuple[Load, ...]:
+        if "loads" not in data:
+            return ()
+        entries = self.array(data, "loads", "")
+        if entries is None:
+            return ()
+        loads = []
+        for i, entry in enumerate(entries):
+            path = f"loads[{i}]"
+            before = len(self.problems)
+            if not self.object(entry, path):
+                continue
+            self.keys(entry, path, LOAD_KEYS)
+            link = self.name(entry, "link", path)
+            if link == GROUND:
+                self.add(f"{path}.link", f"loads act on moving links, not on '{GROUND}'")
+            elif link is not None and self.link_index is not None and link not in self.link_index:
+                self.add(f"{path}.link", f"unknown link '{link}'{_suggest(link, self.link_index)}")
+            force = self.point(entry, "force", path, default=None)
+            at = self.point(entry, "at", path, default=None)
+            torque = self.number(entry, "torque", path, default=0.0)
+            if "force" in entry and "at" not in entry:
+                self.missing(f"{path}.at", "a force needs the point where it acts")
+            elif "at" in entry and "force" not in entry:
+                self.missing(f"{path}.force", "an 'at' point is given")
+            elif "force" not in entry and "torque" not in entry:
+                self.add(path, "a load needs a 'force' (with 'at') or a 'torque'")
+            if len(self.problems) == before:
+                loads.append(Load(link, force, at, torque))
+        return tuple(loads)
+
+    def read_effects(self, data: Mapping[str, Any]) -> Effects | None:
+        if "effects" not in data:
+            return Effects()
+        effects = data["effects"]
+        if not self.object(effects, "effects"):
+            return None
+        self.keys(effects, "effects", EFFECTS_KEYS)
+        inertia = self.boolean(effects, "inertia", "effects", default=False)
+        loads = self.boolean(effects, "loads", "effects", default=True)
+        gravity = effects.get("gravity")
+        if gravity is None or gravity is False:
+            gravity = None
+        else:
+            gravity = self.point(effects, "gravity", "effects", expected=f"false, null or {_POINT}")
+        return Effects(inertia, gravity, loads)
+
+    def read_outputs(self, data: Mapping[str, Any]) -> tuple[str, ...] | None:
+        if "outputs" not in data:
+            return OUTPUTS
+        entries = self.array(data, "outputs", "")
+        if entries is None:
+            return None
+        seen: dict[str, int] = {}
+        for i, entry in enumerate(entries):
+            path = f"outputs[{i}]"
+            expected = f"one of {', '.join(OUTPUTS)}"
+            if not isinstance(entry, str):
+                self.add(path, f"must be {expected}, got {_show(entry)}")
+            elif entry not in OUTPUTS:
+                self.add(path, f"unknown output '{entry}'{_suggest(entry, OUTPUTS)}; expected {expected}")
+            elif entry in seen:
+                self.add(path, f"output '{entry}' is listed twice (also outputs[{seen[entry]}])")
+            else:
+                seen[entry] = i
+        return tuple(entries)
+
+    # -- cross-field checks ------------------------------------------------
+
+    def toward(self, entry: Mapping[str, Any], path: str, joint: str, info: _JointInfo) -> str | None:
+        """The ``toward`` joint of a driver on R joint ``joint``, checked against it."""
+        toward = self.name(entry, "toward", path, why=f"a driver of R joint '{joint}' needs it")
+        if toward is None or self.joints is None:
+            return toward
+        field = f"{path}.toward"
+        other = self.joints.get(toward)
+        if other is None:
+            self.add(field, f"unknown joint '{toward}'{_suggest(toward, self.joints)}")
+            return toward
+        if toward == joint:
+            self.add(field, f"must name a joint other than the driven joint '{joint}'")
+            return toward
+        if info.links is not None and other.links is not None:
+            driven_link = info.links[1]
+            if driven_link not in other.links:
+                self.add(
+                    field,
+                    f"joint '{toward}' is not on link '{driven_link}' "
+                    f"(links[1] of the driven joint '{joint}')",
+                )
+            elif other.type == "P" and other.links[0] == driven_link:
+                self.add(
+                    field,
+                    f"P joint '{toward}' slides along link '{driven_link}': its point is fixed on "
+                    f"'{other.links[1]}', not on '{driven_link}'",
+                )
+        if info.at is not None and other.at is not None and self.coincide(info.at, other.at):
+            self.add(field, f"joint '{toward}' is at the same point as the driven joint '{joint}'")
+        return toward
+
+    def coincide(self, a: Point, b: Point) -> bool:
+        """Whether two points are the same, relative to the size of the mechanism."""
+        assert self.joints is not None
+        points = [j.at for j in self.joints.values() if j.at is not None]
+        size = max((math.dist(p, q) for p in points for q in points), default=0.0)
+        return math.dist(a, b) <= COINCIDENCE_TOLERANCE * size
+
+    def check_connected(self) -> bool:
+        """Report links in no joint or not connected to the ground; ``True`` if none."""
+        assert self.link_index is not None and self.joints is not None
+        neighbours: dict[str, set[str]] = {GROUND: set(), **{name: set() for name in self.link_index}}
+        for info in self.joints.values():
+            assert info.links is not None
+            a, b = info.links
+            neighbours[a].add(b)
+            neighbours[b].add(a)
+        reached = {GROUND}
+        queue = deque([GROUND])
+        while queue:
+            for other in neighbours[queue.popleft()] - reached:
+                reached.add(other)
+                queue.append(other)
+        ok = True
+        for name, i in self.link_index.items():
+            if not neighbours[name]:
+                self.add(f"links[{i}]", f"link '{name}' appears in no joint")
+                ok = False
+            elif name not in reached:
+                self.add(f"links[{i}]", f"link '{name}' is not connected to the ground")
+                ok = False
+        return ok
+
+    def check_mobility(self, n_drivers: int) -> None:
+        """Gruebler-Kutzbach: the mobility must equal the number of drivers."""
+        assert self.link_index is not None and self.joints is not None
+        n_links, n_joints = len(self.link_index), len(self.joints)
+        mobility = 3 * n_links - 2 * n_joints
+        if mobility != n_drivers:
+            self.add(
+                "drivers",
+                f"{n_drivers} driver{'s' if n_drivers != 1 else ''} given but the mobility is "
+                f"M = 3*{n_links} - 2*{n_joints} = {mobility} (Gruebler-Kutzbach, {n_links} moving "
+                f"links, {n_joints} joints); the number of drivers must equal M",
+            )
+
+    # -- field readers: report a problem and return None when invalid ------
+
+    def keys(self, obj: Mapping[str, Any], path: str, allowed: tuple[str, ...]) -> None:
+        for key in obj:
+            if key not in allowed:
+                where = _join(path, str(key))
+                self.add(where, f"unknown key{_suggest(str(key), allowed)}")
+
+    def forbid(self, obj: Mapping[str, Any], path: str, keys: tuple[str, ...], where: str) -> None:
+        for key in keys:
+            if key in obj:
+                self.add(_join(path, key), f"not allowed {where}")
+
+    def missing(self, path: str, why: str = "") -> None:
+        self.add(path, "required key is missing" + (f" ({why})" if why else ""))
+
+    def present(self, obj: Mapping[str, Any], key: str, path: str, default: Any, why: str) -> bool:
+        """Whether ``key`` is there to be read; reports it if required and missing."""
+        if key in obj:
+            return True
+        if default is _REQUIRED:
+            self.missing(_join(path, key), why)
+        return False
+
+    def object(self, value: Any, path: str) -> bool:
+        if isinstance(value, Mapping):
+            return True
+        self.add(path, f"must be an object, got {_kind(value)}")
+        return False
+
+    def array(self, obj: Mapping[str, Any], key: str, path: str) -> list[Any] | None:
+        if not self.present(obj, key, path, _REQUIRED, ""):
+            return None
+        value = obj[key]
+        if isinstance(value, (list, tuple)):
+            return list(value)
+        self.add(_join(path, key), f"must be an array, got {_kind(value)}")
+        return None
+
+    def name(self, obj: Mapping[str, Any], key: str, path: str, *, why: str = "") -> str | None:
+        if not self.present(obj, key, path, _REQUIRED, why):
+            return None
+        value = obj[key]
+        if isinstance(value, str) and value:
+            return value
+        self.add(_join(path, key), f"must be a non-empty string, got {_show(value)}")
+        return None
+
+    def number(
+        self,
+        obj: Mapping[str, Any],
+        key: str,
+        path: str,
+        *,
+        default: Any = _REQUIRED,
+        minimum: float | None = None,
+        why: str = "",
+    ) -> float | None:
+        if not self.present(obj, key, path, default, why):
+            return None if default is _REQUIRED else default
+        value = obj[key]
+        number = _finite(value)
+        if number is None or (minimum is not None and number < minimum):
+            bound = "" if minimum is None else f" >= {minimum:g}"
+            self.add(_join(path, key), f"must be a finite number{bound}, got {_show(value)}")
+            return None
+        return number
+
+    def integer(self, obj: Mapping[str, Any], key: str, path: str, *, minimum: int) -> int | None:
+        if not self.present(obj, key, path, _REQUIRED, ""):
+            return None
+        value = obj[key]
+        if isinstance(value, int) and not isinstance(value, bool) and value >= minimum:
+            return value
+        self.add(_join(path, key), f"must be an integer >= {minimum}, got {_show(value)}")
+        return None
+
+    def boolean(self, obj: Mapping[str, Any], key: str, path: str, *, default: bool) -> bool | None:
+        if key not in obj:
+            return default
+        value = obj[key]
+        if isinstance(value, bool):
+            return value
+        self.add(_join(path, key), f"must be true or false, got {_show(value)}")
+        return None
+
+    def point(
+        self,
+        obj: Mapping[str, Any],
+        key: str,
+        path: str,
+        *,
+        default: Any = _REQUIRED,
+        expected: str = _POINT,
+    ) -> Point | None:
+        if not self.present(obj, key, path, default, ""):
+            return None if default is _REQUIRED else default
+        value = obj[key]
+        field = _join(path, key)
+        if not isinstance(value, (list, tuple)) or len(value) != 2:
+            self.add(field, f"must be {expected}, got {_show(value)}")
+            return None
+        x, y = (_finite(c) for c in value)
+        for i, (given, number) in enumerate(zip(value, (x, y))):
+            if number is None:
+                self.add(f"{field}[{i}]", f"must be a finite number, got {_show(given)}")
+        return None if x is None or y is None else (x, y)
+
+    def joint_type(self, entry: Mapping[str, Any], path: str) -> str | None:
+        if not self.present(entry, "type", path, _REQUIRED, ""):
+            return None
+        value = entry["type"]
+        if isinstance(value, str) and value in JOINT_TYPES:
+            return value
+        self.add(f"{path}.type", f'must be "R" or "P", got {_show(value)}')
+        return None
+
+    def joint_links(self, entry: Mapping[str, Any], path: str) -> tuple[str, str] | None:
+        """The two link names of a joint, resolved against the links section."""
+        if not self.present(entry, "links", path, _REQUIRED, ""):
+            return None
+        value = entry["links"]
+        field = f"{path}.links"
+        if not isinstance(value, (list, tuple)) or len(value) != 2:
+            self.add(field, f"must be an array of 2 link names, got {_show(value)}")
+            return None
+        ok = True
+        for i, name in enumerate(value):
+            if not isinstance(name, str) or not name:
+                self.add(f"{field}[{i}]", f"must be a non-empty link name, got {_show(name)}")
+                ok = False
+            elif self.link_index is None:
+                ok = False  # links section unusable: cannot resolve
+            elif name != GROUND and name not in self.link_index:
+                choices = [GROUND, *self.link_index]
+                self.add(f"{field}[{i}]", f"unknown link '{name}'{_suggest(name, choices)}")
+                ok = False
+        if ok and value[0] == value[1]:
+            self.add(field, f"both ends are link '{value[0]}'; a joint connects two different links")
+            ok = False
+        return (value[0], value[1]) if ok else None
+
+
+def _finite(value: Any) -> float | None:
+    """``value`` as a float if it is a finite int or float (not a bool), else ``None``."""
+    if not isinstance(value, (int, float)) or isinstance(value, bool):
+        return None
+    try:
+        number = float(value)
+    except OverflowError:
+        return None
+    return number if math.isfinite(number) else None
+
+
+def _radians(degrees: float | None) -> float | None:
+    return None if degrees is None else math.radians(degrees)
+
+
+def _join(path: str, key: str) -> str:
+    return f"{path}.{key}" if path else key
+
+
+def _kind(value: Any) -> str:
+    """The JSON type name of a value, for messages."""
+    if value is None:
+        return "null"
+    if isinstance(value, bool):
+        return "a boolean"
+    if isinstance(value, (int, float)):
+        return "a number"
+    if isinstance(value, str):
+        return "a string"
+    if isinstance(value, Mapping):
+        return "an object"
+    if isinstance(value, (list, tuple)):
+        return "an array"
+    return type(value).__name__
+
+
+def _show(value: Any, limit: int = 40) -> str:
+    """A short JSON rendering of a value, for messages."""
+    try:
+        text = json.dumps(value)
+    except (TypeError, ValueError):
+        text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def _suggest(word: str, choices: Any) -> str:
+    """`` (did you mean 'x'?)`` for the closest of ``choices``, or ``""``."""
+    match = difflib.get_close_matches(word, [str(c) for c in choices], n=1)
+    return f" (did you mean '{match[0]}'?)" if match else ""
