@@ -52,7 +52,7 @@ MAX_SLIDE_STEP = 0.02
 @dataclass
 class _Path:
     q: dict  # driver -> values along the path
-    out: np.ndarray  # indices of the steps in the path
+    out: slice | np.ndarray  # where the steps are in the path
 
 
 def needed_stages(scene: Scene) -> tuple[str, ...]:
@@ -139,7 +139,9 @@ class Plan:
             body, out = Q, np.arange(N)
         start = sum(p.shape[1] for p in pre)
         P = np.concatenate([*pre, body], axis=1)
-        return _Path({n: P[i] for i, n in enumerate(names)}, out + start)
+        # the steps as a slice when they are contiguous: views, no copies
+        sel = slice(start, start + N) if n_ref <= 1 else out + start
+        return _Path({n: P[i] for i, n in enumerate(names)}, sel)
 
     # -- running -----------------------------------------------------------
     def run(self, q=None, qd=None, qdd=None, exact_condition=False) -> Analysis:
@@ -182,10 +184,11 @@ class Plan:
         out = path.out
         failed = failed_at[out]
         messages = [None] * N
+        path_index = np.arange(npath)[out]
         for i in np.flatnonzero(failed >= 0):
-            messages[i] = self.solvers[failed[i]].failure(S, int(out[i]))
+            messages[i] = self.solvers[failed[i]].failure(S, int(path_index[i]))
         S = {n: (st.take(out) if n != GROUND else st) for n, st in S.items()}
-        status = np.where(failed < 0, OK, UNASSEMBLABLE).astype(object)
+        status = np.where(failed < 0, OK, UNASSEMBLABLE).astype("<U13")
         # --- singularity: exact condition number where an indicator is small
         ind_min = np.full(N, np.inf)
         for ind in inds:
@@ -212,7 +215,6 @@ class Plan:
         if "acceleration" in self.stages:
             for solver in self.solvers:
                 solver.acceleration(S, q, qd, qdd)
-        status = status.astype(str)
         return self._analysis(S, q, qd, qdd, status, messages, condition)
 
     def condition_numbers(self, S, idx) -> np.ndarray:
@@ -231,15 +233,22 @@ class Plan:
         has_a = "acceleration" in self.stages
 
         def clean(arr, mask):
-            arr = np.array(np.broadcast_to(arr, (N,) + np.shape(arr)[1:] if np.ndim(arr) else (N,)), dtype=float)
-            arr[mask] = np.nan
-            return arr
+            out = np.empty(N)
+            out[:] = arr
+            if any_bad:
+                out[mask] = np.nan
+            return out
+
+        any_bad = bool(bad.any())
 
         def vec(pair, mask):
-            x = np.broadcast_to(np.asarray(pair[0], dtype=float), (N,))
-            y = np.broadcast_to(np.asarray(pair[1], dtype=float), (N,))
-            out = np.stack([x, y], axis=-1)
-            out[mask] = np.nan
+            # filled as (2, N) rows (contiguous writes), returned as its (N, 2) view
+            out = np.empty((2, N))
+            out[0] = pair[0]
+            out[1] = pair[1]
+            out = out.T
+            if any_bad:
+                out[mask] = np.nan
             return out
 
         pos_bad = bad & ~sing

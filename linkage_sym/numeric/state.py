@@ -18,7 +18,8 @@ import numpy as np
 class LinkState:
     """Pose, velocity and acceleration of one link (component arrays)."""
 
-    __slots__ = ("th", "c", "s", "dx", "dy", "w", "vx", "vy", "al", "ax", "ay")
+    __slots__ = ("th", "c", "s", "dx", "dy", "w", "vx", "vy", "al", "ax", "ay", "_rot")
+    _fields = ("th", "c", "s", "dx", "dy", "w", "vx", "vy", "al", "ax", "ay")
 
     def __init__(self, th=0.0, dx=0.0, dy=0.0):
         self.set_pose(th, dx, dy)
@@ -31,12 +32,16 @@ class LinkState:
         self.s = np.sin(th) if s is None else s
         self.dx = dx
         self.dy = dy
+        self._rot = {}  # R(theta) X for the points asked so far: each is needed 3-4 times
 
     def rot(self, X):
-        """``R(theta) X`` as two component arrays."""
-        x, y = X
-        c, s = self.c, self.s
-        return c * x - s * y, s * x + c * y
+        """``R(theta) X`` as two component arrays (cached until the pose changes)."""
+        r = self._rot.get(X)
+        if r is None:
+            x, y = X
+            c, s = self.c, self.s
+            r = self._rot[X] = (c * x - s * y, s * x + c * y)
+        return r
 
     def point(self, X):
         """Global position of the link point with local coordinates ``X``."""
@@ -56,9 +61,10 @@ class LinkState:
     def take(self, idx) -> "LinkState":
         """The state at a subset of steps (fancy or boolean index)."""
         out = LinkState.__new__(LinkState)
-        for name in self.__slots__:
+        for name in self._fields:
             v = getattr(self, name)
             setattr(out, name, v[idx] if isinstance(v, np.ndarray) else v)
+        out._rot = {}
         return out
 
 

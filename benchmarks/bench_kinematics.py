@@ -1,0 +1,167 @@
+"""Benchmark: µs per position of the kinematics (positions, velocities, accelerations).
+
+Run on demand (not part of the tests)::
+
+    python benchmarks/bench_kinematics.py            # writes benchmarks/results/kinematics.json
+
+Pinned to one core's worth of BLAS threads.  Every figure of one run is
+measured in that run, so ratios are comparable even on a noisy shared
+machine; each timing is the best of several repeats.
+
+Compared
+--------
+* ``linkage_sym`` four-bar: ``Plan.run`` over 3600 steps, producing every
+  link's rotation/omega/alpha, every joint's and centre of mass's position,
+  velocity and acceleration (what the result file holds).
+* hand-written four-bar: the same quantities from a vectorised NumPy closed
+  form written for this one mechanism (circle intersection, eqs. 3-13/3-14/
+  3-16 of seed 003).
+* six-bar (the shipped Watt six-bar), 3600 and 100,000 steps.
+* the class-III six-bar (Newton, step by step), 360 steps.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ[_v] = "1"
+
+import dataclasses  # noqa: E402
+import json  # noqa: E402
+import platform  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+import linkage_sym  # noqa: E402
+from linkage_sym.numeric.plan import compile_plan  # noqa: E402
+
+HERE = Path(__file__).resolve().parent
+
+
+def best_time(fn, repeats=7):
+    best = np.inf
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def with_steps(scene, steps):
+    drivers = tuple(dataclasses.replace(d, steps=steps) for d in scene.drivers)
+    return dataclasses.replace(scene, drivers=drivers, outputs=("kinematics",))
+
+
+def handwritten_fourbar(scene):
+    """A vectorised closed form of the crank-rocker, written for this mechanism only."""
+    A, B, C, D = (np.array(scene.joint(n).at) for n in "ABCD")
+    l1, l2, l3 = np.linalg.norm(B - A), np.linalg.norm(C - B), np.linalg.norm(C - D)
+    t10 = np.arctan2(*(B - A)[::-1])
+    t20 = np.arctan2(*(C - B)[::-1])
+    t30 = np.arctan2(*(C - D)[::-1])
+    coms = {lk.name: np.array(lk.com) for lk in scene.links}
+    local = {
+        "crank": coms["crank"] - A,
+        "coupler": coms["coupler"] - B,
+        "rocker": coms["rocker"] - D,
+    }
+    d = scene.drivers[0]
+
+    def run():
+        th1 = np.linspace(d.start, d.stop, d.steps)
+        w1, a1 = d.speed, d.acceleration
+        c1, s1 = np.cos(th1), np.sin(th1)
+        bx, by = A[0] + l1 * c1, A[1] + l1 * s1
+        ex, ey = D[0] - bx, D[1] - by
+        dd = np.hypot(ex, ey)
+        a = (dd * dd + l2 * l2 - l3 * l3) / (2 * dd)
+        h = np.sqrt(l2 * l2 - a * a)
+        cx = bx + (a * ex - h * ey) / dd
+        cy = by + (a * ey + h * ex) / dd
+        th2 = np.arctan2(cy - by, cx - bx)
+        th3 = np.arctan2(cy - D[1], cx - D[0])
+        s12, s32 = np.sin(th1 - th2), np.sin(th3 - th2)
+        w3 = w1 * l1 * s12 / (l3 * s32)
+        w2 = -w1 * l1 * np.sin(th1 - th3) / (l2 * np.sin(th2 - th3))
+        al3 = (w1**2 * l1 * np.cos(th1 - th2) + w2**2 * l2 - w3**2 * l3 * np.cos(th3 - th2)
+               + a1 * l1 * s12) / (l3 * s32)
+        al2 = (-w1**2 * l1 * np.cos(th1 - th3) - w2**2 * l2 * np.cos(th2 - th3) + w3**2 * l3
+               - a1 * l1 * np.sin(th1 - th3)) / (l2 * np.sin(th2 - th3))
+        out = {}
+        for name, th, w, al, O, t0 in (
+            ("crank", th1, w1, a1, (A[0], A[1]), t10),
+            ("coupler", th2, w2, al2, (bx, by), t20),
+            ("rocker", th3, w3, al3, (D[0], D[1]), t30),
+        ):
+            r = th - t0
+            c, s = np.cos(r), np.sin(r)
+            x, y = local[name]
+            rx, ry = c * x - s * y, s * x + c * y
+            out[name] = (
+                r, w, al,
+                O[0] + rx, O[1] + ry,
+                -w * ry, w * rx,
+                -al * ry - w * w * rx, al * rx - w * w * ry,
+            )
+        # joint velocities/accelerations of B and C
+        vb = (-w1 * l1 * s1, w1 * l1 * c1)
+        vc = (-w3 * (cy - D[1]), w3 * (cx - D[0]))
+        ab = (-a1 * l1 * s1 - w1 * w1 * l1 * c1, a1 * l1 * c1 - w1 * w1 * l1 * s1)
+        ac = (-al3 * (cy - D[1]) - w3 * w3 * (cx - D[0]), al3 * (cx - D[0]) - w3 * w3 * (cy - D[1]))
+        out["joints"] = (bx, by, cx, cy, vb, vc, ab, ac)
+        return out
+
+    return run
+
+
+def main():
+    results = {
+        "python": sys.version.split()[0],
+        "numpy": np.__version__,
+        "machine": platform.machine(),
+        "processor": platform.processor() or "unknown",
+        "cases": {},
+    }
+    cases = results["cases"]
+
+    four = with_steps(linkage_sym.load_example("crank_rocker"), 3600)
+    plan = compile_plan(four)
+    t_lib = best_time(plan.run)
+    hand = handwritten_fourbar(four)
+    # check the two agree before timing means anything
+    ref = hand()
+    res = plan.run()
+    err = np.max(np.abs(res.links["rocker"].omega - ref["rocker"][1]))
+    assert err < 1e-9 * np.max(np.abs(ref["rocker"][1])), err
+    t_hand = best_time(hand)
+    cases["fourbar_3600"] = {
+        "linkage_sym_us_per_position": 1e6 * t_lib / 3600,
+        "handwritten_us_per_position": 1e6 * t_hand / 3600,
+        "ratio": t_lib / t_hand,
+    }
+    t_compile = best_time(lambda: compile_plan(four), repeats=5)
+    cases["fourbar_compile_ms"] = 1e3 * t_compile
+
+    six = linkage_sym.load_example("watt_sixbar")
+    for n in (3600, 100_000):
+        p = compile_plan(with_steps(six, n))
+        t = best_time(p.run, repeats=5)
+        cases[f"sixbar_{n}"] = {"us_per_position": 1e6 * t / n, "seconds": t}
+
+    tri = with_steps(linkage_sym.load_example("sixbar_class3"), 360)
+    p = compile_plan(tri)
+    t = best_time(p.run, repeats=3)
+    cases["class3_sixbar_360_newton"] = {"us_per_position": 1e6 * t / 360, "seconds": t}
+
+    out = HERE / "results"
+    out.mkdir(exist_ok=True)
+    (out / "kinematics.json").write_text(json.dumps(results, indent=2) + "\n")
+    print(json.dumps(results, indent=2))
+
+
+if __name__ == "__main__":
+    main()
