@@ -25,9 +25,10 @@
 import numpy as np
 
 import linkage_sym
+from linkage_sym.structure import structure_report
 
 scene = linkage_sym.load_example("crank_rocker")
-print(linkage_sym.structure.structure_report(scene, linkage_sym.decompose(scene)))
+print(structure_report(scene, linkage_sym.decompose(scene)))
 res = linkage_sym.analyze(scene)
 
 # %% [markdown]

@@ -525,3 +525,207 @@ def group_jacobian_det(scene, group, poses, qs, size, h=1e-6):
         e[k] = h
         J[:, k] = (resid(x0 + e) - resid(x0 - e)) / (2 * h)
     return np.linalg.det(J), np.linalg.cond(J)
+
+
+# --------------------------------------------------------------------------
+# Closure of a solved sweep at position, velocity and acceleration level,
+# from the links' poses and rates only (duck-typed on the solver's result:
+# ``res.links[name].origin/rotation/omega/alpha/origin_velocity/...``).
+# --------------------------------------------------------------------------
+
+
+class _LinkTrack:
+    """Pose and rates of one link over the steps (ground: all zero)."""
+
+    def __init__(self, lk, n):
+        z2, z1 = np.zeros((n, 2)), np.zeros(n)
+        if lk is None:
+            self.o, self.th, self.w, self.a, self.vo, self.ao = z2, z1, z1, z1, z2, z2
+        else:
+            self.o = np.asarray(lk.origin, dtype=float)
+            self.th = np.asarray(lk.rotation, dtype=float)
+            self.w = z1 if lk.omega is None else np.asarray(lk.omega, dtype=float)
+            self.a = z1 if lk.alpha is None else np.asarray(lk.alpha, dtype=float)
+            self.vo = z2 if lk.origin_velocity is None else np.asarray(lk.origin_velocity, float)
+            self.ao = z2 if lk.origin_acceleration is None else np.asarray(
+                lk.origin_acceleration, float)
+
+    def material(self, p):
+        """Position (N, 2) of the material point whose assembly position is p."""
+        c, s = np.cos(self.th), np.sin(self.th)
+        return self.o + np.stack([c * p[0] - s * p[1], s * p[0] + c * p[1]], -1)
+
+    def vel_at(self, x):
+        """Velocity of the link's material point currently at x (N, 2)."""
+        r = x - self.o
+        return self.vo + self.w[:, None] * np.stack([-r[:, 1], r[:, 0]], -1)
+
+    def acc_at(self, x):
+        r = x - self.o
+        perp = np.stack([-r[:, 1], r[:, 0]], -1)
+        return self.ao + self.a[:, None] * perp - (self.w**2)[:, None] * r
+
+
+def _cross(a, b):
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def _dot(a, b):
+    return np.sum(a * b, -1)
+
+
+def closure_residuals(scene, res):
+    """Per-step residuals of every joint and driver, from the poses/rates of
+    the result's links.  Returns ``{check_name: array (N,)}`` with
+
+    * ``pos:<joint>`` (length): R -- distance between the two links' points;
+      P -- distance of links[1]'s reference point from the axis line;
+    * ``rot:<joint>`` (rad): P -- relative rotation of its two links;
+    * ``report:<joint>`` (length): the reported joint position vs links[1]'s
+      material point;
+    * ``vel:<joint>`` / ``acc:<joint>`` (m/s, m/s^2): time derivatives of the
+      same constraints (R: relative velocity/acceleration of the coincident
+      material points; P: of the line constraint, Coriolis term included) and
+      the reported joint velocity/acceleration vs links[1]'s;
+    * ``drv:<joint>``, ``drvd:<joint>``, ``drvdd:<joint>``: driver coordinate
+      recomputed from the poses minus ``q`` (R: wrapped to (-pi, pi], rad;
+      P: m), and likewise its first and second time derivatives vs qd, qdd.
+    """
+    n = len(res.status)
+    T = {"ground": _LinkTrack(None, n)}
+    for name in scene.link_names:
+        T[name] = _LinkTrack(res.links[name], n)
+    jn = {j.name: j for j in scene.joints}
+    out = {}
+    for j in scene.joints:
+        L0, L1 = T[j.links[0]], T[j.links[1]]
+        P1 = L1.material(j.at)
+        rep = res.joints[j.name]
+        out[f"report:{j.name}"] = np.hypot(*(np.asarray(rep.position) - P1).T)
+        v1, a1 = L1.vel_at(P1), L1.acc_at(P1)
+        if rep.velocity is not None:
+            out[f"vel-report:{j.name}"] = np.hypot(*(np.asarray(rep.velocity) - v1).T)
+        if rep.acceleration is not None:
+            out[f"acc-report:{j.name}"] = np.hypot(*(np.asarray(rep.acceleration) - a1).T)
+        if j.type == "R":
+            P0 = L0.material(j.at)
+            out[f"pos:{j.name}"] = np.hypot(*(P0 - P1).T)
+            out[f"vel:{j.name}"] = np.hypot(*(L0.vel_at(P1) - v1).T)
+            out[f"acc:{j.name}"] = np.hypot(*(L0.acc_at(P1) - a1).T)
+        else:
+            P0 = L0.material(j.at)
+            ang = j.axis + L0.th
+            e = np.stack([np.cos(ang), np.sin(ang)], -1)
+            ep = np.stack([-np.sin(ang), np.cos(ang)], -1)
+            r = P1 - P0
+            rd = v1 - L0.vel_at(P0)
+            rdd = a1 - L0.acc_at(P0)
+            w0, al0 = L0.w, L0.a
+            out[f"rot:{j.name}"] = np.abs(L1.th - L0.th)
+            out[f"pos:{j.name}"] = np.abs(_cross(e, r))
+            # c = cross(e, r); e' = w0 ep; cross(ep, r) = -dot(e, r)
+            out[f"vel:{j.name}"] = np.abs(-w0 * _dot(e, r) + _cross(e, rd))
+            out[f"acc:{j.name}"] = np.abs(-al0 * _dot(e, r) - w0**2 * _dot(ep, r)
+                                          - 2 * w0 * _dot(e, rd) + _cross(e, rdd))
+            out[f"omega:{j.name}"] = np.abs(L1.w - w0)
+            out[f"alpha:{j.name}"] = np.abs(L1.a - al0)
+    for d in scene.drivers:
+        j = jn[d.joint]
+        L0, L1 = T[j.links[0]], T[j.links[1]]
+        q = np.asarray(res.drivers[d.joint]["q"], dtype=float)
+        qd = np.asarray(res.drivers[d.joint]["qd"], dtype=float)
+        qdd = np.asarray(res.drivers[d.joint]["qdd"], dtype=float)
+        if j.type == "R":
+            u = L1.material(jn[d.toward].at) - L1.material(j.at)
+            phi = np.arctan2(u[:, 1], u[:, 0]) - L0.th
+            out[f"drv:{j.name}"] = np.abs(np.remainder(phi - q + np.pi, 2 * np.pi) - np.pi)
+            out[f"drvd:{j.name}"] = np.abs(L1.w - L0.w - qd)
+            out[f"drvdd:{j.name}"] = np.abs(L1.a - L0.a - qdd)
+        else:
+            P0, P1 = L0.material(j.at), L1.material(j.at)
+            ang = j.axis + L0.th
+            e = np.stack([np.cos(ang), np.sin(ang)], -1)
+            ep = np.stack([-np.sin(ang), np.cos(ang)], -1)
+            r = P1 - P0
+            rd = L1.vel_at(P1) - L0.vel_at(P0)
+            rdd = L1.acc_at(P1) - L0.acc_at(P0)
+            w0, al0 = L0.w, L0.a
+            out[f"drv:{j.name}"] = np.abs(_dot(e, r) - q)
+            out[f"drvd:{j.name}"] = np.abs(w0 * _dot(ep, r) + _dot(e, rd) - qd)
+            out[f"drvdd:{j.name}"] = np.abs(al0 * _dot(ep, r) - w0**2 * _dot(e, r)
+                                            + 2 * w0 * _dot(ep, rd) + _dot(e, rdd) - qdd)
+    return out
+
+
+def closure_failures(scene, res, pos_tol, rate_tol):
+    """Which closure checks of :func:`closure_residuals` fail, as messages.
+
+    Positions (steps ok or singular): ``pos_tol`` x the mechanism's size
+    (lengths), ``10 pos_tol`` rad (angles: rotations of a few turns carry
+    rounding of ~1e-15 rad).  Rates (ok steps): ``rate_tol`` x the sweep's
+    largest joint speed / acceleration (or link omega / alpha x size)."""
+    size = scene.characteristic_length()
+    ok = res.ok
+    pos_steps = ok | (res.status == "singular")
+    r = closure_residuals(scene, res)
+    vscale = max(np.nanmax(np.abs(np.asarray(jk.velocity)[ok])) for jk in res.joints.values()
+                 if jk.velocity is not None) if ok.any() and "velocity" in res.stages else 0.0
+    ascale = max(np.nanmax(np.abs(np.asarray(jk.acceleration)[ok])) for jk in
+                 res.joints.values() if jk.acceleration is not None) \
+        if ok.any() and "acceleration" in res.stages else 0.0
+    wscale = max(np.nanmax(np.abs(np.asarray(lk.omega)[ok])) for lk in res.links.values()) \
+        if ok.any() and "velocity" in res.stages else 0.0
+    ascale_ang = max(np.nanmax(np.abs(np.asarray(lk.alpha)[ok])) for lk in res.links.values()) \
+        if ok.any() and "acceleration" in res.stages else 0.0
+    fails = []
+    for key, vals in r.items():
+        kind = key.split(":")[0]
+        if kind in ("pos", "report"):
+            tol, steps = pos_tol * size, pos_steps
+        elif kind in ("rot", "drv"):
+            tol, steps = pos_tol * 10, pos_steps  # rad; ~40 ulp of a few turns
+        elif kind in ("vel", "vel-report", "drvd", "omega"):
+            tol, steps = rate_tol * max(vscale, wscale * size) / (size if kind in
+                                                                   ("drvd", "omega") else 1), ok
+        else:  # acc, acc-report, drvdd, alpha
+            tol, steps = rate_tol * max(ascale, ascale_ang * size) / (size if kind in
+                                                                      ("drvdd", "alpha") else 1), ok
+        if kind == "drv" and key.split(":")[1] in [d.joint for d in scene.drivers if d.kind == "P"]:
+            tol = pos_tol * size
+        v = np.asarray(vals)[steps]
+        if v.size and not np.all(v <= tol):
+            k = int(np.nanargmax(np.where(np.isnan(v), np.inf, v)))
+            fails.append(f"{key}: {v[k]:.3e} > {tol:.3e} at step {np.nonzero(steps)[0][k]}")
+    return fails
+
+
+def _assembly_q(scene, d):
+    jn = {j.name: j for j in scene.joints}
+    if d.kind == "P":
+        return 0.0
+    a, b = jn[d.joint].at, jn[d.toward].at
+    return math.atan2(b[1] - a[1], b[0] - a[0])
+
+
+def determinant_signs(scene, res, steps=None):
+    """Own groups; (groups, sign at assembly (G,), signs at the steps (N, G) --
+    0 where not evaluated, cond (N, G))."""
+    groups = assur_groups(scene)
+    size = scene.characteristic_length()
+    n = len(res.status)
+    zero = {ln: (0.0, 0.0, 0.0) for ln in scene.link_names}
+    qa = {d.joint: _assembly_q(scene, d) for d in scene.drivers}
+    s0 = np.array([np.sign(group_jacobian_det(scene, g, zero, qa, size)[0])
+                   for g in groups])
+    signs = np.zeros((n, len(groups)))
+    conds = np.full((n, len(groups)), np.nan)
+    idx = np.nonzero(res.ok)[0] if steps is None else steps
+    for i in idx:
+        poses = {ln: (float(res.links[ln].origin[i, 0]), float(res.links[ln].origin[i, 1]),
+                      float(res.links[ln].rotation[i])) for ln in scene.link_names}
+        qs = {d.joint: float(res.drivers[d.joint]["q"][i]) for d in scene.drivers}
+        for k, g in enumerate(groups):
+            det, cond = group_jacobian_det(scene, g, poses, qs, size)
+            signs[i, k] = np.sign(det)
+            conds[i, k] = cond
+    return groups, s0, signs, conds

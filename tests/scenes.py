@@ -211,14 +211,31 @@ def shaper(l1=0.125, l3=0.600, l4=0.150, l6=0.275, l6p=0.575, *, start_deg=0.0,
     return scene
 
 
-def watt_sixbar(l1, l2, l3, l4, *, e_len, e_ang_deg, G, l5, l6, sigma=1, sigma2=1,
+def watt_dyad_lengths(l1, l2, l3, l4, e_len, e_ang_deg, G, sigma=1, spread=0.5, reach=0.25):
+    """Lengths l5, l6 of the Watt six-bar's second dyad that assemble over the
+    whole crank turn with margin: with dmin, dmax the extreme distances |EG|
+    over the turn, ``l5 + l6 = (1 + reach) dmax`` and ``|l5 - l6| = spread dmin``
+    (0 < spread < 1), so |EG| stays inside (|l5 - l6|, l5 + l6)."""
+    th = np.linspace(0, 2 * np.pi, 721)
+    th2, th3 = ref.fourbar_position(l1, l2, l3, l4, th, sigma)
+    ang = th3 + math.radians(e_ang_deg)
+    E = np.stack([l4 + e_len * np.cos(ang), e_len * np.sin(ang)], -1)
+    dist = np.hypot(*(E - np.asarray(G, dtype=float)).T)
+    s, dlt = (1 + reach) * dist.max(), spread * dist.min()
+    return (s + dlt) / 2, (s - dlt) / 2
+
+
+def watt_sixbar(l1, l2, l3, l4, *, e_len, e_ang_deg, G, l5=None, l6=None, sigma=1, sigma2=1,
                 start_deg=0.0, stop_deg=360.0, steps=73, speed=10.0, acceleration=0.0,
                 name="watt_sixbar"):
     """Watt six-bar: the four-bar A-B-C-D whose rocker is ternary (point E at
     ``e_len`` from D, ``e_ang_deg`` from the arm D->C), and the RRR dyad
     ``link5`` (E-F) + ``link6`` (F-G) to the ground pivot G.  ``sigma2`` is
     ``sign cross(G - E, F - E)`` (see :func:`reference_kinematics.dyad_rrr`).
+    ``l5``, ``l6`` default to :func:`watt_dyad_lengths`.
     Returns ``(scene_dict, points)`` with the canonical assembly points."""
+    if l5 is None or l6 is None:
+        l5, l6 = watt_dyad_lengths(l1, l2, l3, l4, e_len, e_ang_deg, G, sigma)
     th1a = math.radians(start_deg)
     A, B, C, D = fourbar_points(l1, l2, l3, l4, th1a, sigma)
     th3 = math.atan2(C[1] - D[1], C[0] - D[0])
