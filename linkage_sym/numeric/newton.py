@@ -23,6 +23,8 @@ from linkage_sym.numeric.state import LinkState
 TOL = 1e-13
 """Convergence: scaled residual norm (lengths over the mechanism size)."""
 MAX_ITER = 40
+STALL_ITER = 6
+"""Give up when the residual has not halved over this many iterations."""
 SINGULAR_IND = 1e-14
 """Indicator (reciprocal condition of the group block) below which no rate is solved."""
 
@@ -119,7 +121,12 @@ class NewtonSolver:
         res = np.linalg.norm(r)
         J = jacobian(self.cons, S, self.links, 1, self.L)[0]
         polished = False
-        for _ in range(MAX_ITER):
+        history = []
+        for it in range(MAX_ITER):
+            history.append(res)
+            # no solution here: the residual stalls at the least-squares minimum
+            if it >= STALL_ITER and res > TOL and res > 0.5 * history[-STALL_ITER]:
+                break
             if res <= TOL:
                 if polished:
                     break
