@@ -101,6 +101,13 @@ class Plan:
             else:
                 self.solvers.append(NewtonSolver(scene, g, self.constraints, self.L, self.q0))
         self.stages = needed_stages(scene)
+        # links whose rotation may come wrapped to one turn (atan2 in a dyad, or
+        # copied or offset from such a link) and is unwrapped along the path;
+        # Newton groups move continuously from the assembly configuration
+        self.wrapped = [
+            n for g, sv in zip(decomposition.groups, self.solvers)
+            if not isinstance(sv, NewtonSolver) for n in g.links
+        ]
         self.all_constraints = [c for rows in self.constraints.values() for c in rows]
 
     # -- the sweep ---------------------------------------------------------
@@ -176,10 +183,14 @@ class Plan:
             bad = ~np.isfinite(ind) & (failed_at < 0)
             failed_at[bad] = gi
         valid = failed_at < 0
-        for n in self.scene.link_names:
+        all_valid = bool(valid.all())
+        for n in self.wrapped:
             st = S[n]
             th = np.array(np.broadcast_to(st.th, (npath,)), dtype=float)
-            th[valid] = np.unwrap(th[valid])
+            if all_valid:
+                th = np.unwrap(th)
+            else:
+                th[valid] = np.unwrap(th[valid])
             st.th = th
         out = path.out
         failed = failed_at[out]
@@ -188,7 +199,8 @@ class Plan:
         for i in np.flatnonzero(failed >= 0):
             messages[i] = self.solvers[failed[i]].failure(S, int(path_index[i]))
         S = {n: (st.take(out) if n != GROUND else st) for n, st in S.items()}
-        status = np.where(failed < 0, OK, UNASSEMBLABLE).astype("<U13")
+        status = np.full(N, OK, dtype="<U13")
+        status[failed >= 0] = UNASSEMBLABLE
         # --- singularity: exact condition number where an indicator is small
         ind_min = np.full(N, np.inf)
         for ind in inds:
