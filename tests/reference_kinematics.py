@@ -23,6 +23,8 @@ callers set 50).
 
 from __future__ import annotations
 
+import math
+
 import mpmath as mp
 import numpy as np
 
