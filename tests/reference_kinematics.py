@@ -135,8 +135,9 @@ def fourbar_mp(l1, l2, l3, l4, th1, w1, a1=0, sigma=1):
 
     Arguments are converted with ``mp.mpf`` (exactly, from floats); returns a
     dict of mpf: th2, th3, w2, w3, a2, a3, Cx, Cy, vCx, vCy, aCx, aCy, and
-    ``det`` = ``sin(th2 - th3)`` (the dyad's dimensionless determinant).
-    Returns ``None`` if the loop cannot close.
+    ``det`` = ``sin(th2 - th3)`` (the dyad's dimensionless determinant; the
+    rates are NaN where it is exactly 0).  Returns ``None`` if the loop cannot
+    close.
     """
     l1, l2, l3, l4, th1, w1, a1 = (mp.mpf(v) for v in (l1, l2, l3, l4, th1, w1, a1))
     bx, by = l1 * mp.cos(th1), l1 * mp.sin(th1)
@@ -150,13 +151,16 @@ def fourbar_mp(l1, l2, l3, l4, th1, w1, a1=0, sigma=1):
     th3 = mp.atan2(A, B) + sigma * mp.atan2(mp.sqrt(disc), -C)
     th2 = mp.atan2(l3 * mp.sin(th3) - by, l4 + l3 * mp.cos(th3) - bx)
     s32 = mp.sin(th3 - th2)
+    c3, s3 = mp.cos(th3), mp.sin(th3)
+    if s32 == 0:  # exactly singular: positions only
+        return dict(th2=th2, th3=th3, Cx=l4 + l3 * c3, Cy=l3 * s3, det=mp.mpf(0),
+                    **{k: mp.nan for k in ("w2", "w3", "a2", "a3", "vCx", "vCy", "aCx", "aCy")})
     w3 = w1 * l1 * mp.sin(th1 - th2) / (l3 * s32)
     w2 = -w1 * l1 * mp.sin(th1 - th3) / (l2 * mp.sin(th2 - th3))
     a3 = (l1 * a1 * mp.sin(th1 - th2) + w1**2 * l1 * mp.cos(th1 - th2) + w2**2 * l2
           - w3**2 * l3 * mp.cos(th3 - th2)) / (l3 * s32)
     a2 = (-l1 * a1 * mp.sin(th1 - th3) - w1**2 * l1 * mp.cos(th1 - th3)
           - w2**2 * l2 * mp.cos(th2 - th3) + w3**2 * l3) / (l2 * mp.sin(th2 - th3))
-    c3, s3 = mp.cos(th3), mp.sin(th3)
     return dict(
         th2=th2, th3=th3, w2=w2, w3=w3, a2=a2, a3=a3,
         Cx=l4 + l3 * c3, Cy=l3 * s3,

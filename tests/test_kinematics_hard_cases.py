@@ -193,16 +193,32 @@ def test_sweep_through_dead_centre(gap_deg, beyond):
 # (2) change point: Grashof equality l_s + l_l = p + q
 # ---------------------------------------------------------------------------
 
-# 1 + 3 = 2 + 2.  At th1 = 0: B = (1, 0), D = (2, 0), |BD| = 1 = l2 - l3: all four
-# joints in line, C = (4, 0); both assembly modes meet there.
-L_CHANGE = (1.0, 3.0, 2.0, 2.0)
-
-
+# 7 + 17 = 10 + 14 with integer assembly points (Pythagorean: BC = (15, 8),
+# DC = (-6, 8)), so that the scene's doubles *are* the mechanism: at th1 = 0,
+# B = (7, 0), |BD| = 7 = l2 - l3 exactly, all four joints in line with
+# C = (24, 0), and both assembly modes meet there.  (With assembly points
+# rounded to doubles the change point may be missed by an ulp either way --
+# then "unassemblable" at that step is right, so such a scene cannot test
+# the singular status.)
 def _change_point_run():
-    d, _ = scenes.fourbar(*L_CHANGE, start_deg=-180, stop_deg=180, steps=37, speed=W1,
-                          acceleration=A1, sigma=1)
+    d = {
+        "name": "change point",
+        "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "rocker"}],
+        "joints": [
+            {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
+            {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": [-7.0, 0.0]},
+            {"name": "C", "type": "R", "links": ["coupler", "rocker"], "at": [8.0, 8.0]},
+            {"name": "D", "type": "R", "links": ["rocker", "ground"], "at": [14.0, 0.0]},
+        ],
+        "drivers": [{"joint": "A", "toward": "B", "start_deg": -180, "stop_deg": 180,
+                     "steps": 37, "speed": W1, "acceleration": A1}],
+        "outputs": ["kinematics"],
+    }
     scene, res = scenes.run(d)
     return d, scene, res
+
+
+CHANGE_SIGMA = -1  # sign cross(B - D, C - D) in the assembly configuration
 
 
 def test_change_point_fourbar_keeps_its_assembly_mode():
@@ -211,7 +227,8 @@ def test_change_point_fourbar_keeps_its_assembly_mode():
     dyad determinant, spec: resuming rule; the analytic branch would switch
     modes at the change point)."""
     d, scene, res = _change_point_run()
-    refs = fourbar_mp_sweep(d, res, 1)
+    refs = fourbar_mp_sweep(d, res, CHANGE_SIGMA)
+    assert refs[18] is not None and refs[18]["kappa"] == math.inf  # exactly singular
     others = [i for i in range(37) if i != 18]
     _check_ok_finite(res, others)
     check_fourbar_steps(d, res, refs, others, scene.characteristic_length(),
@@ -222,7 +239,7 @@ def test_change_point_fourbar_keeps_its_assembly_mode():
 def test_exactly_singular_step_keeps_positions_only():
     """The change point itself: the velocity problem has no unique solution
     (cond = inf > 1e10), so the status is ``singular``, with a message; the
-    position exists (C = (4, 0)) and is reported, velocities and accelerations
+    position exists (C = (24, 0)) and is reported, velocities and accelerations
     are not (spec: scene-format.md, Result).  At a double root the position is
     determined to O(sqrt(eps)) only: tolerance 4 sqrt(eps) x size."""
     d, scene, res = _change_point_run()
@@ -235,8 +252,8 @@ def test_exactly_singular_step_keeps_positions_only():
     assert isinstance(step.get("message"), str) and step["message"]
     size = scene.characteristic_length()
     C = step["joints"]["C"]["position"]
-    assert math.dist(C, (4.0, 0.0)) <= 4 * math.sqrt(EPS) * size
-    assert math.dist(step["joints"]["B"]["position"], (1.0, 0.0)) <= 4 * math.sqrt(EPS) * size
+    assert math.dist(C, (24.0, 0.0)) <= 4 * math.sqrt(EPS) * size
+    assert math.dist(step["joints"]["B"]["position"], (7.0, 0.0)) <= 4 * math.sqrt(EPS) * size
     for jn, rec in step["joints"].items():
         assert "position" in rec and "velocity" not in rec and "acceleration" not in rec, jn
     for ln, rec in step["links"].items():
