@@ -12,6 +12,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 import sys
 
@@ -170,13 +171,16 @@ def test_closure_on_shipped_examples(name):
     import linkage_sym
 
     scene = linkage_sym.load_example(name)
-    d = scene.drivers[0]
     res = linkage_sym.analyze(scene)
-    q = np.asarray(res.drivers[d.joint]["q"], dtype=float)
-    assert np.allclose(q, np.linspace(d.start, d.stop, d.steps), rtol=0, atol=1e-14 * max(
-        1.0, abs(d.start), abs(d.stop)))
+    for d in scene.drivers:
+        q = np.asarray(res.drivers[d.joint]["q"], dtype=float)
+        assert np.allclose(q, np.linspace(d.start, d.stop, d.steps), rtol=0, atol=1e-14 * max(
+            1.0, abs(d.start), abs(d.stop))), f"driver {d.joint}: q is not the scene's sweep"
+        assert np.all(np.asarray(res.drivers[d.joint]["qd"]) == d.speed)
+        assert np.all(np.asarray(res.drivers[d.joint]["qdd"]) == d.acceleration)
     fails = _closure(scene, res)
     assert not fails, f"example {name}: " + "; ".join(fails[:8])
+    json.dumps(res.to_dict(), allow_nan=False)  # the contract's JSON never carries NaN
 
 
 @pytest.mark.parametrize("name", ["fourbar", "slider_crank", "guide_bar", "shaper",
