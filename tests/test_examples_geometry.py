@@ -356,8 +356,9 @@ def test_assemblable_over_the_sweep(name):
             assert np.allclose(first[k], last[k], atol=1e-9), k
 
 
-def test_com_and_loads_near_their_links(name):
-    """A centre of mass or load point lies within reach of its link's joints."""
+def test_centres_of_mass_near_their_links(name):
+    """A centre of mass lies within reach of its link's joints (catches a com given
+    for the wrong link or in the wrong frame)."""
     scene = example_dict(name)
     cl = Closure(scene)
     for lk in scene["links"]:
