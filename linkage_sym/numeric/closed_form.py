@@ -42,6 +42,11 @@ def _cross(a, b):
     return a[0] * b[1] - a[1] * b[0]
 
 
+def _at(point, i):
+    """Component values of a point at step ``i`` (a fixed point has scalar components)."""
+    return tuple(float(np.asarray(v)[i]) if np.ndim(v) else float(v) for v in point)
+
+
 def _set_from_point(st, Y, X):
     """Place a link whose rotation is set so that its local point X is at Y."""
     rx, ry = st.rot(X)
@@ -350,8 +355,8 @@ class DyadSolver:
         e0, ji, e1 = self.names
         head = f"dyad {self.type} ({b0}, {b1})"
         if self.type == "RRR":
-            C0, C1 = (np.broadcast_to(c.center(S), (2, len(S[b0].dx))) for c in self.loci)
-            d = math.hypot(C1[0][i] - C0[0][i], C1[1][i] - C0[1][i])
+            C0, C1 = (_at(c.center(S), i) for c in self.loci)
+            d = math.hypot(C1[0] - C0[0], C1[1] - C0[1])
             r0, r1 = self.loci[0].r, self.loci[1].r
             return (
                 f"{head}: joints {e0} and {e1} are {d:.6g} m apart, outside the reach "
