@@ -52,11 +52,13 @@ def driver_axis(scene: Scene, analysis: Analysis) -> tuple[np.ndarray, str, str]
     sweep = np.linspace(drv.start, drv.stop, n)
     q = analysis.drivers.get(drv.joint, {}).get("q")
     q = sweep if q is None else np.where(np.isfinite(q), np.asarray(q, dtype=float), sweep)
+    more = f", first of {len(scene.drivers)} drivers" if len(scene.drivers) > 1 else ""
     if drv.kind == "R":
-        toward = f" (direction {drv.joint}→{drv.toward})" if drv.toward else ""
-        return np.degrees(q), f"driver angle θ at joint {drv.joint}{toward} (deg)", "deg"
+        toward = f", direction {drv.joint}→{drv.toward}" if drv.toward else ""
+        return (np.degrees(q), f"driver angle θ at joint {drv.joint} (deg{toward}{more})",
+                "deg")
     unit, scale = style.length_unit(scene)
-    return q * scale, f"driver displacement s at joint {drv.joint} ({unit})", unit
+    return q * scale, f"driver displacement s at joint {drv.joint} ({unit}{more})", unit
 
 
 def input_links(scene: Scene) -> set:
@@ -201,7 +203,7 @@ def motion_figure(scene: Scene, analysis: Analysis, quantity: str):
     """
     if quantity not in QUANTITIES:
         raise ValueError(f"quantity must be one of {QUANTITIES}, not {quantity!r}")
-    x, xlabel, _ = driver_axis(scene, analysis)
+    x, xlabel, xunit = driver_axis(scene, analysis)
     unit, scale = style.length_unit(scene)
     colors = style.link_colors(scene)
     links = _link_series(analysis, quantity)
@@ -251,7 +253,7 @@ def motion_figure(scene: Scene, analysis: Analysis, quantity: str):
                      va="center", transform=axes[0].transAxes, color="0.4")
 
     band_handles = style.shade_bad_steps(axes, x, analysis.status, label_ax=axes[0])
-    _x_ticks(axes[-1], x, xlabel)
+    _x_ticks(axes[-1], x, xlabel, xunit)
     for ax in axes:
         ax.grid(True, color="0.9", lw=0.6)
         ax.set_xlim(float(np.min(x)), float(np.max(x)))
@@ -270,11 +272,11 @@ def motion_figure(scene: Scene, analysis: Analysis, quantity: str):
     return fig
 
 
-def _x_ticks(ax, x, xlabel):
+def _x_ticks(ax, x, xlabel, unit):
     from matplotlib.ticker import MultipleLocator
 
     ax.set_xlabel(xlabel)
-    if "deg" in xlabel:
+    if unit == "deg":
         span = float(np.max(x) - np.min(x))
         for step in (15.0, 30.0, 45.0, 60.0, 90.0, 180.0):
             if span / step <= 13:
