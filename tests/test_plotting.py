@@ -14,7 +14,6 @@ import sys
 import numpy as np
 import pytest
 
-pytest.importorskip("matplotlib")
 
 from linkage_sym.model import Driver, Joint, Link, Scene  # noqa: E402
 from linkage_sym.numeric.result import (  # noqa: E402
