@@ -173,6 +173,12 @@ class DyadSolver:
         else:  # pragma: no cover - structure refuses other types
             raise ValueError(t)
         self.pivots = {"RRR": (0, 1), "RRP": (0,)}.get(t, ())
+        # links (by index) whose rotation a prismatic joint copies from a known link
+        self.copied = {
+            "RRP": ((1, self.k1),),
+            "PRP": ((0, self.k0), (1, self.k1)),
+            "RPP": ((0, self.k1), (1, self.k1)),
+        }.get(t, ())
 
     def _branch(self, value, scale):
         if abs(value) <= ASSEMBLY_TOL * scale:
@@ -186,18 +192,12 @@ class DyadSolver:
             )
         return 1.0 if value > 0 else -1.0
 
-    def _rotations_from_known(self, S, b0, b1):
-        """Links whose rotation a prismatic joint copies from a known link."""
-        t = self.type
-        if t in ("PRP", "RRP"):
-            for st, k, i in ((b0, self.k0, 0), (b1, self.k1, 1)):
-                if i not in self.pivots:
-                    ks = S[k]
-                    st.set_pose(ks.th, 0.0, 0.0, ks.c, ks.s)
-        elif t == "RPP":
-            ks = S[self.k1]
-            b0.set_pose(ks.th, 0.0, 0.0, ks.c, ks.s)
-            b1.set_pose(ks.th, 0.0, 0.0, ks.c, ks.s)
+    def _copy_rotations(self, S, b0, b1):
+        """Set the rotations a prismatic joint copies; place RPP's pinned link."""
+        for i, k in self.copied:
+            ks = S[k]
+            (b0 if i == 0 else b1).set_pose(ks.th, 0.0, 0.0, ks.c, ks.s)
+        if self.type == "RPP":
             _set_from_point(b0, S[self.k0].point(self.E0), self.E0)
 
     # -- positions ---------------------------------------------------------
@@ -206,7 +206,7 @@ class DyadSolver:
         b0, b1 = S[self.links[0]], S[self.links[1]]
         if t == "RPR":
             return self._rpr_position(S, b0, b1)
-        self._rotations_from_known(S, b0, b1)
+        self._copy_rotations(S, b0, b1)
         c0, c1 = self.loci
         if t == "RRR":
             C0, C1 = c0.center(S), c1.center(S)
@@ -254,7 +254,7 @@ class DyadSolver:
         return ind
 
     # -- velocities --------------------------------------------------------
-    def _rows(self, S, b0, Y):
+    def _locus_frames(self, S):
         return [loc.frame(S) if isinstance(loc, Line) else loc.center(S) for loc in self.loci]
 
     def velocity(self, S, q, qd):
@@ -262,15 +262,12 @@ class DyadSolver:
         b0, b1 = S[self.links[0]], S[self.links[1]]
         if t == "RPR":
             return self._rpr_rates(S, b0, b1, acc=False)
+        for i, k in self.copied:
+            (b0 if i == 0 else b1).w = S[k].w
         if t == "RPP":
-            b0.w = b1.w = S[self.k1].w
             _set_vel_from_point(b0, S[self.k0].point_velocity(self.E0), self.E0)
-        elif t in ("PRP", "RRP"):
-            for st, k, i in ((b0, self.k0, 0), (b1, self.k1, 1)):
-                if i not in self.pivots:
-                    st.w = S[k].w
         Y = b1.point(self.J0)
-        geo = self._rows(S, b0, Y)
+        geo = self._locus_frames(S)
         (a1x, a1y, r1, _), (a2x, a2y, r2, _) = (
             loc.vel_row(S, Y, g) for loc, g in zip(self.loci, geo)
         )
@@ -293,16 +290,13 @@ class DyadSolver:
         b0, b1 = S[self.links[0]], S[self.links[1]]
         if t == "RPR":
             return self._rpr_rates(S, b0, b1, acc=True)
+        for i, k in self.copied:
+            (b0 if i == 0 else b1).al = S[k].al
         if t == "RPP":
-            b0.al = b1.al = S[self.k1].al
             _set_acc_from_point(b0, S[self.k0].point_acceleration(self.E0), self.E0)
-        elif t in ("PRP", "RRP"):
-            for st, k, i in ((b0, self.k0, 0), (b1, self.k1, 1)):
-                if i not in self.pivots:
-                    st.al = S[k].al
         Y = b1.point(self.J0)
         vY = b1.point_velocity(self.J0)
-        geo = self._rows(S, b0, Y)
+        geo = self._locus_frames(S)
         rows = []
         for loc, g in zip(self.loci, geo):
             vg = S[loc.link].point_velocity(loc.C if isinstance(loc, Circle) else loc.Q)

@@ -32,7 +32,7 @@ SINGULAR_IND = 1e-14
 class NewtonSolver:
     """Solver of any group by Newton's method on its own equations."""
 
-    def __init__(self, scene, group, constraints, L, q0):
+    def __init__(self, scene, group, constraints, L):
         self.group = group
         self.links = group.links
         self.L = L
@@ -57,7 +57,6 @@ class NewtonSolver:
                 ]
             )
         self.det_sign = float(np.sign(np.linalg.det(J)))
-        self.q0 = q0
 
     # -- helpers -------------------------------------------------------------
     def _scaled_residual(self, S, q):

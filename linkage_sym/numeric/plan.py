@@ -99,7 +99,7 @@ class Plan:
             elif g.kind == "dyad":
                 self.solvers.append(DyadSolver(scene, g))
             else:
-                self.solvers.append(NewtonSolver(scene, g, self.constraints, self.L, self.q0))
+                self.solvers.append(NewtonSolver(scene, g, self.constraints, self.L))
         self.stages = needed_stages(scene)
         # links whose rotation may come wrapped to one turn (atan2 in a dyad, or
         # copied or offset from such a link) and is unwrapped along the path;

@@ -67,7 +67,3 @@ class LinkState:
         out._rot = {}
         return out
 
-
-def ground_state() -> LinkState:
-    """The fixed link: identity pose, at rest."""
-    return LinkState()
