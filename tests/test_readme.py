@@ -8,7 +8,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def quick_start_commands():
     text = (ROOT / "README.md").read_text()
-    section = re.search(r"^## Quick start\n(.*?)^## ", text, re.S | re.M).group(1)
+    section = re.search(r"^## quick start\n(.*?)^## ", text, re.S | re.M | re.I).group(1)
     block = re.search(r"```(?:\w+)?\n(.*?)```", section, re.S).group(1)
     return [ln for ln in block.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
 
