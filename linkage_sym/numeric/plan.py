@@ -27,6 +27,7 @@ import numpy as np
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.closed_form import DyadSolver, InputSolver
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
+from linkage_sym.numeric.kinetostatics import METHODS, ForcePlan
 from linkage_sym.numeric.newton import NewtonSolver
 from linkage_sym.numeric.result import (
     OK,
@@ -64,7 +65,9 @@ def needed_stages(scene: Scene) -> tuple[str, ...]:
     """
     outs = set(scene.outputs)
     forces = bool(outs & {"reactions", "driving", "frame"})
-    inertia = scene.effects.inertia and any(link.mass > 0 for link in scene.links)
+    inertia = scene.effects.inertia and any(
+        link.mass > 0 or link.inertia > 0 for link in scene.links
+    )
     stages = ["position"]
     if "kinematics" in outs or (forces and inertia):
         stages += ["velocity", "acceleration"]
@@ -76,7 +79,7 @@ def needed_stages(scene: Scene) -> tuple[str, ...]:
 class Plan:
     """A compiled solving plan; see :func:`compile_plan`."""
 
-    def __init__(self, scene: Scene, decomposition: Decomposition):
+    def __init__(self, scene: Scene, decomposition: Decomposition, disconnection=None):
         self.scene = scene
         self.decomposition = decomposition
         L = scene.characteristic_length()
@@ -109,6 +112,9 @@ class Plan:
             if not isinstance(sv, NewtonSolver) for n in g.links
         ]
         self.all_constraints = [c for rows in self.constraints.values() for c in rows]
+        self.force_plan = (
+            ForcePlan(scene, decomposition, self.L, disconnection) if "forces" in self.stages else None
+        )
 
     # -- the sweep ---------------------------------------------------------
     def sweep(self):
@@ -151,7 +157,7 @@ class Plan:
         return _Path({n: P[i] for i, n in enumerate(names)}, sel)
 
     # -- running -----------------------------------------------------------
-    def run(self, q=None, qd=None, qdd=None, exact_condition=False) -> Analysis:
+    def run(self, q=None, qd=None, qdd=None, exact_condition=False, method="dyad") -> Analysis:
         """Solve the plan over a sweep (the scene's, unless ``q, qd, qdd`` are given).
 
         Parameters
@@ -162,7 +168,13 @@ class Plan:
         exact_condition : bool
             Compute the exact dimensionless condition number at every step,
             not only where a group's indicator flags a near-singular step.
+        method : {"dyad", "global"}
+            Force method (see :mod:`linkage_sym.numeric.kinetostatics`).
         """
+        if method not in METHODS:
+            raise ValueError(
+                f"method: unknown force method {method!r} (use one of {', '.join(METHODS)})"
+            )
         if q is None:
             q, qd, qdd = self.sweep()
         q = {k: np.asarray(v, dtype=float) for k, v in q.items()}
@@ -227,7 +239,10 @@ class Plan:
         if "acceleration" in self.stages:
             for solver in self.solvers:
                 solver.acceleration(S, q, qd, qdd)
-        return self._analysis(S, q, qd, qdd, status, messages, condition)
+        forces = None
+        if self.force_plan is not None:
+            forces = self.force_plan.run(S, status == OK, method)
+        return self._analysis(S, q, qd, qdd, status, messages, condition, forces)
 
     def condition_numbers(self, S, idx) -> np.ndarray:
         """Exact dimensionless condition number of the full constraint Jacobian at steps ``idx``."""
@@ -237,7 +252,7 @@ class Plan:
         with np.errstate(divide="ignore"):
             return sv[:, 0] / sv[:, -1]
 
-    def _analysis(self, S, q, qd, qdd, status, messages, condition) -> Analysis:
+    def _analysis(self, S, q, qd, qdd, status, messages, condition, forces) -> Analysis:
         N = len(status)
         bad = status != OK
         sing = status == SINGULAR
@@ -297,17 +312,9 @@ class Plan:
             k: {"q": np.asarray(q[k], float), "qd": np.asarray(qd[k], float), "qdd": np.asarray(qdd[k], float)}
             for k in q
         }
-        warnings = []
-        missing = [o for o in self.scene.outputs if o in ("reactions", "driving", "frame")]
-        stages = tuple(s for s in self.stages if s != "forces")
-        if missing:
-            warnings.append(
-                "outputs " + ", ".join(repr(m) for m in missing) + " are not computed by this "
-                "version (kinetostatics is not implemented yet): only kinematics is returned"
-            )
         return Analysis(
             scene=self.scene.name,
-            stages=stages,
+            stages=self.stages,
             status=status,
             messages=messages,
             drivers=drivers,
@@ -315,11 +322,12 @@ class Plan:
             links=links,
             condition=condition,
             outputs=tuple(self.scene.outputs),
-            warnings=warnings,
+            forces=forces,
+            p_joints=tuple(j.name for j in self.scene.joints if j.type == "P"),
         )
 
 
-def compile_plan(scene: Scene) -> Plan:
+def compile_plan(scene: Scene, disconnection=None) -> Plan:
     """Analyse ``scene`` once into a :class:`Plan` whose ``run`` solves every step.
 
     Raises
@@ -328,4 +336,4 @@ def compile_plan(scene: Scene) -> Plan:
         If the mechanism cannot be decomposed into solvable groups, or its
         assembly configuration is a singular position of a group.
     """
-    return Plan(scene, decompose(scene))
+    return Plan(scene, decompose(scene), disconnection)

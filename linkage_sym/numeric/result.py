@@ -75,6 +75,76 @@ def _rotated(theta, local):
 
 
 @dataclass
+class GroupForces:
+    """How the forces of one Assur group were solved.
+
+    Attributes
+    ----------
+    links : tuple of str
+        The group's links.
+    method : str
+        ``"input"``, ``"dyad RRR"`` ... for closed forms; ``"disconnection"``
+        for a class-III (or driven, or larger) group solved by seed 000's
+        superposition; ``"dense"`` when a group's own equilibrium equations
+        were solved as one linear system (no disconnection applies);
+        ``"global"`` under the global method.
+    choices : tuple of str
+        For ``"disconnection"``: every disconnection choice, described.
+    used : ndarray of int, shape (N,) or None
+        For ``"disconnection"``: index into ``choices`` used at each step
+        (-1 at steps without a solution).
+    amplification : ndarray, shape (N,) or None
+        For ``"disconnection"``: the cancellation factor of the
+        superposition at each step (``max(|R'| + |R''X|) / max|R|``); the
+        number of significant digits lost is about its base-10 logarithm.
+    """
+
+    links: tuple[str, ...]
+    method: str
+    choices: tuple[str, ...] = ()
+    used: np.ndarray | None = None
+    amplification: np.ndarray | None = None
+
+
+@dataclass
+class Forces:
+    """Joint reactions, driver efforts and frame loads over a sweep.
+
+    Sign conventions are those of the scene format: a joint's ``reaction`` is
+    the force that its ``links[0]`` exerts on its ``links[1]`` (for a ``P``
+    joint: the force normal to the slide, applied at the joint's reference
+    point, with ``reaction_moments`` the couple about that point); a
+    driver's effort is applied by ``links[0]`` on ``links[1]`` and is not part
+    of the reaction; the frame force and moment (about the global origin) are
+    what the moving links exert on the ground.  Arrays are NaN at steps whose
+    status is not ``ok``.
+
+    Attributes
+    ----------
+    method : str
+        ``"dyad"`` (closed-form group routines, seed 000 superposition for
+        complex groups) or ``"global"`` (one sparse linear system).
+    reactions : dict of str to ndarray (N, 2)
+    reaction_moments : dict of str to ndarray (N,)
+        Zero for ``R`` joints.
+    driving : dict of str to ndarray (N,)
+        Torque (``R`` driver) or axial force (``P`` driver).
+    frame_force : ndarray (N, 2)
+    frame_moment : ndarray (N,)
+    groups : list of GroupForces
+        How each group was solved, in solving order.
+    """
+
+    method: str
+    reactions: dict
+    reaction_moments: dict
+    driving: dict
+    frame_force: np.ndarray
+    frame_moment: np.ndarray
+    groups: list = field(default_factory=list)
+
+
+@dataclass
 class Analysis:
     """Everything one run of a solving plan computed.
 
@@ -100,6 +170,10 @@ class Analysis:
         The outputs the scene asked for.
     warnings : list of str
         Things the caller must know (e.g. an output not computed).
+    forces : Forces or None
+        Reactions, efforts and frame loads when the ``forces`` stage ran.
+    p_joints : tuple of str
+        Names of the prismatic joints (their reactions carry a moment).
     """
 
     scene: str
@@ -112,6 +186,8 @@ class Analysis:
     condition: np.ndarray
     outputs: tuple[str, ...]
     warnings: list = field(default_factory=list)
+    forces: Forces | None = None
+    p_joints: tuple[str, ...] = ()
 
     @property
     def ok(self) -> np.ndarray:
@@ -128,6 +204,8 @@ class Analysis:
         want_kin = "kinematics" in self.outputs
         has_vel = "velocity" in self.stages
         has_acc = "acceleration" in self.stages
+        forces = self.forces
+        p_joints = set(self.p_joints)
         for i in range(self.n_steps):
             st = str(self.status[i])
             step: dict = {"status": st}
@@ -163,8 +241,44 @@ class Analysis:
                     links[name] = rec
                 step["joints"] = joints
                 step["links"] = links
+            if forces is not None and rates:
+                if "reactions" in self.outputs:
+                    joints = step.setdefault("joints", {})
+                    for name, r in forces.reactions.items():
+                        rec = joints.setdefault(name, {})
+                        rec["reaction"] = _vec(r[i])
+                        if name in p_joints:
+                            rec["reaction_moment"] = float(forces.reaction_moments[name][i])
+                if "driving" in self.outputs:
+                    step["driving"] = {k: float(v[i]) for k, v in forces.driving.items()}
+                if "frame" in self.outputs:
+                    step["frame"] = {
+                        "force": _vec(forces.frame_force[i]),
+                        "moment": float(forces.frame_moment[i]),
+                    }
             steps.append(step)
         out = {"scene": self.scene, "stages": list(self.stages), "steps": steps}
+        if forces is not None:
+            out["force_method"] = forces.method
+            out["groups"] = [
+                {
+                    "links": list(g.links),
+                    "method": g.method,
+                    **(
+                        {
+                            "choices": list(g.choices),
+                            "steps_per_choice": {
+                                g.choices[k]: int((g.used == k).sum())
+                                for k in range(len(g.choices))
+                                if (g.used == k).any()
+                            },
+                        }
+                        if g.used is not None
+                        else {}
+                    ),
+                }
+                for g in forces.groups
+            ]
         if self.warnings:
             out["warnings"] = list(self.warnings)
         return out

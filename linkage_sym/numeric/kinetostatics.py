@@ -1,0 +1,155 @@
+"""Kinetostatics: joint reactions, driver efforts and frame loads of a solved motion.
+
+:class:`ForcePlan` is compiled once per mechanism (one force routine per
+Assur group) and evaluated over the steps whose kinematics are ``ok``.
+
+Methods
+-------
+``"dyad"`` (default)
+    From the last group back to the drivers, each group's reactions from
+    its own equilibrium: closed forms for input links and dyads
+    (:mod:`~linkage_sym.numeric.statics`), seed 000's disconnection and
+    superposition for class-III and other complex groups
+    (:mod:`~linkage_sym.numeric.superposition`); the reactions of a solved
+    group are then loads on the links it hangs from.
+``"global"``
+    Every link's equilibrium in one sparse system
+    (:mod:`~linkage_sym.numeric.global_statics`), the check of the former.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from linkage_sym.model import GROUND, Scene
+from linkage_sym.numeric.global_statics import frame_wrench, solve_dense, solve_global
+from linkage_sym.numeric.loads import applied_wrenches
+from linkage_sym.numeric.result import Forces, GroupForces
+from linkage_sym.numeric.statics import DyadForces, Geometry, InputForces, push
+from linkage_sym.numeric.superposition import SuperpositionForces, usable_disconnections
+from linkage_sym.structure import Decomposition
+
+METHODS = ("dyad", "global")
+
+
+class ForcePlan:
+    """Force routines of every group of a decomposition, compiled once.
+
+    Parameters
+    ----------
+    scene : Scene
+    decomposition : Decomposition
+    L : float
+        Characteristic length (moment rows and unknowns are scaled by it).
+    disconnection : int or dict, optional
+        Disconnection to prefer for complex groups: one index for every such
+        group, or ``{group index: choice index}``; default
+        :func:`~linkage_sym.numeric.superposition.default_choice`.
+    """
+
+    def __init__(self, scene: Scene, decomposition: Decomposition, L: float, disconnection=None):
+        self.scene = scene
+        self.decomposition = decomposition
+        self.L = L
+        self.routines = []
+        for gi, g in enumerate(decomposition.groups):
+            if g.kind == "input":
+                (dname,) = g.drivers
+                self.routines.append(("input", InputForces(scene, g.links[0], dname)))
+            elif g.kind == "dyad":
+                self.routines.append(("dyad", DyadForces(scene, g)))
+            else:
+                choices = usable_disconnections(scene, g)
+                pref = disconnection.get(gi) if isinstance(disconnection, dict) else disconnection
+                if choices:
+                    self.routines.append(
+                        ("disconnection", SuperpositionForces(scene, g, choices, pref))
+                    )
+                else:
+                    self.routines.append(("dense", None))
+
+    def run(self, S, ok, method="dyad") -> Forces:
+        """Forces at the steps where ``ok`` is true (NaN elsewhere).
+
+        Parameters
+        ----------
+        S : dict of LinkState
+            Solved link states over all N steps.
+        ok : ndarray of bool, shape (N,)
+        method : {"dyad", "global"}
+        """
+        if method not in METHODS:
+            raise ValueError(f"method: unknown force method {method!r} (use one of {', '.join(METHODS)})")
+        scene = self.scene
+        N = len(ok)
+        idx = None if ok.all() else np.flatnonzero(ok)
+        K = N if idx is None else len(idx)
+        Sk = S if idx is None else {n: (st.take(idx) if n != GROUND else st) for n, st in S.items()}
+        geo = Geometry(scene, Sk)
+        W = applied_wrenches(scene, Sk)
+        groups = []
+        if K == 0:
+            reactions = {j.name: (np.zeros(0),) * 3 for j in scene.joints}
+            efforts = {d.joint: np.zeros(0) for d in scene.drivers}
+            frame = (np.zeros(0), np.zeros(0), np.zeros(0))
+        elif method == "global":
+            reactions, efforts = solve_global(scene, geo, W, self.L, K)
+            frame = frame_wrench(scene, geo, reactions, efforts)
+            groups = [GroupForces(g.links, "global") for g in self.decomposition.groups]
+        else:
+            reactions, efforts = {}, {}
+            for g, (kind, routine) in zip(
+                reversed(self.decomposition.groups), reversed(self.routines)
+            ):
+                info = GroupForces(g.links, kind)
+                if kind == "input":
+                    r, e = routine.solve(W, geo)
+                    res, eff = {routine.joint.name: r}, {routine.joint.name: e}
+                elif kind == "dyad":
+                    res, eff = routine.solve(W, geo), {}
+                    info.method = f"dyad {g.dyad_type}"
+                elif kind == "disconnection":
+                    res, eff, used, amp = routine.solve(W, geo, self.L, K)
+                    info.choices = tuple(d.describe() for d in routine.choices)
+                    info.used = _spread(used, idx, N, -1, int)
+                    info.amplification = _spread(amp, idx, N, np.nan)
+                else:
+                    res, eff = solve_dense(
+                        scene, list(g.links), list(g.joints), list(g.drivers), geo, W, self.L, K
+                    )
+                groups.append(info)
+                reactions.update(res)
+                efforts.update(eff)
+                inside = set(g.links)
+                for name in g.external:
+                    push(
+                        W, scene.joint(name), geo, res[name], eff.get(name),
+                        only=W.keys() - inside,
+                    )
+            groups.reverse()
+            w = W[GROUND]
+            frame = (w.fx, w.fy, w.m)
+        out_r, out_m = {}, {}
+        for j in scene.joints:
+            fx, fy, m = reactions[j.name]
+            out_r[j.name] = np.stack([_spread(fx, idx, N), _spread(fy, idx, N)], axis=-1)
+            out_m[j.name] = _spread(m, idx, N)
+        return Forces(
+            method=method,
+            reactions=out_r,
+            reaction_moments=out_m,
+            driving={d.joint: _spread(efforts[d.joint], idx, N) for d in scene.drivers},
+            frame_force=np.stack([_spread(frame[0], idx, N), _spread(frame[1], idx, N)], axis=-1),
+            frame_moment=_spread(frame[2], idx, N),
+            groups=groups,
+        )
+
+
+def _spread(values, idx, N, fill=np.nan, dtype=float):
+    """Values at the solved steps placed into an (N,) array (``fill`` elsewhere)."""
+    out = np.full(N, fill, dtype=dtype)
+    if idx is None:
+        out[:] = values
+    else:
+        out[idx] = values
+    return out

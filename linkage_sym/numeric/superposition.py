@@ -1,0 +1,291 @@
+"""Complex Assur groups by disconnection and superposition (seed 000).
+
+Dang Zuqi and Zhang Qixian solve a class-III (or higher) group with dyad
+routines only.  A :class:`~linkage_sym.structure.Disconnection` removes one
+binary link, two binary links or one joint; the rest of the group becomes a
+*virtual pure-dyad mechanism* driven by one or two hypothetical input links.
+
+The cut joints' reactions are split as the removed links' own equilibrium
+allows: for a removed binary link with two revolutes, the component normal
+to the link follows from its moment balance (eq. 1) and the component along
+it is the unknown ``X``.  By linearity, the equilibrium residual of each
+hypothetical input link (its moment about its pivot, or its force along its
+guide when it slides: eqs. 8-9) is ``M_bar + K X`` (eq. 4).  The dyad
+routines run once with every known load and ``X = 0`` (giving ``M_bar`` and
+the reactions ``R'``) and once per unknown with no load and a unit ``X``
+(giving ``K`` and ``R''``); ``X = -M_bar / K`` (eq. 6, or the 2x2 system of
+eq. 10) and every reaction is ``R' + R'' X`` (eqs. 7, 11) with no further
+run.
+
+Conditioning.  Superposition cancels: when ``K`` is small, ``X`` is large
+and ``R' + R'' X`` is a difference of large numbers.  Each step's
+*amplification* ``max(|R'| + |R''| |X|) / max |R|`` measures that loss
+(about ``log10`` of it in digits).  Where the chosen disconnection's
+amplification exceeds :data:`AMPLIFICATION_LIMIT`, every other
+disconnection of the group is tried and the best-conditioned one is used at
+that step; the result records which.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from linkage_sym.model import Scene
+from linkage_sym.numeric.loads import Wrench
+from linkage_sym.numeric.statics import DyadForces, Geometry, InputForces, push
+from linkage_sym.structure import Group
+from linkage_sym.structure.disconnection import Disconnection, disconnections
+
+AMPLIFICATION_LIMIT = 1e3
+"""Above this cancellation factor (3 digits lost) another disconnection is tried."""
+
+
+def usable_disconnections(scene: Scene, group: Group) -> list[Disconnection]:
+    """The disconnections of ``group`` the force solver can use.
+
+    A driven joint inside the group must be cut (its effort is then one of
+    the cut joint's unknowns, as seed 000 does with an actuator).
+    """
+    out = []
+    for d in disconnections(scene, group):
+        if all(j in d.removed_joints for j in group.drivers):
+            out.append(d)
+    return out
+
+
+def default_choice(choices: list[Disconnection]) -> int:
+    """Index of the disconnection used by default.
+
+    Fewest unknowns first (one run less), then hypothetical inputs that
+    turn rather than slide (seed 000 advises binary, turning inputs), then
+    the structure's listing order.
+    """
+    keys = [(d.unknowns, sum(d.sliding), i) for i, d in enumerate(choices)]
+    return min(keys)[2]
+
+
+class _Choice:
+    """One disconnection compiled for the force runs."""
+
+    def __init__(self, scene: Scene, group: Group, d: Disconnection):
+        self.d = d
+        self.scene = scene
+        self.removed = set(d.removed_links)
+        self.remaining = [n for n in group.links if n not in self.removed]
+        self.cut = [scene.joint(j) for j in d.removed_joints]
+        self.driven = set(group.drivers)
+        self.inputs = [InputForces(scene, link, joint) for link, joint in d.inputs]
+        self.dyads = [DyadForces(scene, g) for g in d.dyads]
+        self.n = d.unknowns
+        # the classic split of seed 000 eq. 1: one removed link with two revolutes
+        self.rr = None
+        if len(d.removed_links) == 1:
+            (b,) = d.removed_links
+            js = [j for j in self.cut if b in j.links]
+            if len(js) == 2 and all(j.type == "R" and j.name not in self.driven for j in js):
+                self.rr = (b, js[0], js[1])
+
+    # -- the cut joints' reactions: particular part and unit parts ---------
+    def split(self, W, geo: Geometry, L, K):
+        """``(zp, Z)``: cut-joint reactions for ``X = 0`` and for each unit ``X``.
+
+        Each is ``{joint: (fx, fy, m, effort)}`` (effort ``None`` for an
+        undriven joint).
+        """
+        if not self.removed:
+            (j,) = self.cut
+            zero = np.zeros(K)
+            zp = {j.name: (zero, zero, zero, None)}
+            if j.type == "R":
+                Z = [{j.name: (1.0, 0.0, 0.0, None)}, {j.name: (0.0, 1.0, 0.0, None)}]
+            else:
+                nx, ny, _, _ = geo.normal(j.name)
+                Z = [{j.name: (nx, ny, 0.0, None)}, {j.name: (0.0, 0.0, L, None)}]
+            return zp, Z
+        if self.rr is not None:
+            return self._split_rr(W, geo)
+        return self._split_svd(W, geo, L, K)
+
+    def _split_rr(self, W, geo):
+        b, j1, j2 = self.rr
+        w = W[b]
+        p1x, p1y = geo.point(j1.name)
+        p2x, p2y = geo.point(j2.name)
+        dx, dy = p2x - p1x, p2y - p1y
+        length = np.hypot(dx, dy)
+        ex, ey = dx / length, dy / length
+        # forces on b: g2 = X e + s n at j2 (s from b's moment about j1, eq. 1), g1 = -F - g2
+        s = -w.moment_about(p1x, p1y) / length
+        g2x, g2y = -ey * s, ex * s
+        g1x, g1y = -w.fx - g2x, -w.fy - g2y
+
+        def as_reaction(j, gx, gy):
+            sg = 1.0 if j.links[1] == b else -1.0
+            return (sg * gx, sg * gy, 0.0, None)
+
+        zp = {j1.name: as_reaction(j1, g1x, g1y), j2.name: as_reaction(j2, g2x, g2y)}
+        Z = [{j1.name: as_reaction(j1, -ex, -ey), j2.name: as_reaction(j2, ex, ey)}]
+        return zp, Z
+
+    def _split_svd(self, W, geo, L, K):
+        """Any removed links: minimum-norm particular part and an orthonormal null basis."""
+        from linkage_sym.numeric.global_statics import assemble
+
+        joints = [j.name for j in self.cut]
+        drivers = [j.name for j in self.cut if j.name in self.driven]
+        links = list(self.d.removed_links)
+        entries, b, cols, ncols = assemble(self.scene, links, joints, drivers, geo, W, L)
+        nrows = 3 * len(links)
+        A = np.zeros((K, nrows, ncols))
+        for r, c, v in entries:
+            A[:, r, c] += v
+        rhs = np.stack(np.broadcast_arrays(*[np.asarray(x, dtype=float) for x in b]), axis=-1)
+        rhs = np.broadcast_to(rhs, (K, nrows))
+        U, sv, Vt = np.linalg.svd(A)
+        y = np.einsum("kij,ki->kj", U, rhs) / sv
+        zp = np.einsum("kji,kj->ki", Vt[:, :nrows, :], y)
+        null = Vt[:, nrows:, :]  # (K, n, ncols)
+
+        def unpack(z):
+            out = {}
+            for j in self.cut:
+                c = cols[j.name]
+                eff = None
+                if j.name in self.driven:
+                    e = z[..., cols["driver:" + j.name]]
+                    eff = L * e if j.type == "R" else e
+                if j.type == "R":
+                    out[j.name] = (z[..., c], z[..., c + 1], 0.0, eff)
+                else:
+                    nx, ny, _, _ = geo.normal(j.name)
+                    out[j.name] = (z[..., c] * nx, z[..., c] * ny, L * z[..., c + 1], eff)
+            return out
+
+        return unpack(zp), [unpack(null[:, k, :]) for k in range(null.shape[1])]
+
+    # -- one run of the virtual pure-dyad mechanism ------------------------
+    def virtual_run(self, W0, cut, geo):
+        """Reactions of the remaining joints and the inputs' residuals under ``W0`` plus ``cut``.
+
+        ``W0`` holds the remaining links' wrenches (modified in place).
+        """
+        jdict = self.scene.joint
+        for name, (fx, fy, m, eff) in cut.items():
+            push(W0, jdict(name), geo, (fx, fy, m), eff, only=W0)
+        reactions = {}
+        for dy in reversed(self.dyads):
+            res = dy.solve(W0, geo)
+            reactions.update(res)
+            for name in dy.group.external:
+                push(W0, jdict(name), geo, res[name], only=W0.keys() - set(dy.group.links))
+        residuals = []
+        for inp in self.inputs:
+            r, e = inp.solve(W0, geo)
+            reactions[inp.joint.name] = r
+            residuals.append(e)
+        return reactions, residuals
+
+    def solve(self, W, geo: Geometry, L, K):
+        """Reactions and efforts of the group, and the amplification per step."""
+        zp, Z = self.split(W, geo, L, K)
+        base = {n: W[n].copy() for n in self.remaining}
+        R0, m0 = self.virtual_run(base, zp, geo)
+        runs = []
+        for Zk in Z:
+            Wk = {n: Wrench(W[n].rx, W[n].ry) for n in self.remaining}
+            runs.append(self.virtual_run(Wk, Zk, geo))
+        Kmat = [[np.broadcast_to(runs[k][1][i], (K,)) for k in range(self.n)] for i in range(self.n)]
+        m0 = [np.broadcast_to(v, (K,)) for v in m0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if self.n == 1:
+                X = [-m0[0] / Kmat[0][0]]
+            elif self.n == 2:
+                (a, b), (c, d) = Kmat
+                det = a * d - b * c
+                X = [(-m0[0] * d + b * m0[1]) / det, (-a * m0[1] + c * m0[0]) / det]
+            else:
+                A = np.stack([np.stack(row, axis=-1) for row in Kmat], axis=-2)
+                X = list(np.linalg.solve(A, -np.stack(m0, axis=-1)[..., None])[..., 0].T)
+        reactions, efforts = {}, {}
+        num = np.zeros(K)
+        den = np.zeros(K)
+
+        def combine(parts0, parts):
+            total = [np.broadcast_to(np.asarray(v, dtype=float), (K,)).copy() for v in parts0]
+            size = _size(parts0, L)
+            for Xk, pk in zip(X, parts):
+                for i in range(3):
+                    total[i] += Xk * pk[i]
+                size = size + np.abs(Xk) * _size(pk, L)
+            return total, size
+
+        for name in R0:
+            (fx, fy, m), size = combine(R0[name], [r[0][name] for r in runs])
+            reactions[name] = (fx, fy, m)
+            num = np.fmax(num, size)
+            den = np.fmax(den, _size((fx, fy, m), L))
+        for name in zp:
+            (fx, fy, m), size = combine(zp[name][:3], [Zk[name][:3] for Zk in Z])
+            reactions[name] = (fx, fy, m)
+            num = np.fmax(num, size)
+            den = np.fmax(den, _size((fx, fy, m), L))
+            if zp[name][3] is not None:
+                e = np.broadcast_to(zp[name][3], (K,)).copy()
+                for Xk, Zk in zip(X, Z):
+                    e += Xk * Zk[name][3]
+                efforts[name] = e
+        with np.errstate(divide="ignore", invalid="ignore"):
+            amp = num / den
+        amp = np.where(den == 0, np.where(num == 0, 1.0, np.inf), amp)
+        return reactions, efforts, amp
+
+
+def _size(parts, L):
+    fx, fy, m = parts[:3]
+    return np.hypot(np.hypot(fx, fy), np.asarray(m) / L)
+
+
+class SuperpositionForces:
+    """A complex group solved by seed 000's method, with a fallback disconnection per step."""
+
+    def __init__(self, scene: Scene, group: Group, choices: list[Disconnection], preferred=None):
+        self.group = group
+        self.choices = choices
+        self.compiled = [_Choice(scene, group, d) for d in choices]
+        self.preferred = default_choice(choices) if preferred is None else preferred
+        if not 0 <= self.preferred < len(choices):
+            raise ValueError(
+                f"disconnection {preferred} of group {', '.join(group.links)} does not exist "
+                f"(it has {len(choices)}: 0 to {len(choices) - 1})"
+            )
+
+    def solve(self, W, geo: Geometry, L, K):
+        """``(reactions, efforts, used, amplification)`` over ``K`` steps."""
+        best = self.compiled[self.preferred].solve(W, geo, L, K)
+        reactions, efforts, amp = best
+        used = np.full(K, self.preferred)
+        bad = ~(amp <= AMPLIFICATION_LIMIT)
+        if bad.any():
+            for k, ch in enumerate(self.compiled):
+                if k == self.preferred or not bad.any():
+                    continue
+                r2, e2, a2 = ch.solve(W, geo, L, K)
+                better = bad & (a2 < amp) | (~np.isfinite(amp) & np.isfinite(a2))
+                if not better.any():
+                    continue
+                for name in reactions:
+                    reactions[name] = tuple(
+                        np.where(better, b2, b1) for b1, b2 in zip(reactions[name], r2[name])
+                    )
+                for name in efforts:
+                    efforts[name] = np.where(better, e2[name], efforts[name])
+                amp = np.where(better, a2, amp)
+                used[better] = k
+                bad = ~(amp <= AMPLIFICATION_LIMIT)
+        return reactions, efforts, used, amp
+
+
+def describe_limit() -> str:
+    return f"{AMPLIFICATION_LIMIT:.0e} (about {math.log10(AMPLIFICATION_LIMIT):.0f} digits)"
