@@ -9,7 +9,9 @@ Examples
 >>> scene = linkage_sym.load_example("crank_rocker")
 >>> result = linkage_sym.analyze(scene)
 >>> result.stages
-('position', 'velocity', 'acceleration')
+('position', 'velocity', 'acceleration', 'forces')
+>>> round(float(result.forces.driving["A"][0]), 4)  # crank torque at the first step (N m)
+-0.0755
 """
 
 from linkage_sym.errors import SceneError
@@ -40,13 +42,22 @@ def decompose(scene):
     return _decompose(scene)
 
 
-def compile_plan(scene):
-    """Analyse a scene once into a solving plan that runs over every step."""
+def compile_plan(scene, disconnection=None):
+    """Analyse a scene once into a solving plan that runs over every step.
+
+    ``disconnection`` picks the seed-000 disconnection of complex groups (an
+    index into the list ``linkage-sym structure`` prints, or a dict
+    ``{group index: choice}``); default: the best-suited one.
+    """
     from linkage_sym.numeric.plan import compile_plan as _compile
 
-    return _compile(scene)
+    return _compile(scene, disconnection)
 
 
-def analyze(scene):
-    """Compile a scene's solving plan and run it over the scene's sweep."""
-    return compile_plan(scene).run()
+def analyze(scene, method="dyad", disconnection=None):
+    """Compile a scene's solving plan and run it over the scene's sweep.
+
+    ``method`` is the force method: ``"dyad"`` (group by group) or
+    ``"global"`` (one sparse system of all links).
+    """
+    return compile_plan(scene, disconnection).run(method=method)

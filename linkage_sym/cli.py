@@ -2,8 +2,9 @@
 
 Commands
 --------
-analyze SCENE.json -o RESULT.json
-    Solve the scene's sweep and write the result of the contract.
+analyze SCENE.json -o RESULT.json [--method dyad|global] [--disconnection K]
+    Solve the scene's sweep and write the result of the contract: kinematics,
+    joint reactions, driver efforts and frame loads, as the scene asks.
 structure SCENE.json
     Print the drivers and Assur groups in solving order, with the
     disconnection choices of class-III groups.
@@ -38,7 +39,12 @@ def cmd_analyze(args) -> int:
     from linkage_sym.numeric.plan import compile_plan
 
     scene = _load(args.scene)
-    result = compile_plan(scene).run().to_dict()
+    plan = compile_plan(scene, args.disconnection)
+    if args.disconnection is not None and not any(
+        g.kind not in ("input", "dyad") for g in plan.decomposition.groups
+    ):
+        print("note: --disconnection ignored: the mechanism has no complex group", file=sys.stderr)
+    result = plan.run(method=args.method).to_dict()
     for w in result.get("warnings", []):
         print(f"warning: {w}", file=sys.stderr)
     text = json.dumps(result, indent=1 if args.pretty else None)
@@ -102,6 +108,19 @@ def build_parser() -> argparse.ArgumentParser:
     a.add_argument("scene", help="scene JSON file")
     a.add_argument("-o", "--output", help="result JSON file (default: standard output)")
     a.add_argument("--pretty", action="store_true", help="indent the JSON")
+    a.add_argument(
+        "--method",
+        choices=("dyad", "global"),
+        default="dyad",
+        help="force method: group by group (dyad, default) or one sparse system (global)",
+    )
+    a.add_argument(
+        "--disconnection",
+        type=int,
+        metavar="K",
+        help="seed-000 disconnection to use for complex groups (index in the list "
+        "`linkage-sym structure` prints, from 0; default: the best-suited one)",
+    )
     a.set_defaults(func=cmd_analyze)
     s = sub.add_parser("structure", help="print drivers and Assur groups in solving order")
     s.add_argument("scene", help="scene JSON file")

@@ -21,15 +21,40 @@ def test_analyze_writes_the_contract(tmp_path):
     assert main(["analyze", str(example_path("crank_rocker")), "-o", str(out)]) == 0
     r = json.loads(out.read_text())
     assert r["scene"] == "crank-rocker"
-    assert r["stages"] == ["position", "velocity", "acceleration"]
+    assert r["stages"] == ["position", "velocity", "acceleration", "forces"]
     assert len(r["steps"]) == 361
     s = r["steps"][0]
     assert s["status"] == "ok"
-    assert set(s["joints"]["C"]) == {"position", "velocity", "acceleration"}
+    # R joints: reaction_moment may be left out (spec), and is
+    assert set(s["joints"]["C"]) == {"position", "velocity", "acceleration", "reaction"}
     assert set(s["links"]["coupler"]) >= {"rotation", "omega", "alpha", "com", "com_velocity",
                                           "com_acceleration"}
-    # kinetostatics is not implemented yet: the result says so instead of staying silent
-    assert any("not computed" in w for w in r["warnings"])
+    assert set(s["driving"]) == {"A"}
+    assert set(s["frame"]) == {"force", "moment"} and len(s["frame"]["force"]) == 2
+    assert r["force_method"] == "dyad"
+    assert "warnings" not in r
+
+
+def test_analyze_global_method_and_p_joint_moments(tmp_path):
+    out_d, out_g = tmp_path / "d.json", tmp_path / "g.json"
+    path = str(example_path("slider_crank_offset"))
+    assert main(["analyze", path, "-o", str(out_d)]) == 0
+    assert main(["analyze", path, "--method", "global", "-o", str(out_g)]) == 0
+    d, g = json.loads(out_d.read_text()), json.loads(out_g.read_text())
+    assert g["force_method"] == "global"
+    sd, sg = d["steps"][40], g["steps"][40]
+    assert "reaction_moment" in sd["joints"]["C_guide"]  # a P joint carries a couple
+    for a, b in zip(sd["joints"]["C_guide"]["reaction"], sg["joints"]["C_guide"]["reaction"]):
+        assert a == pytest.approx(b, rel=1e-9, abs=1e-9)
+
+
+def test_analyze_refuses_an_unknown_disconnection(tmp_path, capsys):
+    out = tmp_path / "r.json"
+    code = main(["analyze", str(example_path("sixbar_class3")), "--disconnection", "99",
+                 "-o", str(out)])
+    assert code == 2
+    assert "disconnection" in capsys.readouterr().err
+    assert not out.exists()
 
 
 def test_python_m_is_the_same_program(tmp_path):

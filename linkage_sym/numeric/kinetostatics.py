@@ -26,7 +26,8 @@ from linkage_sym.numeric.global_statics import frame_wrench, solve_dense, solve_
 from linkage_sym.numeric.loads import applied_wrenches
 from linkage_sym.numeric.result import Forces, GroupForces
 from linkage_sym.numeric.statics import DyadForces, Geometry, InputForces, push
-from linkage_sym.numeric.superposition import SuperpositionForces, usable_disconnections
+from linkage_sym.numeric.superposition import SuperpositionForces
+from linkage_sym.structure.disconnection import usable_disconnections
 from linkage_sym.structure import Decomposition
 
 METHODS = ("dyad", "global")

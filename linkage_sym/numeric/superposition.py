@@ -32,38 +32,15 @@ import math
 
 import numpy as np
 
+from linkage_sym.errors import SceneError
 from linkage_sym.model import Scene
 from linkage_sym.numeric.loads import Wrench
 from linkage_sym.numeric.statics import DyadForces, Geometry, InputForces, push
 from linkage_sym.structure import Group
-from linkage_sym.structure.disconnection import Disconnection, disconnections
+from linkage_sym.structure.disconnection import Disconnection, default_choice
 
 AMPLIFICATION_LIMIT = 1e3
 """Above this cancellation factor (3 digits lost) another disconnection is tried."""
-
-
-def usable_disconnections(scene: Scene, group: Group) -> list[Disconnection]:
-    """The disconnections of ``group`` the force solver can use.
-
-    A driven joint inside the group must be cut (its effort is then one of
-    the cut joint's unknowns, as seed 000 does with an actuator).
-    """
-    out = []
-    for d in disconnections(scene, group):
-        if all(j in d.removed_joints for j in group.drivers):
-            out.append(d)
-    return out
-
-
-def default_choice(choices: list[Disconnection]) -> int:
-    """Index of the disconnection used by default.
-
-    Fewest unknowns first (one run less), then hypothetical inputs that
-    turn rather than slide (seed 000 advises binary, turning inputs), then
-    the structure's listing order.
-    """
-    keys = [(d.unknowns, sum(d.sliding), i) for i, d in enumerate(choices)]
-    return min(keys)[2]
 
 
 class _Choice:
@@ -256,9 +233,12 @@ class SuperpositionForces:
         self.compiled = [_Choice(scene, group, d) for d in choices]
         self.preferred = default_choice(choices) if preferred is None else preferred
         if not 0 <= self.preferred < len(choices):
-            raise ValueError(
-                f"disconnection {preferred} of group {', '.join(group.links)} does not exist "
-                f"(it has {len(choices)}: 0 to {len(choices) - 1})"
+            raise SceneError(
+                [
+                    f"disconnection: choice {preferred} of group {', '.join(group.links)} does "
+                    f"not exist (it has {len(choices)}: 0 to {len(choices) - 1}, in the order "
+                    "`linkage-sym structure` lists them)"
+                ]
             )
 
     def solve(self, W, geo: Geometry, L, K):

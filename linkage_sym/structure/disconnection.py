@@ -63,7 +63,7 @@ class Disconnection:
             for (link, joint), s in zip(self.inputs, self.sliding)
         )
         chain = " -> ".join(f"{g.label} ({', '.join(g.links)})" for g in self.dyads)
-        return f"remove {what}; {ins} -> {chain}"
+        return f"remove {what}; {ins}" + (f" -> {chain}" if chain else " (no dyad left)")
 
 
 def _binary_links(group: Group, joint_links: dict[str, tuple[str, str]]) -> list[str]:
@@ -144,3 +144,27 @@ def _choices(scene, group, jl, jtype, known, attempts):
                 dyads=tuple(dyads),
                 sliding=tuple(jtype[j] == "P" for _, j in chosen),
             )
+
+
+def usable_disconnections(scene: Scene, group: Group) -> list[Disconnection]:
+    """The disconnections of ``group`` the force solver can use.
+
+    A driven joint inside the group must be cut (its effort is then one of
+    the cut joint's unknowns, as seed 000 does with an actuator).
+    """
+    out = []
+    for d in disconnections(scene, group):
+        if all(j in d.removed_joints for j in group.drivers):
+            out.append(d)
+    return out
+
+
+def default_choice(choices: list[Disconnection]) -> int:
+    """Index of the disconnection used by default.
+
+    Fewest unknowns first (one run less), then hypothetical inputs that
+    turn rather than slide (seed 000 advises binary, turning inputs), then
+    the structure's listing order.
+    """
+    keys = [(d.unknowns, sum(d.sliding), i) for i, d in enumerate(choices)]
+    return min(keys)[2]

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from linkage_sym.model import Scene
-from linkage_sym.structure.disconnection import disconnections
+from linkage_sym.structure.disconnection import default_choice, usable_disconnections
 from linkage_sym.structure.groups import Decomposition
 
 
@@ -47,13 +47,19 @@ def structure_report(scene: Scene, dec: Decomposition) -> str:
             text += f"; internal joints {', '.join(g.internal)}"
         lines.append(text)
         if g.kind not in ("input", "dyad"):
-            choices = disconnections(scene, g)
+            choices = usable_disconnections(scene, g)
             if choices:
                 lines.append(
-                    "     disconnection choices (seed 000: virtual pure-dyad mechanism):"
+                    "     disconnection choices (seed 000: virtual pure-dyad mechanism; "
+                    "pick one with --disconnection K):"
                 )
-                for k, c in enumerate(choices, 1):
-                    lines.append(f"       {chr(96 + k) if k <= 26 else k}) {c.describe()}")
+                best = default_choice(choices)
+                for k, c in enumerate(choices):
+                    mark = "  (default)" if k == best else ""
+                    lines.append(f"       {k:2d}) {c.describe()}{mark}")
             else:
-                lines.append("     no disconnection leaves a pure-dyad mechanism")
+                lines.append(
+                    "     no disconnection leaves a pure-dyad mechanism: forces by a dense "
+                    "solve of the group's own equilibrium"
+                )
     return "\n".join(lines)
