@@ -14,12 +14,27 @@ coupler_curves
     Joint and centre-of-mass paths with the mechanism drawn (1 PNG).
 mechanism_snapshot
     Draw the mechanism at one step on a given Matplotlib axis.
+driving_effort
+    Driver torques and forces against the driver, with RMS and peak (1 PNG).
+reaction_hodographs
+    Polar hodographs of the joint reactions over the cycle (1 PNG).
+frame_loads
+    Frame (or shaking) force hodograph and moment against the driver (1 PNG).
 """
 
+from linkage_sym.plotting.forces import driving_effort, frame_loads, reaction_hodographs
 from linkage_sym.plotting.motion import motion_diagrams
 from linkage_sym.plotting.paths import coupler_curves, mechanism_snapshot
 
-__all__ = ["coupler_curves", "mechanism_snapshot", "motion_diagrams", "plot_all"]
+__all__ = [
+    "coupler_curves",
+    "driving_effort",
+    "frame_loads",
+    "mechanism_snapshot",
+    "motion_diagrams",
+    "plot_all",
+    "reaction_hodographs",
+]
 
 
 def plot_all(scene, analysis, out_dir, prefix=None):
@@ -37,12 +52,25 @@ def plot_all(scene, analysis, out_dir, prefix=None):
     Returns
     -------
     list of pathlib.Path
-        The motion diagrams, then ``<stem>_paths.png``.
+        The motion diagrams, then ``<stem>_paths.png``; when the analysis has
+        forces (:attr:`Analysis.forces` is not None), then also
+        ``<stem>_driving.png`` (if there are driver efforts and ``"driving"``
+        is in :attr:`Analysis.outputs`), ``<stem>_reactions.png`` (if
+        ``"reactions"`` is) and ``<stem>_frame.png`` (if ``"frame"`` is).
     """
     from pathlib import Path
 
     from linkage_sym.plotting.style import file_stem
 
     written = motion_diagrams(scene, analysis, out_dir, prefix=prefix)
-    written.append(coupler_curves(scene, analysis, Path(out_dir) / f"{file_stem(scene, prefix)}_paths.png"))
+    stem = Path(out_dir) / file_stem(scene, prefix)
+    written.append(coupler_curves(scene, analysis, f"{stem}_paths.png"))
+    forces = analysis.forces
+    if forces is not None:
+        if forces.driving and "driving" in analysis.outputs:
+            written.append(driving_effort(scene, analysis, f"{stem}_driving.png"))
+        if "reactions" in analysis.outputs:
+            written.append(reaction_hodographs(scene, analysis, f"{stem}_reactions.png"))
+        if "frame" in analysis.outputs:
+            written.append(frame_loads(scene, analysis, f"{stem}_frame.png"))
     return written
