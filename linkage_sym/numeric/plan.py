@@ -184,10 +184,12 @@ class Plan:
         for n in self.scene.link_names:
             S[n] = LinkState()
         inds = []
-        for solver in self.solvers:
-            inds.append(solver.position(S, path.q))
-        # first group that failed at each path point
         npath = len(path.q[next(iter(path.q))])
+        for solver in self.solvers:
+            ind = solver.position(S, path.q)
+            # a group whose geometry does not change (two fixed slide directions) gives a scalar
+            inds.append(None if ind is None else np.broadcast_to(ind, (npath,)))
+        # first group that failed at each path point
         failed_at = np.full(npath, -1)
         for gi, ind in enumerate(inds):
             if ind is None:

@@ -1,0 +1,221 @@
+"""Independent checks of a kinetostatic result, written without the solver's code.
+
+Every function here reads an :class:`~linkage_sym.numeric.result.Analysis`
+(kinematics and forces as arrays) and the scene, and rebuilds a physical
+identity from the scene-format conventions alone:
+
+* :func:`link_residuals`: each link's force and moment balance under its
+  reported joint reactions, driver efforts, weight, loads and d'Alembert
+  terms;
+* :func:`power_residual`: driver power against the rate of change of kinetic
+  energy minus the power of gravity and loads;
+* :func:`momentum_frame`: ``-sum m a_G`` and ``-dH_O/dt`` (the shaking force
+  and moment when inertia is the only effect).
+
+Each returns a residual and the scale it should be compared with (the sum of
+the magnitudes of the terms), so tests assert ``|residual| <= tol * scale``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+GROUND = "ground"
+
+
+def _cross(r, f):
+    return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
+
+
+def _rotation(a, link):
+    return 0.0 if link == GROUND else a.links[link].rotation
+
+
+def _axis(a, joint, angle):
+    """Global unit vector of a slide direction fixed on ``joint.links[0]``."""
+    th = _rotation(a, joint.links[0]) + angle
+    return np.stack(np.broadcast_arrays(np.cos(th), np.sin(th)), axis=-1)
+
+
+def applied(scene, a, inertia=None, gravity=None, loads=None):
+    """Per link: list of (force (N,2), point (N,2)) and list of couples (N,)."""
+    eff = scene.effects
+    inertia = eff.inertia if inertia is None else inertia
+    gravity = eff.gravity if gravity is None else gravity
+    loads = eff.loads if loads is None else loads
+    out = {}
+    for link in scene.links:
+        lk = a.links[link.name]
+        forces, couples = [], []
+        if link.mass > 0:
+            if inertia:
+                forces.append((-link.mass * lk.com_acceleration, lk.com))
+            if gravity:
+                forces.append((link.mass * np.broadcast_to(gravity, lk.com.shape), lk.com))
+        if inertia and link.inertia > 0:
+            couples.append(-link.inertia * lk.alpha)
+        out[link.name] = (forces, couples)
+    if loads:
+        for ld in scene.loads:
+            lk = a.links[ld.link]
+            forces, couples = out[ld.link]
+            if ld.force is not None:
+                p = lk.point(ld.at)
+                forces.append((np.broadcast_to(np.asarray(ld.force, float), p.shape), p))
+            if ld.torque:
+                couples.append(np.full(a.n_steps, ld.torque))
+    return out
+
+
+def link_residuals(scene, a):
+    """Force and moment residual of every moving link, with their scales.
+
+    Returns ``{link: (res_force (N,2), res_moment (N,), scale_force (N,), scale_moment (N,))}``;
+    moments about the global origin.
+    """
+    f = a.forces
+    drivers = {d.joint: d for d in scene.drivers}
+    terms = {l.name: ([], []) for l in scene.links}  # (force, point) and couples
+    for j in scene.joints:
+        p = a.joints[j.name].position
+        R = f.reactions[j.name]
+        m = f.reaction_moments[j.name]
+        on1 = [(R, p)]
+        c1 = [m]
+        if j.name in drivers:
+            e = f.driving[j.name]
+            if j.type == "R":
+                c1.append(e)
+            else:
+                on1.append((e[:, None] * _axis(a, j, j.axis), p))
+        for link, s in ((j.links[1], 1.0), (j.links[0], -1.0)):
+            if link == GROUND:
+                continue
+            forces, couples = terms[link]
+            forces += [(s * F, P) for F, P in on1]
+            couples += [s * c for c in c1]
+    ext = applied(scene, a)
+    out = {}
+    for link in scene.links:
+        forces, couples = terms[link.name]
+        ef, ec = ext[link.name]
+        forces = forces + ef
+        couples = couples + ec
+        N = a.n_steps
+        rf = np.zeros((N, 2))
+        rm = np.zeros(N)
+        sf = np.zeros(N)
+        sm = np.zeros(N)
+        for F, P in forces:
+            rf = rf + F
+            mom = _cross(P, F)
+            rm = rm + mom
+            sf = sf + np.hypot(F[:, 0], F[:, 1])
+            sm = sm + np.abs(mom)
+        for c in couples:
+            rm = rm + c
+            sm = sm + np.abs(c)
+        out[link.name] = (rf, rm, sf, sm)
+    return out
+
+
+def kinetic_energy_rate(scene, a):
+    """``dT/dt = sum m a_G . v_G + I alpha omega`` (only links with mass or inertia)."""
+    out = np.zeros(a.n_steps)
+    terms = []
+    for link in scene.links:
+        lk = a.links[link.name]
+        if link.mass > 0:
+            terms.append(link.mass * np.sum(lk.com_acceleration * lk.com_velocity, axis=1))
+        if link.inertia > 0:
+            terms.append(link.inertia * lk.alpha * lk.omega)
+    for t in terms:
+        out = out + t
+    return out, terms
+
+
+def power_residual(scene, a):
+    """``sum effort qd - (dT/dt - P_gravity - P_loads)`` and the sum of the terms' magnitudes."""
+    terms = []
+    drive = np.zeros(a.n_steps)
+    for d in scene.drivers:
+        p = a.forces.driving[d.joint] * a.drivers[d.joint]["qd"]
+        drive = drive + p
+        terms.append(p)
+    rhs = np.zeros(a.n_steps)
+    if scene.effects.inertia:
+        dT, t = kinetic_energy_rate(scene, a)
+        rhs = rhs + dT
+        terms += t
+    g = scene.effects.gravity
+    if g:
+        for link in scene.links:
+            if link.mass > 0:
+                p = link.mass * (a.links[link.name].com_velocity @ np.asarray(g, float))
+                rhs = rhs - p
+                terms.append(p)
+    if scene.effects.loads:
+        for ld in scene.loads:
+            lk = a.links[ld.link]
+            if ld.force is not None:
+                p = lk.point_velocity(ld.at) @ np.asarray(ld.force, float)
+                rhs = rhs - p
+                terms.append(p)
+            if ld.torque:
+                p = ld.torque * lk.omega
+                rhs = rhs - p
+                terms.append(p)
+    scale = np.zeros(a.n_steps)
+    for t in terms:
+        scale = scale + np.abs(t)
+    return drive - rhs, scale
+
+
+def momentum_frame(scene, a):
+    """``(-sum m a_G, -dH_O/dt)`` with scales (sum of term magnitudes)."""
+    F = np.zeros((a.n_steps, 2))
+    M = np.zeros(a.n_steps)
+    sF = np.zeros(a.n_steps)
+    sM = np.zeros(a.n_steps)
+    for link in scene.links:
+        lk = a.links[link.name]
+        if link.mass > 0:
+            ma = link.mass * lk.com_acceleration
+            F = F - ma
+            sF = sF + np.hypot(ma[:, 0], ma[:, 1])
+            h = _cross(lk.com, ma)
+            M = M - h
+            sM = sM + np.abs(h)
+        if link.inertia > 0:
+            M = M - link.inertia * lk.alpha
+            sM = sM + np.abs(link.inertia * lk.alpha)
+    return F, M, sF, sM
+
+
+def max_rel(diff, scale):
+    """Largest ``|diff| / scale`` over finite steps (scale floored by 1e-300)."""
+    d = np.abs(np.asarray(diff, float))
+    if d.ndim == 2:
+        d = np.hypot(d[:, 0], d[:, 1])
+    return float(np.nanmax(d / np.maximum(scale, 1e-300)))
+
+
+def reaction_scale(scene, forces):
+    """Per step: the largest joint reaction or effort (couples and torques divided by ``L``).
+
+    ``L`` is the scene's characteristic length, so every entry is a force.
+    """
+    L = scene.characteristic_length()
+    s = 0.0
+    for name, R in forces.reactions.items():
+        s = np.fmax(s, np.hypot(np.hypot(R[:, 0], R[:, 1]), forces.reaction_moments[name] / L))
+    for d in scene.drivers:
+        e = np.abs(forces.driving[d.joint])
+        s = np.fmax(s, e / L if d.kind == "R" else e)
+    return s
+
+
+def deg(x):
+    return math.degrees(x)
