@@ -89,7 +89,8 @@ def example(name: str = "crank_rocker", *, effects: Effects | None = None, bad=B
     analysis.status = np.asarray(analysis.status, dtype=object).copy()
     analysis.forces = synthetic_forces(scene, analysis)
     analysis.p_joints = tuple(j.name for j in scene.joints if j.type == "P")
-    analysis.stages = tuple(analysis.stages) + ("forces",)
+    if "forces" not in analysis.stages:
+        analysis.stages = tuple(analysis.stages) + ("forces",)
     _mark_bad(analysis, {k: v for k, v in bad.items() if k < analysis.n_steps})
     return scene, analysis
 
