@@ -10,6 +10,10 @@ assembly configuration used by ``linkage_sym/examples/printing_mechanism.json``.
 
 Run:  python3 paper_repro/printing_mechanism.py      (plain python3 + numpy)
 
+``scene_dict(printed)`` builds the scene (the example's JSON as a dict) from
+a dict of printed inputs shaped like PRINTED; ``paper_repro/printing_forces.py``
+uses it to perturb the printed inputs within their rounding.
+
 Reconstruction (each step is checked below):
 
 * A = (0, 0) is the crank pivot: B = A + l_AB (cos 300 deg, sin 300 deg) = (0.1, -0.1732).
@@ -69,13 +73,32 @@ PRINTED = {
                 "eq14": (0.325, -0.025, 13.0601), "R53n'": 63.69, "R53t'": 305.60, "Fx_bar": -573.40,
                 "R43t_unit": (-0.7872, -0.6166), "R53n''": -0.6139, "R53t''": 0.6906, "K": 0.6139,
                 "R34t": 934.03, "R53n": -509.71, "R53t": 950.64},
+    # the angle of the force F'5 to the guide, printed in eq. (12) as "F'5x cos 20deg"
+    "F5_angle_deg": 20.0,
 }
 
-L_AB, L_BC, L_CD, L_DF, L_ED, L_FF, L_AH = 0.2, 0.97, 0.294, 0.62, 0.37, 0.045, 0.248
+
+
+def dims_from(printed):
+    """The dimensions the reconstruction uses, read from a dict shaped like PRINTED.
+
+    Keys: the lengths AB, BC, CD, DF, ED, FF', AH, the pivot E and the guide
+    heights y_guide = AH (line of F') and y_F = AH - FF' (path of the pin F).
+    """
+    ln = printed["lengths"]
+    d = {"AB": ln["AB"], "BC": ln["BC"], "CD": ln["CD"], "DF": ln["DF"], "ED": ln["ED (printed l_AE)"],
+         "FF": ln["FF'"], "AH": ln["AH"], "E": np.array(printed["E"], dtype=float)}
+    d["y_guide"] = d["AH"]
+    d["y_F"] = d["AH"] - d["FF"]
+    return d
+
+
+DIMS = dims_from(PRINTED)
+L_AB, L_BC, L_CD, L_DF, L_ED, L_FF, L_AH = (DIMS[k] for k in ("AB", "BC", "CD", "DF", "ED", "FF", "AH"))
 A = np.array([0.0, 0.0])
-E = np.array(PRINTED["E"])
-Y_GUIDE = L_AH  # guide line of the slider's point F'
-Y_F = L_AH - L_FF  # path of the pin F
+E = DIMS["E"]
+Y_GUIDE = DIMS["y_guide"]  # guide line of the slider's point F'
+Y_F = DIMS["y_F"]  # path of the pin F
 
 
 def u(angle):
@@ -89,51 +112,51 @@ def cross(a, b):
 # --------------------------------------------------------------------------- positions
 
 
-def closure(q, t1):
+def closure(q, t1, dims=DIMS):
     """Closure of the reconstructed mechanism; q = (theta2, theta3, theta4, x_F)."""
     t2, t3, t4, xf = q
-    b = A + L_AB * u(t1)
-    c = b + L_BC * u(t2)
-    d = E + L_ED * u(t4)
-    return np.array([*(d + L_CD * u(t3) - c), *(d + L_DF * u(t3) - np.array([xf, Y_F]))])
+    b = A + dims["AB"] * u(t1)
+    c = b + dims["BC"] * u(t2)
+    d = dims["E"] + dims["ED"] * u(t4)
+    return np.array([*(d + dims["CD"] * u(t3) - c), *(d + dims["DF"] * u(t3) - np.array([xf, dims["y_F"]]))])
 
 
 def du(angle):
     return np.array([-math.sin(angle), math.cos(angle)])
 
 
-def jac(q, t1):
+def jac(q, t1, dims=DIMS):
     """d closure / d q (analytic)."""
     t2, t3, t4, xf = q
     J = np.zeros((4, 4))
-    J[0:2, 0] = -L_BC * du(t2)
-    J[0:2, 1] = L_CD * du(t3)
-    J[2:4, 1] = L_DF * du(t3)
-    J[0:2, 2] = L_ED * du(t4)
-    J[2:4, 2] = L_ED * du(t4)
+    J[0:2, 0] = -dims["BC"] * du(t2)
+    J[0:2, 1] = dims["CD"] * du(t3)
+    J[2:4, 1] = dims["DF"] * du(t3)
+    J[0:2, 2] = dims["ED"] * du(t4)
+    J[2:4, 2] = dims["ED"] * du(t4)
     J[2:4, 3] = [-1.0, 0.0]
     return J
 
 
-def solve(q, t1):
+def solve(q, t1, dims=DIMS):
     for _ in range(50):
-        r = closure(q, t1)
+        r = closure(q, t1, dims)
         if np.max(np.abs(r)) < 1e-15:
             break
-        q = q - np.linalg.solve(jac(q, t1), r)
+        q = q - np.linalg.solve(jac(q, t1, dims), r)
     return q
 
 
-def points(q, t1):
+def points(q, t1, dims=DIMS):
     t2, t3, t4, xf = q
-    b = A + L_AB * u(t1)
-    c = b + L_BC * u(t2)
-    d = E + L_ED * u(t4)
-    f = d + L_DF * u(t3)
-    return {"A": A, "B": b, "C": c, "D": d, "E": E, "F": f, "F'": np.array([f[0], Y_GUIDE])}
+    b = A + dims["AB"] * u(t1)
+    c = b + dims["BC"] * u(t2)
+    d = dims["E"] + dims["ED"] * u(t4)
+    f = d + dims["DF"] * u(t3)
+    return {"A": A, "B": b, "C": c, "D": d, "E": dims["E"], "F": f, "F'": np.array([f[0], dims["y_guide"]])}
 
 
-def rates(q, t1, w1=OMEGA1):
+def rates(q, t1, w1=OMEGA1, dims=DIMS):
     """q' and q'' for a crank turning at the constant speed w1 (analytic).
 
     closure = E + l_ED u(t4) + l_CD u(t3) - l_AB u(t1) - l_BC u(t2)   (rows 0-1)
@@ -142,13 +165,14 @@ def rates(q, t1, w1=OMEGA1):
     s L u(t) contributes s L (u'(t) t'' - u(t) t'^2), so J q'' = sum s L u(t) t'^2.
     """
     t2, t3, t4, xf = q
-    J = jac(q, t1)
-    rhs_v = np.concatenate([L_AB * du(t1) * w1, [0.0, 0.0]])
+    L = dims
+    J = jac(q, t1, dims)
+    rhs_v = np.concatenate([L["AB"] * du(t1) * w1, [0.0, 0.0]])
     qd = np.linalg.solve(J, rhs_v)
     w2, w3, w4, _ = qd
     rhs_a = np.concatenate([
-        L_ED * u(t4) * w4**2 + L_CD * u(t3) * w3**2 - L_AB * u(t1) * w1**2 - L_BC * u(t2) * w2**2,
-        L_ED * u(t4) * w4**2 + L_DF * u(t3) * w3**2,
+        L["ED"] * u(t4) * w4**2 + L["CD"] * u(t3) * w3**2 - L["AB"] * u(t1) * w1**2 - L["BC"] * u(t2) * w2**2,
+        L["ED"] * u(t4) * w4**2 + L["DF"] * u(t3) * w3**2,
     ])
     qdd = np.linalg.solve(J, rhs_a)
     return qd, qdd
@@ -160,12 +184,12 @@ def point_acc(a_ref, ref, p, omega, alpha):
     return a_ref + alpha * np.array([-r[1], r[0]]) - omega**2 * r
 
 
-def assembly():
+def assembly(printed=PRINTED):
     """The printed position theta1 = 300 deg, solved exactly from the printed lengths."""
-    t1 = math.radians(300.0)
-    th = PRINTED["theta_deg"]
-    q0 = np.array([math.radians(th[2]), math.radians(th[3]), math.radians(th[4]), PRINTED["points"]["F"][0]])
-    return t1, solve(q0, t1)
+    th = printed["theta_deg"]
+    t1 = math.radians(th[1])
+    q0 = np.array([math.radians(th[2]), math.radians(th[3]), math.radians(th[4]), printed["points"]["F"][0]])
+    return t1, solve(q0, t1, dims_from(printed))
 
 
 # --------------------------------------------------------------------------- centres, masses
@@ -173,20 +197,81 @@ def assembly():
 S4_T = None  # fraction of ED at which S4 lies, from the (sign-corrected) printed S3
 
 
-def centres(pts):
+def centres(pts, printed=PRINTED):
     """Centres of mass in the printed position (labels shifted back, see module doc)."""
-    s4 = np.array([-PRINTED["S_printed"]["S3"][0], PRINTED["S_printed"]["S3"][1]])
+    sp = printed["S_printed"]
+    s4 = np.array([-sp["S3"][0], sp["S3"][1]])
     return {
         "crank": A.copy(),  # uniform rotation, no inertia force printed: centre on the axis
-        "coupler": np.array(PRINTED["S_printed"]["S1"]),
+        "coupler": np.array(sp["S1"]),
         "lever": pts["C"].copy(),
         "rocker": s4,
-        "slider": np.array(PRINTED["S_printed"]["S4"]),
+        "slider": np.array(sp["S4"]),
     }
 
 
-MASSES = {name: PRINTED["weights"][k] / G_ACC for k, name in
-          enumerate(["crank", "coupler", "lever", "rocker", "slider"], start=1)}
+LINK_NAMES = ["crank", "coupler", "lever", "rocker", "slider"]
+
+
+def masses(printed=PRINTED):
+    """Masses G/g of links 1-5 (kg)."""
+    return {name: printed["weights"][k] / G_ACC for k, name in enumerate(LINK_NAMES, start=1)}
+
+
+MASSES = masses()
+
+
+J_ASSUMED = {"crank": 0.6, "slider": 3.104644}  # not printed; neither matters (see linkage_sym/examples/README.md)
+INERTIA_KEYS = {"coupler": "M_E1", "lever": "M_E2", "rocker": "M_E3"}  # shifted labels, see module doc
+
+
+def scene_dict(printed=PRINTED, start_deg=None, stop_deg=None, steps=361):
+    """The scene (a dict in the scene format) that the reconstruction gives for ``printed``.
+
+    ``printed`` is shaped like PRINTED; what is read from it: the lengths, E,
+    theta1 (the position; theta2-4 and x_F only seed Newton), the centres of
+    mass S1, S3, S4 (shifted labels, S3's sign of x restored), the weights, the
+    inertia moments M_E1-3 (J = M / |alpha| with alpha from the kinematics at
+    30 rpm), the magnitude "F_S4x" of the printing force F'5 and its angle
+    F5_angle_deg to the guide.  F'5 points backwards and down (direction
+    180 deg + angle) and acts at S5; neither the sign of its y component nor
+    its point matters for the reactions at D and F (the guide takes them).
+
+    The driver sweeps start_deg..stop_deg (default theta1..theta1 + 360) in
+    ``steps`` steps at pi rad/s.  With PRINTED this is the shipped
+    linkage_sym/examples/printing_mechanism.json, up to the rounding of the
+    numbers in that file.  Plain dicts and floats: no linkage_sym import.
+    """
+    dims = dims_from(printed)
+    t1, q = assembly(printed)
+    pts = points(q, t1, dims)
+    qd, qdd = rates(q, t1, OMEGA1, dims)
+    cen = centres(pts, printed)
+    mass = masses(printed)
+    alpha = {"coupler": qdd[0], "lever": qdd[1], "rocker": qdd[2]}
+    inertia = dict(J_ASSUMED)
+    for link, key in INERTIA_KEYS.items():
+        inertia[link] = printed["inertia_printed"][key] / abs(alpha[link])
+    xy = lambda v: [float(v[0]), float(v[1])]
+    f5 = printed["inertia_printed"]["F_S4x"]
+    phi = math.radians(180.0 + printed["F5_angle_deg"])
+    th1 = printed["theta_deg"][1]
+    joints = [("A", "R", "ground", "crank", "A"), ("B", "R", "crank", "coupler", "B"),
+              ("C", "R", "coupler", "lever", "C"), ("D", "R", "lever", "rocker", "D"),
+              ("E", "R", "rocker", "ground", "E"), ("F", "R", "lever", "slider", "F")]
+    return {
+        "name": "printing-mechanism",
+        "links": [{"name": n, "mass": float(mass[n]), "com": xy(cen[n]), "inertia": float(inertia[n])}
+                  for n in LINK_NAMES],
+        "joints": [{"name": n, "type": t, "links": [a, b], "at": xy(pts[p])} for n, t, a, b, p in joints]
+        + [{"name": "F_guide", "type": "P", "links": ["ground", "slider"], "at": xy(pts["F'"]), "axis_deg": 0.0}],
+        "drivers": [{"joint": "A", "toward": "B", "start_deg": th1 if start_deg is None else start_deg,
+                     "stop_deg": th1 + 360.0 if stop_deg is None else stop_deg, "steps": steps,
+                     "speed": OMEGA1, "acceleration": 0.0}],
+        "loads": [{"link": "slider", "force": [f5 * math.cos(phi), f5 * math.sin(phi)], "at": xy(cen["slider"])}],
+        "effects": {"inertia": True, "gravity": [0.0, -G_ACC], "loads": True},
+        "outputs": ["kinematics", "reactions", "driving", "frame"],
+    }
 
 
 def report():
