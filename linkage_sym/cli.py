@@ -9,7 +9,9 @@ structure SCENE.json
     Print the drivers and Assur groups in solving order, with the
     disconnection choices of class-III groups.
 demo [-o DIR] [--example NAME]
-    Analyse shipped examples and write motion diagrams and coupler curves.
+    Analyse shipped examples and write motion diagrams, coupler curves,
+    driving effort, joint-reaction hodographs, frame loads, and the shaking
+    force and moment (the same motion with inertia as the only effect).
 examples
     List the shipped example scenes.
 
@@ -20,6 +22,7 @@ on standard error, and writes nothing.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import sys
 from pathlib import Path
@@ -78,8 +81,9 @@ def cmd_examples(args) -> int:
 
 def cmd_demo(args) -> int:
     from linkage_sym.examples import example_path
+    from linkage_sym.model import Effects
     from linkage_sym.numeric.plan import compile_plan
-    from linkage_sym.plotting import plot_all
+    from linkage_sym.plotting import frame_loads, plot_all
 
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
@@ -89,6 +93,14 @@ def cmd_demo(args) -> int:
         analysis = compile_plan(scene).run()
         (out / f"{name}_result.json").write_text(json.dumps(analysis.to_dict()) + "\n")
         files = plot_all(scene, analysis, out, prefix=name)
+        # the shaking force and moment: the same motion with inertia as the only effect
+        shaking_scene = dataclasses.replace(
+            scene,
+            effects=Effects(inertia=True, gravity=None, loads=False),
+            outputs=("frame",),
+        )
+        shaking = compile_plan(shaking_scene).run()
+        files.append(frame_loads(shaking_scene, shaking, out / f"{name}_shaking.png"))
         n_ok = int(analysis.ok.sum())
         print(f"{name}: {n_ok}/{analysis.n_steps} steps solved; wrote")
         print(f"  {out / (name + '_result.json')}")
