@@ -4,7 +4,8 @@ Run on demand (not part of the tests)::
 
     python benchmarks/bench_kinetostatics.py     # writes benchmarks/results/kinetostatics.json
 
-One core's worth of BLAS threads; each figure is the best of several repeats,
+One core's worth of BLAS threads; glibc's heap in its steady state (see
+``bench_kinematics.py``); each figure is the best of several repeats,
 and every ratio is between figures of the same run (the machines are shared
 and noisy).
 
@@ -99,6 +100,11 @@ def main():
         "cases": {},
     }
     cases = results["cases"]
+    # steady allocator state from the start (see bench_kinematics.py): otherwise
+    # whichever variant runs after the first large free looks twice as fast
+    block = np.ones(2_000_000)
+    del block
+    results["allocator_state"] = "steady"
     four = linkage_sym.load_example("crank_rocker")
     six = linkage_sym.load_example("watt_sixbar")
     cases["fourbar_3600"] = case(four, 3600)

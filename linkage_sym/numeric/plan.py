@@ -56,6 +56,21 @@ class _Path:
     out: slice | np.ndarray  # where the steps are in the path
 
 
+def _unwrap(th: np.ndarray) -> np.ndarray:
+    """Remove the 2 pi jumps of an angle sequence (as ``np.unwrap``, with a fast exit).
+
+    Consecutive path points are at most a few degrees apart, so a jump of more
+    than half a turn can only be a wrap of ``atan2``.
+    """
+    d = np.diff(th)
+    jump = np.abs(d) > math.pi
+    if not jump.any():
+        return th
+    k = np.zeros_like(th)
+    k[1:] = np.cumsum(np.where(jump, np.round(d / (2 * math.pi)), 0.0))
+    return th - 2 * math.pi * k
+
+
 def needed_stages(scene: Scene) -> tuple[str, ...]:
     """The stages a scene's outputs and effects call for, in order.
 
@@ -106,10 +121,13 @@ class Plan:
         self.stages = needed_stages(scene)
         # links whose rotation may come wrapped to one turn (atan2 in a dyad, or
         # copied or offset from such a link) and is unwrapped along the path;
-        # Newton groups move continuously from the assembly configuration
+        # Newton groups move continuously from the assembly configuration, and an
+        # input link on the ground takes the (never wrapped) driver value itself
         self.wrapped = [
             n for g, sv in zip(decomposition.groups, self.solvers)
-            if not isinstance(sv, NewtonSolver) for n in g.links
+            if not isinstance(sv, NewtonSolver)
+            and not (isinstance(sv, InputSolver) and sv.known == GROUND)
+            for n in g.links
         ]
         self.all_constraints = [c for rows in self.constraints.values() for c in rows]
         self.force_plan = (
@@ -202,9 +220,9 @@ class Plan:
             st = S[n]
             th = np.array(np.broadcast_to(st.th, (npath,)), dtype=float)
             if all_valid:
-                th = np.unwrap(th)
+                th = _unwrap(th)
             else:
-                th[valid] = np.unwrap(th[valid])
+                th[valid] = _unwrap(th[valid])
             st.th = th
         out = path.out
         failed = failed_at[out]
