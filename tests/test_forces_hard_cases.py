@@ -859,11 +859,6 @@ CLASS3_DELTAS = (1e-2, 1e-4, 1e-6, 1e-8, 1e-10)
 TH_STAR_DEG = 197.75489324687886768  # the 50-digit th* of the test above, to 20 digits
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "solver: Newton continuation of the class-III group jumps to the other assembly mode "
-    "when the previous step is far (0.57 deg) from a point near the fold, and the step is "
-    "then refused as unassemblable although it is assemblable in the assembly mode (the same "
-    "driver value alone is ok)"))
 def test_class3_sweep_toward_its_singular_position():
     """One sweep through the driver values of the test above (th* - 1e-2 ... 1e-10
     rad): every one of them is assemblable in the assembly configuration's mode

@@ -142,7 +142,8 @@ def line_line(Q1x, Q1y, u1x, u1y, Q2x, Q2y, u2x, u2y):
 
 def solve2(a1x, a1y, b1, a2x, a2y, b2):
     """Solve ``[a1; a2] v = [b1; b2]`` for ``v`` by Cramer's rule (vectorised)."""
-    det = a1x * a2y - a1y * a2x
+    # NaN rows (steps that could not be assembled) stay NaN without a warning
     with np.errstate(invalid="ignore", divide="ignore"):
+        det = a1x * a2y - a1y * a2x
         inv = 1.0 / det
-    return (b1 * a2y - b2 * a1y) * inv, (a1x * b2 - a2x * b1) * inv
+        return (b1 * a2y - b2 * a1y) * inv, (a1x * b2 - a2x * b1) * inv

@@ -3,7 +3,9 @@
 Positions: Newton–Raphson on the group's constraint equations, step after
 step along the path from the assembly configuration, each step seeded by a
 linear predictor from the two previous solutions; damped by step halving when
-the residual grows.  A converged solution whose Jacobian determinant has the
+the residual grows.  Near a fold one step (or the predictor) can overshoot into
+the other assembly mode: such a step is retried as a continuation in
+sub-steps from the previous solution before it is given up.  A converged solution whose Jacobian determinant has the
 other sign than in the assembly configuration is *not* accepted (that would
 be a silent jump of assembly mode): the step is reported unassemblable with
 the reason, and the next step is seeded from the last accepted one.
@@ -25,6 +27,8 @@ TOL = 1e-13
 MAX_ITER = 40
 STALL_ITER = 6
 """Give up when the residual has not halved over this many iterations."""
+SUBSTEPS = 16
+"""Sub-steps of the continuation retried when a step lands in the other mode or diverges."""
 SINGULAR_IND = 1e-14
 """Indicator (reciprocal condition of the group block) below which no rate is solved."""
 
@@ -89,6 +93,12 @@ class NewtonSolver:
                 continue  # an upstream group failed here; reported there
             z = z_prev if z_prev2 is None else 2 * z_prev - z_prev2
             z, res, J = self._newton(Si, qi, z.copy(), scale)
+            if (res > TOL or np.sign(np.linalg.det(J)) != self.det_sign) and i > 0 and (
+                np.isfinite(out[i - 1, 0])
+            ):
+                # near a fold the predictor (or one long step) can overshoot into the
+                # other mode: continue from the last solution in small sub-steps instead
+                z, res, J = self._substeps(known, local, q, i, z_prev, scale)
             if res > TOL:
                 self.messages[i] = (
                     f"{self.group.label} ({', '.join(self.links)}): Newton on the group's loop "
@@ -113,6 +123,33 @@ class NewtonSolver:
         for k, n in enumerate(self.links):
             S[n].set_pose(out[:, 3 * k + 2], out[:, 3 * k], out[:, 3 * k + 1])
         return ind
+
+    def _substeps(self, known, local, q, i, z, scale, n_sub=SUBSTEPS):
+        """Continuation from step ``i - 1`` (solution ``z``) to step ``i`` in ``n_sub`` sub-steps.
+
+        The known links' poses and the drivers are interpolated linearly between
+        the two steps: intermediate targets only need to be close to each other
+        (a homotopy), the last one is step ``i`` exactly.  Every intermediate
+        solution must stay in the assembly mode.
+        """
+        res, J = np.inf, None
+        for m in range(1, n_sub + 1):
+            t = m / n_sub
+            Si = dict(local)
+            for n, st in known.items():
+                a, b = st.take(i - 1), st.take(i)
+                Si[n] = LinkState(
+                    (1 - t) * a.th + t * b.th, (1 - t) * a.dx + t * b.dx, (1 - t) * a.dy + t * b.dy
+                )
+            qi = {k: (1 - t) * v[i - 1] + t * v[i] for k, v in q.items()}
+            z, res, J = self._newton(Si, qi, z.copy(), scale)
+            if res > TOL or np.sign(np.linalg.det(J)) != self.det_sign:
+                break
+        if m < n_sub:  # failed on the way: report what the direct attempt would
+            Si = {n: st.take(i) for n, st in known.items()}
+            Si.update(local)
+            z, res, J = self._newton(Si, {k: v[i] for k, v in q.items()}, z.copy(), scale)
+        return z, res, J
 
     def _newton(self, S, q, z, scale):
         self._set(S, z)
