@@ -35,25 +35,16 @@ import dataclasses  # noqa: E402
 import json  # noqa: E402
 import platform  # noqa: E402
 import sys  # noqa: E402
-import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
 import linkage_sym  # noqa: E402
+from bench_kinematics import best_time, steady_heap  # noqa: E402  (same folder)
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 ALL = ("kinematics", "reactions", "driving", "frame")
-
-
-def best_time(fn, repeats=7):
-    best = np.inf
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def variant(scene, steps, outputs):
@@ -102,8 +93,7 @@ def main():
     cases = results["cases"]
     # steady allocator state from the start (see bench_kinematics.py): otherwise
     # whichever variant runs after the first large free looks twice as fast
-    block = np.ones(2_000_000)
-    del block
+    steady_heap()
     results["allocator_state"] = "steady"
     four = linkage_sym.load_example("crank_rocker")
     six = linkage_sym.load_example("watt_sixbar")

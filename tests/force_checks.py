@@ -18,8 +18,6 @@ the magnitudes of the terms), so tests assert ``|residual| <= tol * scale``.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 GROUND = "ground"
@@ -216,6 +214,3 @@ def reaction_scale(scene, forces):
         s = np.fmax(s, e / L if d.kind == "R" else e)
     return s
 
-
-def deg(x):
-    return math.degrees(x)

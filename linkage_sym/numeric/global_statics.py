@@ -5,8 +5,13 @@ equations of every moving link, with every joint reaction and driver effort
 as unknowns, and solve them all at once.  Here the systems of all the steps
 of a sweep form one block-diagonal sparse matrix, factorised once by
 SuperLU (:func:`scipy.sparse.linalg.spsolve`).  It shares no solving code
-with the group routines of :mod:`~linkage_sym.numeric.statics` and
-:mod:`~linkage_sym.numeric.superposition`, which it checks.
+with the closed-form group routines of :mod:`~linkage_sym.numeric.statics`,
+which it checks.  Its assembly (:func:`assemble`) also serves, restricted to
+a few links, the split of a removed link's reactions in
+:mod:`~linkage_sym.numeric.superposition` (other than two revolutes) and the
+dense solve of a group no disconnection reduces to dyads; those paths are
+checked by the equilibrium and power-balance tests, which share no code
+with it.
 
 Unknowns and equations
 ----------------------
@@ -100,7 +105,8 @@ def assemble(scene, links, joints, drivers, geo, W, L):
     return entries, b, cols, ncols
 
 
-def _unpack(scene, z, cols, joints, drivers, geo, L):
+def unpack(scene, z, cols, joints, drivers, geo, L):
+    """Reactions ``{joint: (fx, fy, m)}`` and efforts from solution rows ``z`` (K, ncols)."""
     jdict = {j.name: j for j in scene.joints}
     reactions, efforts = {}, {}
     for name in joints:
@@ -117,13 +123,18 @@ def _unpack(scene, z, cols, joints, drivers, geo, L):
     return reactions, efforts
 
 
-def _dense_matrix(entries, b, nrows, ncols, K):
+def _rhs(b, K):
+    """Right-hand sides as a (K, rows) array."""
+    rhs = np.stack(np.broadcast_arrays(*[np.asarray(x, dtype=float) for x in b]), axis=-1)
+    return np.broadcast_to(rhs, (K, len(b)))
+
+
+def dense_system(entries, b, nrows, ncols, K):
+    """``(A, rhs)`` of shapes (K, nrows, ncols) and (K, nrows) from :func:`assemble`'s output."""
     A = np.zeros((K, nrows, ncols))
     for r, c, v in entries:
         A[:, r, c] += v
-    rhs = np.stack(np.broadcast_arrays(*[np.asarray(x, dtype=float) for x in b]), axis=-1)
-    rhs = np.broadcast_to(rhs, (K, nrows))
-    return A, rhs
+    return A, _rhs(b, K)
 
 
 def solve_dense(scene, links, joints, drivers, geo, W, L, K):
@@ -133,9 +144,9 @@ def solve_dense(scene, links, joints, drivers, geo, W, L, K):
     ``(reactions, efforts)`` like the group routines.
     """
     entries, b, cols, ncols = assemble(scene, links, joints, drivers, geo, W, L)
-    A, rhs = _dense_matrix(entries, b, 3 * len(links), ncols, K)
+    A, rhs = dense_system(entries, b, 3 * len(links), ncols, K)
     z = np.linalg.solve(A, rhs[..., None])[..., 0]
-    return _unpack(scene, z, cols, joints, drivers, geo, L)
+    return unpack(scene, z, cols, joints, drivers, geo, L)
 
 
 def solve_global(scene, geo, W, L, K):
@@ -163,10 +174,8 @@ def solve_global(scene, geo, W, L, K):
         (np.concatenate(vals), (np.concatenate(rows_i), np.concatenate(cols_i))),
         shape=(nrows * K, ncols * K),
     )
-    rhs = np.stack(np.broadcast_arrays(*[np.asarray(x, dtype=float) for x in b]), axis=-1)
-    rhs = np.broadcast_to(rhs, (K, nrows)).reshape(-1)
-    z = spsolve(A, rhs).reshape(K, ncols)
-    return _unpack(scene, z, cols, joints, drivers, geo, L)
+    z = spsolve(A, _rhs(b, K).reshape(-1)).reshape(K, ncols)
+    return unpack(scene, z, cols, joints, drivers, geo, L)
 
 
 def frame_wrench(scene, geo, reactions, efforts):

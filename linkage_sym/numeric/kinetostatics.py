@@ -33,6 +33,14 @@ from linkage_sym.structure import Decomposition
 METHODS = ("dyad", "global")
 
 
+def check_method(method):
+    """Refuse a force method that does not exist, naming the field."""
+    if method not in METHODS:
+        raise ValueError(
+            f"method: unknown force method {method!r} (use one of {', '.join(METHODS)})"
+        )
+
+
 class ForcePlan:
     """Force routines of every group of a decomposition, compiled once.
 
@@ -79,8 +87,7 @@ class ForcePlan:
         ok : ndarray of bool, shape (N,)
         method : {"dyad", "global"}
         """
-        if method not in METHODS:
-            raise ValueError(f"method: unknown force method {method!r} (use one of {', '.join(METHODS)})")
+        check_method(method)
         scene = self.scene
         N = len(ok)
         idx = None if ok.all() else np.flatnonzero(ok)

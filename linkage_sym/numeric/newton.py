@@ -132,12 +132,11 @@ class NewtonSolver:
         (a homotopy), the last one is step ``i`` exactly.  Every intermediate
         solution must stay in the assembly mode.
         """
-        res, J = np.inf, None
+        ends = {n: (st.take(i - 1), st.take(i)) for n, st in known.items()}
         for m in range(1, n_sub + 1):
             t = m / n_sub
             Si = dict(local)
-            for n, st in known.items():
-                a, b = st.take(i - 1), st.take(i)
+            for n, (a, b) in ends.items():
                 Si[n] = LinkState(
                     (1 - t) * a.th + t * b.th, (1 - t) * a.dx + t * b.dx, (1 - t) * a.dy + t * b.dy
                 )
@@ -146,7 +145,7 @@ class NewtonSolver:
             if res > TOL or np.sign(np.linalg.det(J)) != self.det_sign:
                 break
         if m < n_sub:  # failed on the way: report what the direct attempt would
-            Si = {n: st.take(i) for n, st in known.items()}
+            Si = {n: b for n, (_, b) in ends.items()}
             Si.update(local)
             z, res, J = self._newton(Si, {k: v[i] for k, v in q.items()}, z.copy(), scale)
         return z, res, J

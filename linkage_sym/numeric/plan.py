@@ -27,7 +27,7 @@ import numpy as np
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.closed_form import DyadSolver, InputSolver
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
-from linkage_sym.numeric.kinetostatics import METHODS, ForcePlan
+from linkage_sym.numeric.kinetostatics import ForcePlan, check_method
 from linkage_sym.numeric.newton import NewtonSolver
 from linkage_sym.numeric.result import (
     OK,
@@ -189,10 +189,7 @@ class Plan:
         method : {"dyad", "global"}
             Force method (see :mod:`linkage_sym.numeric.kinetostatics`).
         """
-        if method not in METHODS:
-            raise ValueError(
-                f"method: unknown force method {method!r} (use one of {', '.join(METHODS)})"
-            )
+        check_method(method)  # before the kinematics, not after
         if q is None:
             q, qd, qdd = self.sweep()
         q = {k: np.asarray(v, dtype=float) for k, v in q.items()}

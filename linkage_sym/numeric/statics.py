@@ -161,13 +161,14 @@ class DyadForces:
                 # moments of each link about the internal joint and the dyad's force balance
                 ux, uy = Pe0[0] - Pi[0], Pe0[1] - Pi[1]
                 vx, vy = Pe1[0] - Pi[0], Pe1[1] - Pi[1]
-                r1 = -w0.moment_about(*Pi)
-                r2 = -w1.moment_about(*Pi)  # v x f1 = r2 with f1 = -F - f0
-                r2 = -r2 - _cross(vx, vy, Fx, Fy)
+                r1 = -w0.moment_about(*Pi)  # u x f0 = r1
+                # v x f1 = -M1 with f1 = -F - f0:  v x f0 = M1 - v x F = r2
+                r2 = w1.moment_about(*Pi) - _cross(vx, vy, Fx, Fy)
                 det = _cross(ux, uy, vx, vy)
                 f0x = (r1 * vx - ux * r2) / det
                 f0y = (vy * r1 - uy * r2) / det
                 f1x, f1y = -Fx - f0x, -Fy - f0y
+                fix, fiy = f0x + F0x, f0y + F0y
                 c0 = c1 = ci = zero
             elif t == "RRP":
                 ux, uy = Pe0[0] - Pi[0], Pe0[1] - Pi[1]
@@ -227,8 +228,6 @@ class DyadForces:
                 c0 = zero
             else:  # pragma: no cover - structure refuses other types
                 raise ValueError(t)
-            if t == "RRR":
-                fix, fiy = f0x + F0x, f0y + F0y
         return {
             e0: reaction_on(self.e0, self.b0, f0x, f0y, c0),
             ji: reaction_on(self.ji, self.b1, fix, fiy, ci),

@@ -28,12 +28,11 @@ that step; the result records which.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from linkage_sym.errors import SceneError
 from linkage_sym.model import Scene
+from linkage_sym.numeric.global_statics import assemble, dense_system, unpack
 from linkage_sym.numeric.loads import Wrench
 from linkage_sym.numeric.statics import DyadForces, Geometry, InputForces, push
 from linkage_sym.structure import Group
@@ -108,39 +107,22 @@ class _Choice:
 
     def _split_svd(self, W, geo, L, K):
         """Any removed links: minimum-norm particular part and an orthonormal null basis."""
-        from linkage_sym.numeric.global_statics import assemble
-
         joints = [j.name for j in self.cut]
         drivers = [j.name for j in self.cut if j.name in self.driven]
         links = list(self.d.removed_links)
         entries, b, cols, ncols = assemble(self.scene, links, joints, drivers, geo, W, L)
         nrows = 3 * len(links)
-        A = np.zeros((K, nrows, ncols))
-        for r, c, v in entries:
-            A[:, r, c] += v
-        rhs = np.stack(np.broadcast_arrays(*[np.asarray(x, dtype=float) for x in b]), axis=-1)
-        rhs = np.broadcast_to(rhs, (K, nrows))
+        A, rhs = dense_system(entries, b, nrows, ncols, K)
         U, sv, Vt = np.linalg.svd(A)
         y = np.einsum("kij,ki->kj", U, rhs) / sv
         zp = np.einsum("kji,kj->ki", Vt[:, :nrows, :], y)
         null = Vt[:, nrows:, :]  # (K, n, ncols)
 
-        def unpack(z):
-            out = {}
-            for j in self.cut:
-                c = cols[j.name]
-                eff = None
-                if j.name in self.driven:
-                    e = z[..., cols["driver:" + j.name]]
-                    eff = L * e if j.type == "R" else e
-                if j.type == "R":
-                    out[j.name] = (z[..., c], z[..., c + 1], 0.0, eff)
-                else:
-                    nx, ny, _, _ = geo.normal(j.name)
-                    out[j.name] = (z[..., c] * nx, z[..., c] * ny, L * z[..., c + 1], eff)
-            return out
+        def as_cut(z):
+            reactions, efforts = unpack(self.scene, z, cols, joints, drivers, geo, L)
+            return {name: (*r, efforts.get(name)) for name, r in reactions.items()}
 
-        return unpack(zp), [unpack(null[:, k, :]) for k in range(null.shape[1])]
+        return as_cut(zp), [as_cut(null[:, k, :]) for k in range(null.shape[1])]
 
     # -- one run of the virtual pure-dyad mechanism ------------------------
     def virtual_run(self, W0, cut, geo):
@@ -266,6 +248,3 @@ class SuperpositionForces:
                 bad = ~(amp <= AMPLIFICATION_LIMIT)
         return reactions, efforts, used, amp
 
-
-def describe_limit() -> str:
-    return f"{AMPLIFICATION_LIMIT:.0e} (about {math.log10(AMPLIFICATION_LIMIT):.0f} digits)"
