@@ -16,9 +16,18 @@ Examples
 
 from linkage_sym.errors import SceneError
 
-__version__ = "0.1.0"
+from linkage_sym._version import __version__
 
-__all__ = ["SceneError", "analyze", "compile_plan", "decompose", "load_example", "load_scene"]
+__all__ = [
+    "SceneError",
+    "analyze",
+    "compile_mechanism",
+    "compile_plan",
+    "decompose",
+    "derive",
+    "load_example",
+    "load_scene",
+]
 
 
 def load_scene(source):
@@ -57,7 +66,30 @@ def compile_plan(scene, disconnection=None):
 def analyze(scene, method="dyad", disconnection=None):
     """Compile a scene's solving plan and run it over the scene's sweep.
 
-    ``method`` is the force method: ``"dyad"`` (group by group) or
-    ``"global"`` (one sparse system of all links).
+    ``method``: ``"dyad"`` (numeric, forces group by group), ``"global"``
+    (numeric, forces as one sparse system of all links) or ``"symbolic"``
+    (the SymPy-derived equations, lambdified and cached per topology).
     """
+    if method == "symbolic":
+        return compile_mechanism(scene).run()
     return compile_plan(scene, disconnection).run(method=method)
+
+
+def derive(scene, symbolic=True, forces=None):
+    """Derive a scene's loop, rate and force equations with SymPy.
+
+    See :func:`linkage_sym.symbolic.mechanism.derive`.
+    """
+    from linkage_sym.symbolic import derive as _derive
+
+    return _derive(scene, symbolic, forces)
+
+
+def compile_mechanism(scene, use_cache=True):
+    """The lambdified equations of a scene, compiled once per topology and cached.
+
+    See :func:`linkage_sym.codegen.compile.compile_mechanism`.
+    """
+    from linkage_sym.codegen.compile import compile_mechanism as _compile
+
+    return _compile(scene, use_cache)

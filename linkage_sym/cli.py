@@ -2,9 +2,11 @@
 
 Commands
 --------
-analyze SCENE.json -o RESULT.json [--method dyad|global] [--disconnection K]
+analyze SCENE.json -o RESULT.json [--method dyad|global|symbolic] [--disconnection K]
     Solve the scene's sweep and write the result of the contract: kinematics,
     joint reactions, driver efforts and frame loads, as the scene asks.
+    ``symbolic`` evaluates the SymPy-derived, lambdified equations (compiled
+    once per topology and cached) instead of the numeric dyad solver.
 structure SCENE.json
     Print the drivers and Assur groups in solving order, with the
     disconnection choices of class-III groups.
@@ -42,12 +44,19 @@ def cmd_analyze(args) -> int:
     from linkage_sym.numeric.plan import compile_plan
 
     scene = _load(args.scene)
-    plan = compile_plan(scene, args.disconnection)
-    if args.disconnection is not None and not any(
-        g.kind not in ("input", "dyad") for g in plan.decomposition.groups
-    ):
-        print("note: --disconnection ignored: the mechanism has no complex group", file=sys.stderr)
-    result = plan.run(method=args.method).to_dict()
+    if args.method == "symbolic":
+        from linkage_sym.codegen.compile import compile_mechanism
+
+        if args.disconnection is not None:
+            print("note: --disconnection ignored by the symbolic method", file=sys.stderr)
+        result = compile_mechanism(scene).run().to_dict()
+    else:
+        plan = compile_plan(scene, args.disconnection)
+        if args.disconnection is not None and not any(
+            g.kind not in ("input", "dyad") for g in plan.decomposition.groups
+        ):
+            print("note: --disconnection ignored: the mechanism has no complex group", file=sys.stderr)
+        result = plan.run(method=args.method).to_dict()
     for w in result.get("warnings", []):
         print(f"warning: {w}", file=sys.stderr)
     text = json.dumps(result, indent=1 if args.pretty else None)
@@ -122,9 +131,10 @@ def build_parser() -> argparse.ArgumentParser:
     a.add_argument("--pretty", action="store_true", help="indent the JSON")
     a.add_argument(
         "--method",
-        choices=("dyad", "global"),
+        choices=("dyad", "global", "symbolic"),
         default="dyad",
-        help="force method: group by group (dyad, default) or one sparse system (global)",
+        help="numeric solver with forces group by group (dyad, default) or as one sparse "
+        "system (global); or the lambdified SymPy equations (symbolic)",
     )
     a.add_argument(
         "--disconnection",

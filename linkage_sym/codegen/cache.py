@@ -1,0 +1,115 @@
+"""The cache of compiled mechanisms (no SymPy here).
+
+A compiled mechanism is a JSON *artifact*: the Python source of its generated
+functions and the layout the runtime needs.  It is keyed on the mechanism's
+*topology* -- its links, joints, drivers, link frames, which points coincide
+with a frame origin, which effects and outputs act -- never on its
+dimensions, masses or loads, which are arguments of the generated functions.
+Every scene of one topology therefore shares one artifact, and loading it
+needs neither SymPy nor a derivation.
+
+The cache lives in memory (per process) and on disk in
+``$LINKAGE_SYM_CACHE``, else ``$XDG_CACHE_HOME/linkage_sym``, else
+``~/.cache/linkage_sym``.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import warnings
+from importlib import metadata
+from pathlib import Path
+
+from linkage_sym.model import Scene
+from linkage_sym.structure.parameters import COINCIDENT, link_frames
+
+FORMAT = 1
+"""Version of the artifact layout; bump it when the generated code changes."""
+
+_MEMORY: dict[str, dict] = {}
+
+
+def cache_dir() -> Path:
+    env = os.environ.get("LINKAGE_SYM_CACHE")
+    if env:
+        return Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "linkage_sym"
+
+
+def sympy_version() -> str | None:
+    """The installed SymPy's version, read without importing SymPy."""
+    try:
+        return metadata.version("sympy")
+    except metadata.PackageNotFoundError:  # pragma: no cover - SymPy is a dependency
+        return None
+
+
+def signature(scene: Scene) -> dict:
+    """Everything about a scene that shapes its generated code, and nothing else."""
+    from linkage_sym._version import __version__
+
+    frames = link_frames(scene)
+    L = scene.characteristic_length() or 1.0
+    at_origin = []
+    for link, fr in frames.items():
+        for j in scene.joints:
+            if link in j.links:
+                dx, dy = j.at[0] - fr.origin[0], j.at[1] - fr.origin[1]
+                if (dx * dx + dy * dy) ** 0.5 <= COINCIDENT * L:
+                    at_origin.append([link, j.name])
+    eff = scene.effects
+    return {
+        "format": FORMAT,
+        "linkage_sym": __version__,
+        "sympy": sympy_version(),
+        "links": [[k.name, k.com is not None, k.mass > 0, k.inertia > 0] for k in scene.links],
+        "joints": [[j.name, j.type, list(j.links)] for j in scene.joints],
+        "frames": [[fr.link, fr.u, fr.v] for fr in frames.values()],
+        "at_origin": at_origin,
+        "drivers": [[d.joint, d.kind, d.toward] for d in scene.drivers],
+        "loads": [[ld.link, ld.force is not None, bool(ld.torque)] for ld in scene.loads],
+        "effects": [bool(eff.inertia), eff.gravity is not None, bool(eff.loads)],
+        "outputs": sorted(scene.outputs),
+    }
+
+
+def key_of(sig: dict) -> str:
+    return hashlib.sha256(json.dumps(sig, sort_keys=True).encode()).hexdigest()[:24]
+
+
+def load(key: str) -> dict | None:
+    """The artifact stored under ``key`` (memory first, then disk), or ``None``."""
+    art = _MEMORY.get(key)
+    if art is not None:
+        return art
+    path = cache_dir() / f"{key}.json"
+    try:
+        text = path.read_text()
+    except FileNotFoundError:
+        return None
+    art = json.loads(text)
+    if art.get("key") != key:  # pragma: no cover - a foreign file under our name
+        return None
+    _MEMORY[key] = art
+    return art
+
+
+def store(key: str, artifact: dict) -> None:
+    """Keep ``artifact`` in memory and write it to disk (a warning if that fails)."""
+    _MEMORY[key] = artifact
+    d = cache_dir()
+    try:
+        d.mkdir(parents=True, exist_ok=True)
+        tmp = d / f".{key}.{os.getpid()}.tmp"
+        tmp.write_text(json.dumps(artifact))
+        os.replace(tmp, d / f"{key}.json")
+    except OSError as err:
+        warnings.warn(f"compiled-mechanism cache not written to {d}: {err}", stacklevel=2)
+
+
+def clear_memory() -> None:
+    """Forget the in-memory artifacts (the disk cache stays)."""
+    _MEMORY.clear()

@@ -1,0 +1,547 @@
+"""Run a compiled mechanism over a sweep (NumPy only: no SymPy here).
+
+A :class:`CompiledMechanism` holds the generated functions of one topology
+(:mod:`linkage_sym.codegen.compile`) and the parameter values of one scene.
+:meth:`CompiledMechanism.run` evaluates the stages a scene needs:
+
+1. positions: the closed forms, vectorised over a path from the assembly
+   configuration through the steps; groups without a closed form by Newton
+   on their loop equations, step by step (sub-stepped where a step fails);
+2. ``A xd = B qd`` and ``A xdd = rhs``: the generated entries, solved group
+   block by group block (Cramer for 2x2 blocks, LU otherwise);
+3. points and the force blocks ``A_g F_g = b_g - C_g F_later``, solved from
+   the last group back; the frame loads from the ground's reactions.
+
+The result is the same :class:`~linkage_sym.numeric.result.Analysis` the
+numeric solver returns, with ``forces.method == "symbolic"``.
+"""
+
+from __future__ import annotations
+
+import linecache
+import math
+
+import numpy as np
+
+from linkage_sym.codegen import cache
+from linkage_sym.errors import SceneError
+from linkage_sym.model import Scene
+from linkage_sym.numeric.result import (
+    OK,
+    SINGULAR,
+    UNASSEMBLABLE,
+    Analysis,
+    Forces,
+    GroupForces,
+    JointKinematics,
+    LinkKinematics,
+)
+from linkage_sym.structure.parameters import driver_q0, evaluate, link_frames
+
+SINGULAR_COND = 1e10
+"""Spec: a step is singular when the dimensionless condition number exceeds this."""
+SCREEN = 1e-3
+"""A group block whose Hadamard ratio is below this gets the exact condition number."""
+MAX_ANGLE_STEP = math.radians(2.0)
+MAX_SLIDE_STEP = 0.02
+NEWTON_TOL = 1e-13
+"""Newton stops when the (dimensionless) correction is below this."""
+NEWTON_ITER = 30
+SUBSTEPS = 16
+ASSEMBLY_MATCH = 1e-6
+"""Closed forms must reproduce the assembly configuration to this (rad, or fraction of size)."""
+
+
+def _namespace() -> dict:
+    ns: dict = {}
+    exec("from numpy import *", ns)  # the names lambdify's NumPy printer uses
+    ns["numpy"] = np
+    return ns
+
+
+def load_functions(artifact: dict, label: str) -> dict:
+    """Execute the generated sources; their text stays readable by ``inspect``."""
+    ns = _namespace()
+    out = {}
+    for name, src in artifact["functions"].items():
+        fname = f"<linkage_sym {label}:{name}>"
+        linecache.cache[fname] = (len(src), None, src.splitlines(True), fname)
+        exec(compile(src, fname, "exec"), ns)
+        out[name] = ns[name]
+    return out
+
+
+def _wrap(a):
+    return (a + np.pi) % (2 * np.pi) - np.pi
+
+
+def _solve_blocks(A, rhs, blocks):
+    """Solve the block lower-triangular ``A x = rhs`` (arrays (K, m, m), (K, m))."""
+    K, m = rhs.shape
+    x = np.zeros((K, m))
+    for r0, r1, c0, c1 in blocks:
+        b = rhs[:, r0:r1]
+        if c0:
+            b = b - np.einsum("kij,kj->ki", A[:, r0:r1, :c0], x[:, :c0])
+        M = A[:, r0:r1, c0:c1]
+        n = c1 - c0
+        with np.errstate(invalid="ignore", divide="ignore"):
+            if n == 1:
+                x[:, c0] = b[:, 0] / M[:, 0, 0]
+            elif n == 2:
+                det = M[:, 0, 0] * M[:, 1, 1] - M[:, 0, 1] * M[:, 1, 0]
+                x[:, c0] = (b[:, 0] * M[:, 1, 1] - b[:, 1] * M[:, 0, 1]) / det
+                x[:, c0 + 1] = (M[:, 0, 0] * b[:, 1] - M[:, 1, 0] * b[:, 0]) / det
+            else:
+                x[:, c0:c1] = np.linalg.solve(M, b[..., None])[..., 0]
+    return x
+
+
+class CompiledMechanism:
+    """Generated functions of one topology bound to one scene's values.
+
+    Attributes
+    ----------
+    functions : dict of str to callable
+        The generated functions (``inspect.getsource`` shows their code and
+        their docstring the argument order).
+    params : list of float
+        Values of the ``P`` argument: the scene's parameters, then the
+        assembly-mode signs.
+    """
+
+    def __init__(self, artifact: dict, scene: Scene):
+        self.art = art = artifact
+        self.scene = scene
+        self.functions = load_functions(art, scene.name)
+        frames = link_frames(scene)
+        self.frames = frames
+        self.param_names = [n for n, _ in art["params"]]
+        self.params = [evaluate(scene, tuple(r), frames) for _, r in art["params"]]
+        self.params += [1.0] * art["sigmas"]
+        self.L = scene.characteristic_length() or 1.0
+        self.x_names = art["x"]
+        self.m = len(self.x_names)
+        self.q0 = driver_q0(scene)
+        self.x0 = np.array(
+            [frames[self._link_of(n)].theta0 if n.startswith("theta_") else 0.0 for n in self.x_names]
+        )
+        self.is_angle = np.array([n.startswith("theta_") for n in self.x_names])
+        self.blocks = [
+            (g["rows"][0], g["rows"][1], g["cols"][0], g["cols"][-1] + 1) for g in art["groups"]
+        ]
+        self._choose_branches()
+
+    def _link_of(self, xname):
+        from linkage_sym.structure.parameters import ident
+
+        for n in self.scene.link_names:
+            if "theta_" + ident(n) == xname:
+                return n
+        raise KeyError(xname)  # pragma: no cover
+
+    # -- positions -----------------------------------------------------------------
+    def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, P=None):
+        return self.functions[name](X, XD, XDD, Q, QD, QDD, F, self.params if P is None else P)
+
+    def _choose_branches(self):
+        """Assembly-mode signs: the ones whose closed forms give the assembly configuration."""
+        art = self.art
+        k = art["sigmas"]
+        if k == 0:
+            return
+        combos = np.array(np.meshgrid(*[[1.0, -1.0]] * k, indexing="ij")).reshape(k, -1)
+        P = self.params[: len(self.params) - k] + list(combos)
+        Q = [self.q0[n] for n in art["q"]]
+        X = list(self.x0)
+        err = np.zeros(combos.shape[1])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            for step in art["steps"]:
+                if step["kind"] != "closed":
+                    continue
+                out = self._call(step["function"], X=X, Q=Q, P=P)
+                for c, v in zip(step["x"], out):
+                    v = np.broadcast_to(np.asarray(v, float), err.shape)
+                    d = _wrap(v - self.x0[c]) if self.is_angle[c] else (v - self.x0[c]) / self.L
+                    err = np.fmax(err, np.where(np.isfinite(d), np.abs(d), np.inf))
+        best = int(np.argmin(err))
+        if not err[best] <= ASSEMBLY_MATCH:  # pragma: no cover - a derivation bug
+            raise RuntimeError(
+                f"{self.scene.name}: the closed forms do not reproduce the assembly "
+                f"configuration (error {err[best]:.3g})"
+            )
+        for i in range(k):
+            flipped = combos[:, best].copy()
+            flipped[i] = -flipped[i]
+            j = int(np.flatnonzero((combos == flipped[:, None]).all(axis=0))[0])
+            if err[j] <= ASSEMBLY_MATCH:
+                g = next(g for g in art["groups"] if g["sigma"] == len(self.params) - k + i)
+                raise SceneError(
+                    [
+                        f"joints: the assembly configuration is a singular position of the "
+                        f"{g['label']} ({', '.join(g['links'])}): its assembly mode is undefined; "
+                        "move the joints' `at` points off the dead-centre position"
+                    ]
+                )
+        for i in range(k):
+            self.params[len(self.params) - k + i] = float(combos[i, best])
+
+    def _path(self, Q: np.ndarray):
+        """Driver values from the assembly configuration through the steps (refined)."""
+        names = self.art["q"]
+        q0 = np.array([self.q0[n] for n in names])
+        lim = np.array(
+            [MAX_ANGLE_STEP if self.scene.joint(n).type == "R" else MAX_SLIDE_STEP * self.L for n in names]
+        )
+        n_pre = max(1, int(math.ceil(np.max(np.abs(Q[:, 0] - q0) / lim))))
+        pre = q0[:, None] + (Q[:, :1] - q0[:, None]) * (np.arange(n_pre) / n_pre)[None, :]
+        N = Q.shape[1]
+        n_ref = max(1, int(math.ceil(np.max(np.abs(np.diff(Q, axis=1)) / lim[:, None])))) if N > 1 else 1
+        if n_ref > 1:
+            f = np.arange(n_ref) / n_ref
+            seg = Q[:, :-1, None] + np.diff(Q, axis=1)[:, :, None] * f
+            body = np.concatenate([seg.reshape(len(names), -1), Q[:, -1:]], axis=1)
+        else:
+            body = Q
+        return np.concatenate([pre, body], axis=1), n_pre + np.arange(N) * n_ref
+
+    def positions(self, Qpath: np.ndarray):
+        """Coordinates (m, K) along a path of driver values (D, K), and the first
+        failing group at each point (-1 where every group is solved)."""
+        art = self.art
+        K = Qpath.shape[1]
+        X = [None] * self.m
+        failed = np.full(K, -1)
+        gidx = {c: g["index"] for g in art["groups"] for c in g["cols"]}
+        Q = list(Qpath)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            for step in art["steps"]:
+                if step["kind"] == "closed":
+                    out = self._call(step["function"], X=X, Q=Q)
+                    for c, v in zip(step["x"], out):
+                        X[c] = np.array(np.broadcast_to(np.asarray(v, float), (K,)))
+                        bad = ~np.isfinite(X[c]) & (failed < 0)
+                        failed[bad] = gidx[c]
+                else:
+                    self._newton(step, X, Qpath, failed)
+        return np.array(X), failed
+
+    def _newton(self, step, X, Qpath, failed):
+        """Newton on one group's loop equations at every path point, in order."""
+        f = self.functions[step["function"]]
+        cols = step["x"]
+        n, K = len(cols), Qpath.shape[1]
+        scale = np.where(self.is_angle[cols], 1.0, self.L)
+        sol = np.full((n, K), np.nan)
+        g = step["group"]
+        known = [c for c in range(self.m) if X[c] is not None]
+
+        def solve(xi, qi, xk):
+            Xs = [None] * self.m
+            for c in known:
+                Xs[c] = xk[c]
+            for _ in range(NEWTON_ITER):
+                for c, v in zip(cols, xi):
+                    Xs[c] = v
+                out = f(Xs, None, None, list(qi), None, None, None, self.params)
+                r = np.array(out[:n], float)
+                J = np.array(out[n:], float).reshape(n, n)
+                try:
+                    dx = np.linalg.solve(J, -r)
+                except np.linalg.LinAlgError:
+                    return None, 0.0
+                xi = xi + dx
+                if not np.all(np.isfinite(xi)):
+                    return None, 0.0
+                if np.max(np.abs(dx) / scale) <= NEWTON_TOL * max(1.0, np.max(np.abs(xi) / scale)):
+                    return xi, np.linalg.det(J)
+            return None, 0.0
+
+        seed = self.x0[cols].copy()
+        sign0 = None
+        last_q, last_xk = Qpath[:, 0], {c: X[c][0] for c in known}
+        for i in range(K):
+            if failed[i] >= 0:
+                continue
+            xk = {c: X[c][i] for c in known}
+            xi, det = solve(seed, Qpath[:, i], xk)
+            ok = xi is not None and (sign0 is None or np.sign(det) == sign0)
+            if not ok:  # continuation in sub-steps from the last solved point
+                trial = seed
+                for s in range(1, SUBSTEPS + 1):
+                    t = s / SUBSTEPS
+                    qs = last_q + t * (Qpath[:, i] - last_q)
+                    xs = {c: last_xk[c] + t * (xk[c] - last_xk[c]) for c in known}
+                    trial, det = solve(trial, qs, xs)
+                    if trial is None or (sign0 is not None and np.sign(det) != sign0):
+                        break
+                xi = trial
+                ok = xi is not None and (sign0 is None or np.sign(det) == sign0)
+            if not ok:
+                failed[i] = g
+                continue
+            if sign0 is None:
+                sign0 = np.sign(det)
+            sol[:, i] = xi
+            seed, last_q, last_xk = xi, Qpath[:, i], xk
+        for k, c in enumerate(cols):
+            X[c] = sol[k]
+
+    # -- the run ---------------------------------------------------------------------
+    def sweep(self):
+        q, qd, qdd = {}, {}, {}
+        for d in self.scene.drivers:
+            q[d.joint] = np.linspace(d.start, d.stop, d.steps)
+            qd[d.joint] = np.full(d.steps, float(d.speed))
+            qdd[d.joint] = np.full(d.steps, float(d.acceleration))
+        return q, qd, qdd
+
+    def rate_matrix(self, X, Q, QD):
+        """``A`` (K, m, m) and ``B qd`` (K, m) at coordinates ``X`` (m, K)."""
+        K = X.shape[1]
+        out = self._call("rates", X=list(X), Q=Q, QD=QD)
+        pat = self.art["pattern"]
+        A = np.zeros((K, self.m, self.m))
+        for (i, j), v in zip(pat, out):
+            A[:, i, j] = v
+        rhs = np.empty((K, self.m))
+        for i, v in enumerate(out[len(pat):]):
+            rhs[:, i] = v
+        return A, rhs
+
+    def condition_numbers(self, A):
+        """Dimensionless condition number of ``A`` (K, m, m)."""
+        rl = np.where(self.art["rows_length"], 1.0 / self.L, 1.0)
+        cl = np.where(self.art["cols_length"], self.L, 1.0)
+        sv = np.linalg.svd(A * rl[None, :, None] * cl[None, None, :], compute_uv=False)
+        with np.errstate(divide="ignore"):
+            return sv[:, 0] / sv[:, -1]
+
+    def run(self, q=None, qd=None, qdd=None, exact_condition=False) -> Analysis:
+        """Evaluate the compiled mechanism over a sweep (the scene's by default)."""
+        art, scene = self.art, self.scene
+        if q is None:
+            q, qd, qdd = self.sweep()
+        names = art["q"]
+        Qs = np.array([np.asarray(q[n], float) for n in names])
+        QDs = np.array([np.asarray(qd[n], float) for n in names])
+        QDDs = np.array([np.asarray(qdd[n], float) for n in names])
+        N = Qs.shape[1]
+        Qpath, out = self._path(Qs)
+        Xp, failed_p = self.positions(Qpath)
+        valid = failed_p < 0
+        for c in np.flatnonzero(self.is_angle):
+            th = np.unwrap(Xp[c, valid])
+            # continuous from the assembly configuration (path point 0)
+            Xp[c, valid] = th - 2 * np.pi * np.round((th[0] - self.x0[c]) / (2 * np.pi))
+        X = Xp[:, out]
+        failed = failed_p[out]
+        status = np.full(N, OK, dtype="<U13")
+        status[failed >= 0] = UNASSEMBLABLE
+        messages: list = [None] * N
+        groups = {g["index"]: g for g in art["groups"]}
+        for i in np.flatnonzero(failed >= 0):
+            g = groups[int(failed[i])]
+            how = "its closed form has no real solution" if g["closed"] else (
+                "Newton on its loop equations finds no root on the assembly mode"
+            )
+            messages[i] = f"{g['label']} ({', '.join(g['links'])}) cannot be assembled: {how}"
+        pos_ok = failed < 0
+        idx = np.flatnonzero(pos_ok)
+        Xk = X[:, idx]
+        Qk, QDk, QDDk = list(Qs[:, idx]), list(QDs[:, idx]), list(QDDs[:, idx])
+        A, Bqd = self.rate_matrix(Xk, Qk, QDk)
+        # singular steps: a block's Hadamard ratio screens, the exact condition number decides
+        condition = np.full(N, np.nan)
+        screen = np.ones(len(idx), bool) if exact_condition else np.zeros(len(idx), bool)
+        for r0, r1, c0, c1 in self.blocks:
+            if c1 - c0 < 2:
+                continue
+            M = A[:, r0:r1, c0:c1]
+            with np.errstate(invalid="ignore", divide="ignore"):
+                ratio = np.abs(np.linalg.det(M)) / np.prod(np.linalg.norm(M, axis=1), axis=1)
+            screen |= ~(ratio >= SCREEN)
+        if screen.any():
+            cond = self.condition_numbers(A[screen])
+            condition[idx[screen]] = cond
+            for i in idx[screen][~(cond <= SINGULAR_COND)]:
+                status[i] = SINGULAR
+                messages[i] = (
+                    f"singular position: condition number {condition[i]:.3g} of the "
+                    f"dimensionless loop-closure Jacobian exceeds {SINGULAR_COND:.0e}; "
+                    "velocities and accelerations have no unique solution"
+                )
+        ok = status == OK
+        rate_ok = ok[idx]
+        stages = tuple(art["stages"])
+        K = len(idx)
+        XD = np.full((self.m, K), np.nan)
+        XDD = np.full((self.m, K), np.nan)
+        if "velocity" in stages and rate_ok.any():
+            XD[:, rate_ok] = _solve_blocks(A[rate_ok], Bqd[rate_ok], self.blocks).T
+        if "acceleration" in stages and rate_ok.any():
+            r = self._call(
+                "accelerations", X=list(Xk[:, rate_ok]), XD=list(XD[:, rate_ok]),
+                Q=[v[rate_ok] for v in Qk], QD=[v[rate_ok] for v in QDk],
+                QDD=[v[rate_ok] for v in QDDk],
+            )
+            rhs = np.stack([np.broadcast_to(np.asarray(v, float), (int(rate_ok.sum()),)) for v in r], axis=1)
+            XDD[:, rate_ok] = _solve_blocks(A[rate_ok], rhs, self.blocks).T
+        with np.errstate(invalid="ignore"):
+            pts = self._call(
+                "points", X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk, QD=QDk, QDD=QDDk
+            )
+        pts = [np.broadcast_to(np.asarray(v, float), (K,)) for v in pts]
+        forces = None
+        if "forces" in stages:
+            forces = self._forces(pts, Xk, XD, XDD, Qk, QDk, QDDk, rate_ok, idx, N)
+        return self._analysis(X, XD, XDD, pts, idx, status, messages, condition, forces, q, qd, qdd)
+
+    def _get(self, pts, key):
+        a, b = self.art["layout"][key]
+        return pts[a:b]
+
+    def _forces(self, pts, Xk, XD, XDD, Qk, QDk, QDDk, rate_ok, idx, N):
+        art = self.art
+        nF = len(art["force_names"])
+        sel = rate_ok
+        Kk = int(sel.sum())
+        Fv = np.zeros((nF, Kk))
+        for g, lay in reversed(list(zip(art["groups"], art["forces"]))):
+            k = g["index"]
+            unk = lay["unknowns"]
+            n = len(unk)
+            A = np.zeros((Kk, n, n))
+            for (i, j), v in zip(lay["A"], self._get(pts, f"A:{k}")):
+                A[:, i, j] = v[sel]
+            b = np.stack([v[sel] for v in self._get(pts, f"b:{k}")], axis=1)
+            for (i, fi), v in zip(lay["C"], self._get(pts, f"C:{k}")):
+                b[:, i] -= v[sel] * Fv[fi]
+            if Kk:
+                Fv[unk] = np.linalg.solve(A, b[..., None])[..., 0].T
+        fx, fy, mz = (
+            np.broadcast_to(np.asarray(v, float), (Kk,))
+            for v in self._call("frame", X=list(Xk[:, sel]), F=list(Fv))
+        )
+        ok_idx = idx[sel]
+
+        def spread(v):
+            out = np.full(N, np.nan)
+            out[ok_idx] = v
+            return out
+
+        fidx = {nm: i for i, nm in enumerate(art["force_names"])}
+        from linkage_sym.structure.parameters import ident
+
+        reactions, moments = {}, {}
+        for j in self.scene.joints:
+            n = ident(j.name)
+            if j.type == "R":
+                rx, ry = Fv[fidx[f"R_{n}x"]], Fv[fidx[f"R_{n}y"]]
+                mm = np.zeros(Kk)
+            else:
+                ux, uy = (v[sel] for v in self._get(pts, f"slide:{j.name}"))
+                Nn = Fv[fidx[f"N_{n}"]]
+                rx, ry, mm = -uy * Nn, ux * Nn, Fv[fidx[f"M_{n}"]]
+            reactions[j.name] = np.stack([spread(rx), spread(ry)], axis=-1)
+            moments[j.name] = spread(mm)
+        driving = {}
+        for d in self.scene.drivers:
+            n = ident(d.joint)
+            driving[d.joint] = spread(Fv[fidx[("tau_" if d.kind == "R" else "f_") + n]])
+        return Forces(
+            method="symbolic",
+            reactions=reactions,
+            reaction_moments=moments,
+            driving=driving,
+            frame_force=np.stack([spread(fx), spread(fy)], axis=-1),
+            frame_moment=spread(mz),
+            groups=[GroupForces(tuple(g["links"]), "symbolic") for g in art["groups"]],
+        )
+
+    def _analysis(self, X, XD, XDD, pts, idx, status, messages, condition, forces, q, qd, qdd):
+        scene, art = self.scene, self.art
+        N = len(status)
+        stages = tuple(art["stages"])
+        rate_ok = (status == OK)[idx]
+        pos_ok = status != UNASSEMBLABLE
+        pos_ok_k = pos_ok[idx]
+
+        def full(v, mask_k):
+            out = np.full(N, np.nan)
+            out[idx[mask_k]] = np.asarray(v)[mask_k]
+            return out
+
+        def vec(pair, mask_k):
+            return np.stack([full(pair[0], mask_k), full(pair[1], mask_k)], axis=-1)
+
+        levels = [0] + ([1] if "velocity" in stages else []) + ([2] if "acceleration" in stages else [])
+        joints = {}
+        for j in scene.joints:
+            jk = JointKinematics(position=vec(self._get(pts, f"joint:{j.name}:0"), pos_ok_k))
+            if 1 in levels:
+                jk.velocity = vec(self._get(pts, f"joint:{j.name}:1"), rate_ok)
+            if 2 in levels:
+                jk.acceleration = vec(self._get(pts, f"joint:{j.name}:2"), rate_ok)
+            joints[j.name] = jk
+        xi = {n: i for i, n in enumerate(self.x_names)}
+        from linkage_sym.structure.parameters import ident
+
+        links = {}
+        for link in scene.links:
+            c = xi["theta_" + ident(link.name)]
+            fr = self.frames[link.name]
+            rot = X[c] - fr.theta0
+            rot = np.where(pos_ok, rot, np.nan)
+            # the link point at the global origin in the assembly configuration
+            cr, sr = np.cos(rot[idx]), np.sin(rot[idx])
+            Ux, Uy = fr.origin
+            dx, dy = -(cr * Ux - sr * Uy), -(sr * Ux + cr * Uy)
+            ux, uy = self._get(pts, f"origin:{link.name}:0")
+            lk = LinkKinematics(rotation=rot, origin=vec((ux + dx, uy + dy), pos_ok_k))
+            if 1 in levels:
+                w = XD[c]
+                vx, vy = self._get(pts, f"origin:{link.name}:1")
+                lk.omega = full(w, rate_ok)
+                lk.origin_velocity = vec((vx - w * dy, vy + w * dx), rate_ok)
+            if 2 in levels:
+                w, al = XD[c], XDD[c]
+                ax, ay = self._get(pts, f"origin:{link.name}:2")
+                lk.alpha = full(al, rate_ok)
+                lk.origin_acceleration = vec(
+                    (ax - al * dy - w * w * dx, ay + al * dx - w * w * dy), rate_ok
+                )
+            if link.com is not None:
+                lk.com = vec(self._get(pts, f"com:{link.name}:0"), pos_ok_k)
+                if 1 in levels:
+                    lk.com_velocity = vec(self._get(pts, f"com:{link.name}:1"), rate_ok)
+                if 2 in levels:
+                    lk.com_acceleration = vec(self._get(pts, f"com:{link.name}:2"), rate_ok)
+            links[link.name] = lk
+        drivers = {
+            k: {"q": np.asarray(q[k], float), "qd": np.asarray(qd[k], float), "qdd": np.asarray(qdd[k], float)}
+            for k in art["q"]
+        }
+        return Analysis(
+            scene=scene.name,
+            stages=stages,
+            status=status,
+            messages=messages,
+            drivers=drivers,
+            joints=joints,
+            links=links,
+            condition=condition,
+            outputs=tuple(scene.outputs),
+            forces=forces,
+            p_joints=tuple(j.name for j in scene.joints if j.type == "P"),
+        )
+
+
+def load_compiled(scene: Scene) -> CompiledMechanism | None:
+    """The compiled mechanism of ``scene``'s topology from the cache, or ``None``.
+
+    Needs neither SymPy nor a derivation: the cached functions are bound to
+    this scene's parameter values.
+    """
+    art = cache.load(cache.key_of(cache.signature(scene)))
+    return None if art is None else CompiledMechanism(art, scene)
