@@ -10,11 +10,13 @@ later one -- loads the artifact instead of deriving again.
 Every generated function has the same fixed signature, written into its
 docstring::
 
-    f(X, XD, XDD, Q, QD, QDD, FORCES, P)
+    f(X, XD, XDD, Q, QD, QDD, FORCES, P, CX=None, SX=None)
 
 with ``X``, ``XD``, ``XDD`` the coordinates and their rates (list of
 arrays), ``Q``, ``QD``, ``QDD`` the drivers', ``FORCES`` the reactions and
-efforts and ``P`` the parameters followed by the assembly-mode signs.  A
+efforts and ``P`` the parameters followed by the assembly-mode signs; ``CX``, ``SX``
+the cosines and sines of ``X`` (the functions after the positions read
+them instead of evaluating trigonometric functions again).  A
 function reads only the arguments its expressions use; the others may be
 ``None``.  Arrays broadcast: one call evaluates a whole sweep.
 """
@@ -32,7 +34,7 @@ from linkage_sym.model import Scene
 from linkage_sym.numeric.plan import needed_stages
 from linkage_sym.symbolic.mechanism import MechanismEquations
 
-ARGS = ("X", "XD", "XDD", "Q", "QD", "QDD", "FORCES", "P")
+ARGS = ("X", "XD", "XDD", "Q", "QD", "QDD", "FORCES", "P", "CX", "SX")
 
 
 def _names(symbols) -> list[str]:
@@ -42,8 +44,9 @@ def _names(symbols) -> list[str]:
 def generate(name: str, args: list, outputs: list, doc: str) -> str:
     """Source of one generated function (``lambdify`` with ``cse=True``).
 
-    ``args`` are the eight symbol lists of :data:`ARGS`; the source is
-    renamed to ``name`` with those argument names and ``doc`` as docstring.
+    ``args`` are the symbol lists of :data:`ARGS`; the source is renamed to
+    ``name`` with those argument names (the trailing ``CX, SX`` optional)
+    and ``doc`` as docstring.
     """
     f = sp.lambdify(args, list(outputs), modules="numpy", cse=True, docstring_limit=0)
     src = inspect.getsource(f)
@@ -65,7 +68,8 @@ def generate(name: str, args: list, outputs: list, doc: str) -> str:
         kept.append(line)
     body = "\n".join(kept)
     quoted = '    """' + doc.replace('"""', "'''").replace("\n", "\n    ") + '\n    """\n'
-    return f"def {name}({', '.join(ARGS)}):\n" + quoted + body
+    sig = ", ".join(ARGS[:-2]) + ", CX=None, SX=None"
+    return f"def {name}({sig}):\n" + quoted + body
 
 
 def _describe(kind: str, eqs: MechanismEquations, p_syms, outputs_desc: str) -> str:
@@ -85,6 +89,8 @@ def _describe(kind: str, eqs: MechanismEquations, p_syms, outputs_desc: str) -> 
             listing("QDD", eqs.qdd),
             listing("FORCES", getattr(eqs, "all_forces", [])),
             listing("P", p_syms),
+            "CX, SX = cos and sin of every entry of X (computed once by the runtime and",
+            "         shared by every function after the positions)",
             "",
             "Returns: " + outputs_desc,
         ]
@@ -103,11 +109,29 @@ def build_artifact(scene: Scene) -> dict:
     params = eqs.parameters
     p_syms = params + eqs.sigmas
     F = eqs.all_forces if forces else []
-    args = [eqs.x, eqs.xd, eqs.xdd, eqs.q, eqs.qd, eqs.qdd, F, p_syms]
+    cx = [sp.Symbol("cos_" + s.name, real=True) for s in eqs.x]
+    sx = [sp.Symbol("sin_" + s.name, real=True) for s in eqs.x]
+    args = [eqs.x, eqs.xd, eqs.xdd, eqs.q, eqs.qd, eqs.qdd, F, p_syms, cx, sx]
+    trig = {}
+    for s, c, si in zip(eqs.x, cx, sx):
+        if s.name.startswith("theta_"):
+            trig[sp.cos(s)] = c
+            trig[sp.sin(s)] = si
+    angles = {s for s in eqs.x if s.name.startswith("theta_")}
+
+    def shared_trig(e):
+        """``e`` with the sines and cosines of the link angles as inputs."""
+        e = e.replace(
+            lambda n: isinstance(n, (sp.sin, sp.cos)) and bool(n.args[0].free_symbols & angles),
+            lambda n: sp.expand_trig(n),
+        )
+        return e.xreplace(trig)
     xi = {s: i for i, s in enumerate(eqs.x)}
     funcs, steps = {}, []
 
-    def add(name, outputs, what):
+    def add(name, outputs, what, share=False):
+        if share:
+            outputs = [shared_trig(sp.sympify(e)) for e in outputs]
         funcs[name] = generate(name, args, outputs, _describe(name, eqs, p_syms, what))
 
     # positions: closed-form segments between groups that need a numeric root
@@ -163,9 +187,9 @@ def build_artifact(scene: Scene) -> dict:
     # rates
     pattern = _pattern(eqs.A)
     Bqd = eqs.B * sp.Matrix(eqs.qd)
-    add("rates", [eqs.A[i, j] for i, j in pattern] + list(Bqd), "nonzero entries of A, then B qd")
+    add("rates", [eqs.A[i, j] for i, j in pattern] + list(Bqd), "nonzero entries of A, then B qd", True)
     if "acceleration" in stages:
-        add("accelerations", list(eqs.acc_rhs), "right-hand side of A xdd = rhs")
+        add("accelerations", list(eqs.acc_rhs), "right-hand side of A xdd = rhs", True)
     # points (and the force blocks)
     outs, layout = [], {}
 
@@ -200,8 +224,8 @@ def build_artifact(scene: Scene) -> dict:
                     "C": [(i, fi[later[j]]) for i, j in pc],
                 }
             )
-        add("frame", list(eqs.frame), "frame force x, y and moment about the origin")
-    add("points", outs, "joint, origin and centre-of-mass kinematics, slide units, force blocks")
+        add("frame", list(eqs.frame), "frame force x, y and moment about the origin", True)
+    add("points", outs, "joint, origin and centre-of-mass kinematics, slide units, force blocks", True)
     table = eqs.table
     return {
         "scene": scene.name,

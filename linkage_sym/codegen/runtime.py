@@ -141,8 +141,11 @@ class CompiledMechanism:
         raise KeyError(xname)  # pragma: no cover
 
     # -- positions -----------------------------------------------------------------
-    def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, P=None):
-        return self.functions[name](X, XD, XDD, Q, QD, QDD, F, self.params if P is None else P)
+    def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, P=None,
+              CS=(None, None)):
+        return self.functions[name](
+            X, XD, XDD, Q, QD, QDD, F, self.params if P is None else P, CS[0], CS[1]
+        )
 
     def _choose_branches(self):
         """Assembly-mode signs: the ones whose closed forms give the assembly configuration."""
@@ -296,10 +299,56 @@ class CompiledMechanism:
             qdd[d.joint] = np.full(d.steps, float(d.acceleration))
         return q, qd, qdd
 
-    def rate_matrix(self, X, Q, QD):
+    def evaluate(self, q, qd, qdd) -> dict:
+        """The lambdified kinematics at given driver values, without bookkeeping.
+
+        Positions by the closed forms at the given values (no path from the
+        assembly configuration, no unwrapping, no singularity screen), then
+        ``A xd = B qd``, ``A xdd = rhs`` and the points.  For mechanisms
+        whose groups all have closed forms; :meth:`run` is the full analysis.
+
+        Returns
+        -------
+        dict
+            ``"x"``, ``"xd"``, ``"xdd"``: arrays (m, N) in the order of
+            :attr:`x_names`; ``"points"``: the points function's outputs
+            (layout ``artifact["layout"]``).
+        """
+        art = self.art
+        if any(st["kind"] != "closed" for st in art["steps"]):
+            raise ValueError(
+                "evaluate: a group of this mechanism has no closed form (Newton needs the "
+                "path from the assembly configuration); use run()"
+            )
+        Q = [np.asarray(q[n], float) for n in art["q"]]
+        QD = [np.asarray(qd[n], float) for n in art["q"]]
+        QDD = [np.asarray(qdd[n], float) for n in art["q"]]
+        N = len(Q[0])
+        X = [None] * self.m
+        with np.errstate(invalid="ignore", divide="ignore"):
+            for st in art["steps"]:
+                for c, v in zip(st["x"], self._call(st["function"], X=X, Q=Q)):
+                    X[c] = np.broadcast_to(v, (N,))
+            X = np.array(X)
+            CS = (list(np.cos(X)), list(np.sin(X)))
+            A, Bqd = self.rate_matrix(X, Q, QD, CS)
+            XD = np.ascontiguousarray(_solve_blocks(A, Bqd, self.blocks).T)
+            r = self._call("accelerations", X=list(X), XD=list(XD), Q=Q, QD=QD, QDD=QDD, CS=CS)
+            rhs = np.empty((N, self.m))
+            for i, v in enumerate(r):
+                rhs[:, i] = v
+            XDD = np.ascontiguousarray(_solve_blocks(A, rhs, self.blocks).T)
+            pts = self._call(
+                "points", X=list(X), XD=list(XD), XDD=list(XDD), Q=Q, QD=QD, QDD=QDD, CS=CS
+            )
+        return {"x": X, "xd": XD, "xdd": XDD, "points": pts}
+
+    def rate_matrix(self, X, Q, QD, CS=None):
         """``A`` (K, m, m) and ``B qd`` (K, m) at coordinates ``X`` (m, K)."""
         K = X.shape[1]
-        out = self._call("rates", X=list(X), Q=Q, QD=QD)
+        if CS is None:
+            CS = (list(np.cos(X)), list(np.sin(X)))
+        out = self._call("rates", X=list(X), Q=Q, QD=QD, CS=CS)
         pat = self.art["pattern"]
         A = np.zeros((K, self.m, self.m))
         for (i, j), v in zip(pat, out):
@@ -350,16 +399,22 @@ class CompiledMechanism:
         idx = np.flatnonzero(pos_ok)
         Xk = X[:, idx]
         Qk, QDk, QDDk = list(Qs[:, idx]), list(QDs[:, idx]), list(QDDs[:, idx])
-        A, Bqd = self.rate_matrix(Xk, Qk, QDk)
+        CS = (np.cos(Xk), np.sin(Xk))
+        A, Bqd = self.rate_matrix(Xk, Qk, QDk, (list(CS[0]), list(CS[1])))
         # singular steps: a block's Hadamard ratio screens, the exact condition number decides
         condition = np.full(N, np.nan)
         screen = np.ones(len(idx), bool) if exact_condition else np.zeros(len(idx), bool)
         for r0, r1, c0, c1 in self.blocks:
             if c1 - c0 < 2:
                 continue
-            M = A[:, r0:r1, c0:c1]
             with np.errstate(invalid="ignore", divide="ignore"):
-                ratio = np.abs(np.linalg.det(M)) / np.prod(np.linalg.norm(M, axis=1), axis=1)
+                if c1 - c0 == 2:
+                    a, b = A[:, r0, c0], A[:, r0, c0 + 1]
+                    c, d = A[:, r0 + 1, c0], A[:, r0 + 1, c0 + 1]
+                    ratio = np.abs(a * d - b * c) / (np.hypot(a, b) * np.hypot(c, d))
+                else:
+                    M = A[:, r0:r1, c0:c1]
+                    ratio = np.abs(np.linalg.det(M)) / np.prod(np.linalg.norm(M, axis=2), axis=1)
             screen |= ~(ratio >= SCREEN)
         if screen.any():
             cond = self.condition_numbers(A[screen])
@@ -382,6 +437,7 @@ class CompiledMechanism:
         if "acceleration" in stages and rate_ok.any():
             r = self._call(
                 "accelerations", X=list(Xk[:, rate_ok]), XD=list(XD[:, rate_ok]),
+                CS=(list(CS[0][:, rate_ok]), list(CS[1][:, rate_ok])),
                 Q=[v[rate_ok] for v in Qk], QD=[v[rate_ok] for v in QDk],
                 QDD=[v[rate_ok] for v in QDDk],
             )
@@ -389,19 +445,20 @@ class CompiledMechanism:
             XDD[:, rate_ok] = _solve_blocks(A[rate_ok], rhs, self.blocks).T
         with np.errstate(invalid="ignore"):
             pts = self._call(
-                "points", X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk, QD=QDk, QDD=QDDk
+                "points", X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk, QD=QDk, QDD=QDDk,
+                CS=(list(CS[0]), list(CS[1])),
             )
         pts = [np.broadcast_to(np.asarray(v, float), (K,)) for v in pts]
         forces = None
         if "forces" in stages:
-            forces = self._forces(pts, Xk, XD, XDD, Qk, QDk, QDDk, rate_ok, idx, N)
+            forces = self._forces(pts, Xk, CS, rate_ok, idx, N)
         return self._analysis(X, XD, XDD, pts, idx, status, messages, condition, forces, q, qd, qdd)
 
     def _get(self, pts, key):
         a, b = self.art["layout"][key]
         return pts[a:b]
 
-    def _forces(self, pts, Xk, XD, XDD, Qk, QDk, QDDk, rate_ok, idx, N):
+    def _forces(self, pts, Xk, CS, rate_ok, idx, N):
         art = self.art
         nF = len(art["force_names"])
         sel = rate_ok
@@ -421,7 +478,10 @@ class CompiledMechanism:
                 Fv[unk] = np.linalg.solve(A, b[..., None])[..., 0].T
         fx, fy, mz = (
             np.broadcast_to(np.asarray(v, float), (Kk,))
-            for v in self._call("frame", X=list(Xk[:, sel]), F=list(Fv))
+            for v in self._call(
+                "frame", X=list(Xk[:, sel]), F=list(Fv),
+                CS=(list(CS[0][:, sel]), list(CS[1][:, sel])),
+            )
         )
         ok_idx = idx[sel]
 
@@ -467,7 +527,11 @@ class CompiledMechanism:
         pos_ok = status != UNASSEMBLABLE
         pos_ok_k = pos_ok[idx]
 
+        every = len(idx) == N and bool(rate_ok.all())
+
         def full(v, mask_k):
+            if every:  # every step solved: the arrays as they are
+                return np.array(np.broadcast_to(v, (N,)), dtype=float)
             out = np.full(N, np.nan)
             out[idx[mask_k]] = np.asarray(v)[mask_k]
             return out
