@@ -7,6 +7,12 @@ analyze SCENE.json -o RESULT.json [--method dyad|global|symbolic] [--disconnecti
     joint reactions, driver efforts and frame loads, as the scene asks.
     ``symbolic`` evaluates the SymPy-derived, lambdified equations (compiled
     once per topology and cached) instead of the numeric dyad solver.
+derive SCENE.json [--latex] [--numeric] [-o FILE]
+    Derive the scene's equations with SymPy (loops, closed forms, velocity,
+    acceleration and force equations) and print them as SymPy text, or with
+    ``--latex`` as a LaTeX fragment in seed 003's notation (for ``\\input``
+    in a document that loads amsmath).  ``--numeric`` puts the scene's
+    numbers in place of the parameter symbols.
 structure SCENE.json
     Print the drivers and Assur groups in solving order, with the
     disconnection choices of class-III groups.
@@ -69,6 +75,50 @@ def cmd_analyze(args) -> int:
             f"wrote {args.output}: {len(result['steps'])} steps, stages {', '.join(result['stages'])}"
             + (f", {n_bad} steps not ok (see their 'message')" if n_bad else "")
         )
+    return 0
+
+
+def _plain_text(eqs) -> str:
+    """The derived equations as SymPy text, section by section."""
+    out = [f"# mechanism {eqs.scene.name}", "", "## coordinates"]
+    out += [f"x = {eqs.x}", f"q = {eqs.q}"]
+    out += ["", "## loop equations (complex form = 0)"]
+    out += [f"{j}: {v.complex()} = 0" for j, v in eqs.loops]
+    out += ["", "## position equations Phi = 0"] + [f"{e} = 0" for e in eqs.Phi]
+    out += ["", "## closed forms"] + [f"{s} = {e}" for s, e in eqs.closed_forms]
+    out += [f"group {g.index + 1} ({g.group.kind}): solved numerically for {g.x}"
+            for g in eqs.groups if not g.closed]
+    out += ["", "## velocity: A xd = B qd", f"xd = {eqs.xd}", f"A = {eqs.A}", f"B = {eqs.B}"]
+    out += ["", "## acceleration: A xdd = acc_rhs", f"xdd = {eqs.xdd}", f"acc_rhs = {eqs.acc_rhs}"]
+    if eqs.has_forces:
+        out += ["", "## forces: A_g F_g = b_g - C_g F_later"]
+        for g, (A, b, C, later) in zip(eqs.groups, eqs.force_blocks):
+            out += [f"group {g.index + 1}: F_g = {g.forces}", f"  A_g = {A}", f"  b_g = {b}"]
+            if later:
+                out += [f"  C_g = {C}", f"  F_later = {later}"]
+        out += ["", "## frame force x, y and moment about the origin"] + [str(e) for e in eqs.frame]
+    if eqs.parameters:
+        out += ["", "## parameters"]
+        out += [f"{s}: {eqs.table.params[s.name].meaning}" for s in eqs.parameters]
+    return "\n".join(out) + "\n"
+
+
+def cmd_derive(args) -> int:
+    from linkage_sym.symbolic import derive
+
+    scene = _load(args.scene)
+    eqs = derive(scene, symbolic=not args.numeric, forces=True)
+    if args.latex:
+        from linkage_sym.symbolic.latex import latex_document
+
+        text = latex_document(eqs)
+    else:
+        text = _plain_text(eqs)
+    if args.output in (None, "-"):
+        sys.stdout.write(text)
+    else:
+        Path(args.output).write_text(text)
+        print(f"wrote {args.output}")
     return 0
 
 
@@ -144,6 +194,12 @@ def build_parser() -> argparse.ArgumentParser:
         "`linkage-sym structure` prints, from 0; default: the best-suited one)",
     )
     a.set_defaults(func=cmd_analyze)
+    v = sub.add_parser("derive", help="derive the scene's equations with SymPy (text or LaTeX)")
+    v.add_argument("scene", help="scene JSON file")
+    v.add_argument("--latex", action="store_true", help="write a LaTeX fragment (seed 003 notation)")
+    v.add_argument("--numeric", action="store_true", help="the scene's numbers instead of parameter symbols")
+    v.add_argument("-o", "--output", help="output file (default: standard output)")
+    v.set_defaults(func=cmd_derive)
     s = sub.add_parser("structure", help="print drivers and Assur groups in solving order")
     s.add_argument("scene", help="scene JSON file")
     s.set_defaults(func=cmd_structure)

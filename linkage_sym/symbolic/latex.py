@@ -1,0 +1,428 @@
+"""LaTeX rendering of a mechanism's derived equations, in seed 003's notation.
+
+:func:`latex_document` writes a document *fragment* (no preamble; ``\\input``
+it in a document that loads ``amsmath``) with the symbols, loop equations
+(eq. 3-8 and its projections 3-9), closed-form positions, the velocity and
+acceleration equations (3-28, 3-29) and, when derived, each group's force
+equations and the frame loads.  Link angles are ``\\theta``, rates
+``\\omega``, accelerations ``\\alpha`` and lengths ``l``.
+"""
+
+from __future__ import annotations
+
+import re
+
+import sympy as sp
+
+from linkage_sym.symbolic.mechanism import MechanismEquations
+
+# prefixes of parameter names, and how they print
+_GREEK = {
+    "theta0": r"\theta^{0}",
+    "theta": r"\theta",
+    "omega": r"\omega",
+    "alpha": r"\alpha",
+    "beta": r"\beta",
+    "gamma": r"\gamma",
+    "delta": r"\delta",
+    "sigma": r"\sigma",
+    "tau": r"\tau",
+    "xi": r"\xi",
+    "eta": r"\eta",
+    "sdot": r"\dot{s}",
+    "sddot": r"\ddot{s}",
+    "qdot": r"\dot{q}",
+    "qddot": r"\ddot{q}",
+}
+_LINK_PREFIXES = {"theta0", "theta", "omega", "alpha", "m", "I", "p", "q"}
+"""Parameter prefixes followed by a link name (always upright)."""
+
+MAX_MATRIX = 8
+"""Matrices with more rows or columns than this are written entry by entry."""
+MAX_ENTRY = 70
+MAX_MATRIX_CHARS = 900
+LINE = 150
+"""Sums longer than this (LaTeX characters) are broken over several rows."""
+
+_TEXT_ESCAPES = {
+    "\\": r"\textbackslash{}",
+    "&": r"\&",
+    "%": r"\%",
+    "$": r"\$",
+    "#": r"\#",
+    "_": r"\_",
+    "{": r"\{",
+    "}": r"\}",
+    "~": r"\textasciitilde{}",
+    "^": r"\textasciicircum{}",
+}
+
+
+def escape_text(s: str) -> str:
+    """``s`` safe in LaTeX text mode (and inside ``\\mathrm``)."""
+    return "".join(_TEXT_ESCAPES.get(c, c) for c in s)
+
+
+def _sub(name: str, upright: bool = False) -> str:
+    """A subscript: short alphanumeric names as they are, others upright."""
+    if not upright and re.fullmatch(r"[A-Za-z0-9]{1,3}", name):
+        return name
+    return r"\mathrm{" + escape_text(name) + "}"
+
+
+def _label(s: str) -> str:
+    return re.sub(r"[^A-Za-z0-9:.-]", "-", s)
+
+
+class _Namer:
+    """``symbol_names`` for :func:`sympy.latex`, from the equations' structure."""
+
+    def __init__(self, eqs: MechanismEquations):
+        names: dict = {}
+        links = {f"theta_{s.name[6:]}" for s in eqs.x if s.name.startswith("theta_")}
+        for s, sd, sdd in zip(eqs.x, eqs.xd, eqs.xdd):
+            if s.name in links:
+                n = _sub(s.name[6:], upright=True)
+                names[s] = rf"\theta_{{{n}}}"
+                names[sd] = rf"\omega_{{{n}}}"
+                names[sdd] = rf"\alpha_{{{n}}}"
+            else:
+                n = _sub(s.name[2:])
+                names[s] = f"s_{{{n}}}"
+                names[sd] = rf"\dot{{s}}_{{{n}}}"
+                names[sdd] = rf"\ddot{{s}}_{{{n}}}"
+        for q, qd, qdd in zip(eqs.q, eqs.qd, eqs.qdd):
+            n = _sub(q.name[2:])
+            names[q] = f"q_{{{n}}}"
+            names[qd] = rf"\dot{{q}}_{{{n}}}"
+            names[qdd] = rf"\ddot{{q}}_{{{n}}}"
+        for s in eqs.sigmas:
+            names[s] = rf"\sigma_{{{_sub(s.name[6:])}}}"
+        if eqs.has_forces:
+            for jname, (f1, f2) in eqs.F.items():
+                n = _sub(f1.name[2:-1] if f1.name.startswith("R_") else f1.name[2:])
+                if f1.name.startswith("R_"):
+                    names[f1], names[f2] = f"R_{{{n},x}}", f"R_{{{n},y}}"
+                else:
+                    names[f1], names[f2] = f"N_{{{n}}}", f"M_{{{n}}}"
+            for e in eqs.E.values():
+                pre, n = e.name.split("_", 1)
+                names[e] = (r"\tau" if pre == "tau" else "f") + f"_{{{_sub(n)}}}"
+        for s in eqs.parameters:
+            names.setdefault(s, self.param(s.name))
+        self.names = names
+
+    @staticmethod
+    def param(name: str) -> str:
+        pre, _, rest = name.partition("_")
+        if not rest:
+            return name if len(name) == 1 else r"\mathrm{" + escape_text(name) + "}"
+        head = _GREEK.get(pre, pre if len(pre) == 1 else r"\mathrm{" + escape_text(pre) + "}")
+        if pre == "F" and re.fullmatch(r"\d+[xy]", rest):
+            return f"F_{{{rest[:-1]},{rest[-1]}}}"
+        return f"{head}_{{{_sub(rest, upright=pre in _LINK_PREFIXES)}}}"
+
+    def __call__(self, expr) -> str:
+        for s in getattr(expr, "free_symbols", ()):
+            if s not in self.names:  # pragma: no cover - every symbol is named above
+                self.names[s] = self.param(s.name)
+        return sp.latex(expr, symbol_names=self.names)
+
+    def sum_rows(self, lhs: str, expr, width: int = LINE) -> list[str]:
+        """``lhs &= expr`` as align rows, a long sum broken between its terms."""
+        expr = sp.sympify(expr)
+        whole = self(expr)
+        if len(whole) <= width or not isinstance(expr, sp.Add):
+            return [f"{lhs} &= {whole}"]
+        rows, cur = [], ""
+        for i, t in enumerate(expr.as_ordered_terms()):
+            neg = t.could_extract_minus_sign()
+            body = self(-t if neg else t)
+            if isinstance(-t if neg else t, sp.Add):
+                body = rf"\left({body}\right)"
+            piece = ("- " if neg else ("" if i == 0 else "+ ")) + body
+            if cur and len(cur) + len(piece) > width:
+                rows.append(cur)
+                cur = ""
+            cur = (cur + " " + piece).strip()
+        rows.append(cur)
+        out = [f"{lhs} &= {rows[0]}"]
+        out += [rf"&\quad {r}" for r in rows[1:]]
+        return out
+
+
+def _pmatrix(namer: _Namer, M: sp.Matrix, force: bool = False) -> str | None:
+    """``M`` as a ``pmatrix``, or None when it is too big to read that way."""
+    if M.rows == 0 or M.cols == 0:
+        return None
+    cells = [[namer(M[i, j]) for j in range(M.cols)] for i in range(M.rows)]
+    if not force:
+        if max(M.rows, M.cols) > MAX_MATRIX:
+            return None
+        if max(len(c) for r in cells for c in r) > MAX_ENTRY:
+            return None
+        if sum(len(c) for r in cells for c in r) > MAX_MATRIX_CHARS:
+            return None
+    body = r" \\ ".join(" & ".join(r) for r in cells)
+    return r"\begin{pmatrix} " + body + r" \end{pmatrix}"
+
+
+def _column(namer: _Namer, syms) -> str:
+    return r"\begin{pmatrix} " + r" \\ ".join(namer(s) for s in syms) + r" \end{pmatrix}"
+
+
+class _Doc:
+    def __init__(self, prefix: str):
+        self.out: list[str] = []
+        self.prefix = prefix
+        self.labels: list[str] = []
+
+    def label(self, key: str) -> str:
+        lab = _label(f"{self.prefix}:{key}")
+        self.labels.append(lab)
+        return rf"\label{{{lab}}}"
+
+    def text(self, s: str = ""):
+        self.out.append(s)
+
+    def equation(self, body: str, key: str):
+        self.out += [r"\begin{equation}", body + " " + self.label(key), r"\end{equation}"]
+
+    def align(self, rows: list[str], keys: list | None = None, numbered: bool = True):
+        """Rows of an ``align`` (``keys[i]``: label of row i, None: unnumbered)."""
+        env = "align" if numbered else "align*"
+        self.out.append(rf"\begin{{{env}}}")
+        for i, r in enumerate(rows):
+            tail = r" \\" if i < len(rows) - 1 else ""
+            if numbered:
+                k = keys[i] if keys else None
+                r = r + (" " + self.label(k) if k is not None else r" \nonumber")
+            self.out.append(r + tail)
+        self.out.append(rf"\end{{{env}}}")
+
+    def entries(self, namer: _Namer, name: str, M: sp.Matrix, what: str, entry: str):
+        """The nonzero entries of a matrix too big to print whole (``entry``: the
+        entries' letter, with any superscript; the row/column index is appended)."""
+        rows = []
+        for i in range(M.rows):
+            for j in range(M.cols):
+                if M[i, j] != 0:
+                    idx = f"{i + 1}" if M.cols == 1 else f"{i + 1},{j + 1}"
+                    rows += namer.sum_rows(f"{entry}_{{{idx}}}", M[i, j])
+        shape = f"{M.rows}" if M.cols == 1 else rf"{M.rows} \times {M.cols}"
+        self.text(
+            f"The nonzero entries ${entry}_{{{'i' if M.cols == 1 else 'ij'}}}$ of {what} ${name}$ (${shape}$; "
+            "every entry not listed is zero):"
+        )
+        if rows:
+            self.align(rows, numbered=False)
+
+
+def latex_document(eqs: MechanismEquations) -> str:
+    r"""A LaTeX fragment with a mechanism's equations in seed 003's notation.
+
+    Sections: the symbols and their meanings; every closed vector loop in
+    complex form (eq. 3-8) and its projections (eq. 3-9); the explicit
+    positions of input links and dyads; the velocity equation
+    ``A xd = B qd`` (3-28) and the acceleration equation (3-29) as
+    matrices; and, when ``eqs.has_forces``, each group's force equations
+    ``A_g F_g = b_g - C_g F_later`` and the frame force and moment.
+
+    Parameters
+    ----------
+    eqs : MechanismEquations
+        The result of :func:`linkage_sym.symbolic.derive`.
+
+    Returns
+    -------
+    str
+        A fragment without ``\documentclass``, for ``\input`` in a
+        document that loads ``amsmath``.  Every equation carries a
+        ``\label`` starting with ``eq:<scene name>:``.  Matrices larger than
+        :data:`MAX_MATRIX` or with long entries are listed entry by entry.
+
+    Examples
+    --------
+    >>> from linkage_sym.examples import load_example
+    >>> from linkage_sym.symbolic import derive
+    >>> tex = latex_document(derive(load_example("crank_rocker")))
+    >>> r"\theta_{\mathrm{crank}}" in tex and r"\label{eq:crank-rocker:loop-D}" in tex
+    True
+    >>> tex.count(r"\begin{equation}") == tex.count(r"\end{equation}")
+    True
+    """
+    nm = _Namer(eqs)
+    scene = eqs.scene
+    doc = _Doc("eq:" + scene.name)
+    title = escape_text(scene.name)
+    doc.text(f"% Equations of mechanism '{scene.name}', generated by linkage_sym.")
+    doc.text(r"% Needs amsmath; for matrices with more than 10 columns add")
+    doc.text(r"% \setcounter{MaxMatrixCols}{20} to the preamble.")
+    doc.text(rf"\subsection*{{Equations of the mechanism \texttt{{{title}}}}}")
+
+    # (a) symbols
+    doc.text(r"\paragraph{Symbols.}")
+    doc.text(
+        r"Link angles $\theta$ are measured from the $x$-axis to each link's axis, "
+        r"$\omega = \dot\theta$, $\alpha = \ddot\theta$; $s$ is the slide of a prismatic "
+        r"joint (0 in the assembly configuration), $q$ a driver coordinate."
+    )
+    doc.text(r"\begin{itemize}")
+    for s, sd, sdd in zip(eqs.x, eqs.xd, eqs.xdd):
+        if s.name.startswith("theta_"):
+            what = f"angle, angular velocity and acceleration of link {s.name[6:]}"
+        else:
+            what = f"slide of prismatic joint {s.name[2:]} and its rates"
+        doc.text(rf"\item ${nm(s)}, {nm(sd)}, {nm(sdd)}$: {escape_text(what)}")
+    for q, qd, qdd in zip(eqs.q, eqs.qd, eqs.qdd):
+        doc.text(rf"\item ${nm(q)}, {nm(qd)}, {nm(qdd)}$: driver coordinate of joint "
+                 f"{escape_text(q.name[2:])} and its rates")
+    for ge in eqs.groups:
+        if ge.sigma is not None:
+            doc.text(rf"\item ${nm(ge.sigma)} = \pm 1$: assembly mode of group {ge.index + 1}")
+    for s in eqs.parameters:
+        p = eqs.table.params[s.name]
+        doc.text(rf"\item ${nm(s)}$: {escape_text(p.meaning)} ({p.kind})")
+    if eqs.has_forces:
+        doc.text(
+            r"\item $R_{J,x}, R_{J,y}$: force of the joint's first link on its second at "
+            r"revolute joint $J$; $N_{J}$, $M_{J}$: normal force and couple of prismatic joint "
+            r"$J$; $\tau_{J}$, $f_{J}$: driving torque or force at joint $J$"
+        )
+    doc.text(r"\end{itemize}")
+    if not eqs.parameters:
+        doc.text("The dimensions are the scene's numbers (derived with symbolic=False).")
+
+    # (b) loops
+    doc.text(r"\paragraph{Loop equations.}")
+    if eqs.loops:
+        doc.text(
+            "Each joint that closes a loop gives a closed vector loop "
+            "(seed 003, eq.~3-8) and its projections on the axes (eq.~3-9):"
+        )
+    else:
+        doc.text("The mechanism has no closed loop: every link is placed along a tree.")
+    for jname, v in eqs.loops:
+        key = f"loop-{jname}"
+        doc.equation(f"{nm(v.complex())} = 0", key)
+        doc.align([f"{nm(v.x)} &= 0", f"{nm(v.y)} &= 0"], [key + "-x", key + "-y"])
+
+    # (c) positions
+    doc.text(r"\paragraph{Positions.}")
+    if eqs.closed_forms:
+        doc.text(
+            "Explicit positions of the input links and dyads, in solving order "
+            r"(each may use those above it; $\sigma = \pm 1$ selects the assembly mode):"
+        )
+        rows, keys = [], []
+        for s, e in eqs.closed_forms:
+            r = nm.sum_rows(nm(s), e)
+            rows += r
+            keys += [f"pos-{s.name}"] + [None] * (len(r) - 1)
+        doc.align(rows, keys)
+    for ge in eqs.groups:
+        if not ge.closed:
+            coords = ", ".join(f"${nm(s)}$" for s in ge.x)
+            links = escape_text(", ".join(ge.group.links))
+            doc.text(
+                f"Group {ge.index + 1} ({escape_text(ge.group.kind)}: links {links}) has no "
+                f"explicit closed form: its coordinates {coords} are found numerically "
+                "(Newton's method) from its loop equations above."
+            )
+
+    # (d) velocities
+    doc.text(r"\paragraph{Velocities.}")
+    doc.text(
+        r"Differentiating the position equations $\Phi$ with respect to time gives "
+        r"$\mathbf{A}\,\dot{\mathbf{x}} = \mathbf{B}\,\dot{\mathbf{q}}$ (seed 003, eq.~3-28), "
+        r"$\mathbf{A} = \partial\Phi/\partial\mathbf{x}$, "
+        r"$\mathbf{B} = -\partial\Phi/\partial\mathbf{q}$:"
+    )
+    A, B = _pmatrix(nm, eqs.A), _pmatrix(nm, eqs.B)
+    col_xd, col_qd = _column(nm, eqs.xd), _column(nm, eqs.qd)
+    if A is not None and B is not None:
+        doc.equation(f"{A} {col_xd} = {B} {col_qd}", "velocity")
+    else:
+        doc.equation(rf"\mathbf{{A}} {col_xd} = \mathbf{{B}} {col_qd}", "velocity")
+        if A is None:
+            doc.entries(nm, r"\mathbf{A}", eqs.A, "the matrix", "A")
+        else:
+            doc.align([rf"\mathbf{{A}} &= {A}"], numbered=False)
+        if B is None:
+            doc.entries(nm, r"\mathbf{B}", eqs.B, "the matrix", "B")
+        else:
+            doc.align([rf"\mathbf{{B}} &= {B}"], numbered=False)
+
+    # (e) accelerations
+    doc.text(r"\paragraph{Accelerations.}")
+    doc.text(
+        r"Differentiating once more (seed 003, eq.~3-29), "
+        r"$\mathbf{A}\,\ddot{\mathbf{x}} = -\dot{\mathbf{A}}\,\dot{\mathbf{x}} + "
+        r"\dot{\mathbf{B}}\,\dot{\mathbf{q}} + \mathbf{B}\,\ddot{\mathbf{q}}$, with the same "
+        r"$\mathbf{A}$; the right-hand side is printed as one column $\mathbf{r}$:"
+    )
+    col_xdd = _column(nm, eqs.xdd)
+    doc.equation(
+        rf"\mathbf{{A}} {col_xdd} = \mathbf{{r}} = -\dot{{\mathbf{{A}}}}\,\dot{{\mathbf{{x}}}} "
+        rf"+ \dot{{\mathbf{{B}}}}\,\dot{{\mathbf{{q}}}} + \mathbf{{B}}\,\ddot{{\mathbf{{q}}}}",
+        "acceleration",
+    )
+    rhs = _pmatrix(nm, eqs.acc_rhs)
+    if rhs is not None and eqs.acc_rhs.rows <= MAX_MATRIX:
+        doc.align([rf"\mathbf{{r}} &= {rhs}"], numbered=False)
+    else:
+        doc.entries(nm, r"\mathbf{r}", eqs.acc_rhs, "the right-hand side", "r")
+
+    # (f) forces
+    if eqs.has_forces:
+        doc.text(r"\paragraph{Forces.}")
+        doc.text(
+            "Each group's links in equilibrium with their loads and d'Alembert inertia "
+            r"forces give $\mathbf{A}_g \mathbf{F}_g = \mathbf{b}_g - \mathbf{C}_g "
+            r"\mathbf{F}_{\mathrm{later}}$, solved from the last group back "
+            r"($\mathbf{F}_{\mathrm{later}}$: the reactions and efforts of the groups solved after it)."
+        )
+        for ge, (Ag, bg, Cg, later) in zip(eqs.groups, eqs.force_blocks):
+            g = ge.index + 1
+            links = escape_text(", ".join(ge.group.links))
+            doc.text(rf"\subparagraph{{Group {g}}} ({escape_text(ge.group.kind)}: links {links}).")
+            a = _pmatrix(nm, Ag)
+            b = _pmatrix(nm, bg)
+            c = _pmatrix(nm, Cg) if later else None
+            F = _column(nm, ge.forces)
+            Fl = _column(nm, later) if later else None
+            small = a is not None and b is not None and (not later or c is not None)
+            if small:
+                rhs = b + (f" - {c} {Fl}" if later else "")
+                doc.equation(f"{a} {F} = {rhs}", f"forces-{g}")
+            else:
+                rhs = rf"\mathbf{{b}}_{{{g}}}" + (rf" - \mathbf{{C}}_{{{g}}} {Fl}" if later else "")
+                doc.equation(rf"\mathbf{{A}}_{{{g}}} {F} = {rhs}", f"forces-{g}")
+                for name, M, m_tex, what, entry in (
+                    (rf"\mathbf{{A}}_{{{g}}}", Ag, a, "the matrix", f"A^{{({g})}}"),
+                    (rf"\mathbf{{b}}_{{{g}}}", bg, b, "the column", f"b^{{({g})}}"),
+                    (rf"\mathbf{{C}}_{{{g}}}", Cg, c, "the matrix", f"C^{{({g})}}"),
+                ):
+                    if name.startswith(r"\mathbf{C}") and not later:
+                        continue
+                    if m_tex is not None:
+                        doc.align([f"{name} &= {m_tex}"], numbered=False)
+                    elif M.is_zero_matrix:
+                        doc.text(f"${name} = 0$.")
+                    else:
+                        doc.entries(nm, name, M, what, entry)
+        doc.text(
+            "The frame (ground) carries the force and the moment about the origin "
+            "that the moving links put on it:"
+        )
+        rows, keys = [], []
+        for lhs, e, k in zip(
+            (r"F^{\mathrm{fr}}_{x}", r"F^{\mathrm{fr}}_{y}", r"M^{\mathrm{fr}}"),
+            eqs.frame,
+            ("frame-x", "frame-y", "frame-moment"),
+        ):
+            r = nm.sum_rows(lhs, e)
+            rows += r
+            keys += [k] + [None] * (len(r) - 1)
+        doc.align(rows, keys)
+    return "\n".join(doc.out) + "\n"

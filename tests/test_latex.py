@@ -1,0 +1,171 @@
+"""The LaTeX fragment of the derived equations parses, balances and is wired to the CLI.
+
+No TeX is installed on CI: every math environment (``equation``, ``align``,
+their ``pmatrix`` matrices, and inline ``$...$``) is parsed with
+``latex2mathml``, a pure-Python LaTeX-math parser; a real ``pdflatex`` run is
+added when one is on PATH.
+"""
+
+import re
+import shutil
+import subprocess
+import sys
+from collections import Counter
+
+import pytest
+
+from linkage_sym.cli import main
+from linkage_sym.examples import example_dict, example_names, load_example
+from linkage_sym.symbolic import derive
+from linkage_sym.symbolic.latex import latex_document
+
+latex2mathml = pytest.importorskip("latex2mathml.converter")
+
+MATH_ENVS = ("equation", "equation*", "align", "align*")
+ENV = re.compile(r"\\begin\{(" + "|".join(re.escape(e) for e in MATH_ENVS) + r")\}(.*?)\\end\{\1\}", re.S)
+DROP = re.compile(r"\\label\{[^}]*\}|\\nonumber|\\notag")
+
+
+@pytest.fixture(scope="module")
+def documents():
+    return {n: latex_document(derive(load_example(n), forces=True)) for n in example_names()}
+
+
+def convert(tex: str) -> str:
+    """MathML of ``tex``; an unknown command would come back as the text ``\\name``."""
+    mathml = latex2mathml.convert(tex)
+    assert "\\" not in mathml.replace("\\\\", ""), f"unknown command in: {tex[:200]}"
+    return mathml
+
+
+def math_pieces(doc: str):
+    """Every display row (aligned rows one by one) and every inline formula."""
+    for env, body in ENV.findall(doc):
+        body = DROP.sub("", body)
+        # split rows at the top level only (not inside a matrix)
+        rows, depth, cur = [], 0, ""
+        for tok in re.split(r"(\\begin\{\w+\}|\\end\{\w+\}|\\\\)", body):
+            if tok.startswith("\\begin"):
+                depth += 1
+            elif tok.startswith("\\end"):
+                depth -= 1
+            elif tok == "\\\\" and depth == 0 and env.startswith("align"):
+                rows.append(cur)
+                cur = ""
+                continue
+            cur += tok
+        rows.append(cur)
+        for r in rows:
+            yield env, r.replace("&=", "=").replace("&\\quad", "\\quad")
+    text = ENV.sub("", doc)
+    for m in re.finditer(r"(?<!\\)\$(.+?)(?<!\\)\$", text, re.S):
+        yield "inline", m.group(1)
+
+
+def test_the_parser_reads_matrices():
+    mathml = convert(r"\begin{pmatrix} a & \theta^{0}_{\mathrm{C\_g}} \\ \dot{s}_{C} & 0 \end{pmatrix}")
+    assert mathml.count("<mtr>") == 2 and mathml.count("<mtd>") == 4
+    with pytest.raises(Exception):
+        latex2mathml.convert(r"\begin{pmatrix} a & b \end{pmatri")
+    with pytest.raises(Exception):
+        latex2mathml.convert(r"\frac{a}{")
+
+
+@pytest.mark.parametrize("name", example_names())
+def test_every_formula_parses(documents, name):
+    doc = documents[name]
+    n = 0
+    for env, tex in math_pieces(doc):
+        assert tex.strip(), env
+        assert tex.count("{") == tex.count("}"), tex[:200]
+        assert not re.search(r"_\{[^{}]*\}_\{", tex), f"double subscript: {tex[:200]}"
+        convert(tex)
+        n += 1
+    assert n > 20
+
+
+@pytest.mark.parametrize("name", example_names())
+def test_environments_balance_and_labels_are_unique(documents, name):
+    doc = documents[name]
+    assert "\\documentclass" not in doc
+    stack = []
+    for kind, env in re.findall(r"\\(begin|end)\{([^}]*)\}", doc):
+        if kind == "begin":
+            stack.append(env)
+        else:
+            assert stack and stack.pop() == env, env
+    assert not stack
+    labels = re.findall(r"\\label\{([^}]*)\}", doc)
+    dup = [k for k, c in Counter(labels).items() if c > 1]
+    assert not dup
+    assert all(lab.startswith("eq:") for lab in labels)
+    eqs = derive(load_example(name), forces=True)
+    # one numbered complex loop equation and two projections per loop; every section
+    assert len([lab for lab in labels if ":loop-" in lab]) == 3 * len(eqs.loops)
+    assert any(lab.endswith(":velocity") for lab in labels)
+    assert any(lab.endswith(":acceleration") for lab in labels)
+    assert sum(":forces-" in lab for lab in labels) == len(eqs.groups)
+    assert any(lab.endswith(":frame-moment") for lab in labels)
+    for s in eqs.parameters:
+        assert escape(eqs.table.params[s.name].meaning) in doc
+    if not all(g.closed for g in eqs.groups):
+        assert "found numerically" in doc
+
+
+def escape(s):
+    return s.replace("_", r"\_")
+
+
+def test_notation_of_seed_003():
+    doc = latex_document(derive(load_example("slider_crank_offset"), forces=True))
+    for piece in (r"\theta_{\mathrm{crank}}", r"\omega_{\mathrm{connecting\_rod}}",
+                  r"\alpha_{\mathrm{slider}}", r"\dot{s}_{\mathrm{C\_guide}}", r"\dot{q}_{A}",
+                  r"\ddot{q}_{A}", r"l_{AB}", r"\theta^{0}_{\mathrm{slider}}", r"\sigma_{2}",
+                  r"e^{i \theta_{\mathrm{crank}}}", r"\tau_{A}", r"R_{A,x}", r"N_{\mathrm{C\_guide}}"):
+        assert piece in doc, piece
+    # no raw SymPy names left (theta_crank, omega_..., sdot_..., qdot_...)
+    assert not re.search(r"(?<![\\\w])(theta|omega|alpha|sdot|qdot|qddot|sigma)_", doc)
+
+
+@pytest.mark.skipif(not (shutil.which("pdflatex") or shutil.which("latex")), reason="no TeX on PATH")
+def test_compiles_with_tex(tmp_path, documents):
+    exe = shutil.which("pdflatex") or shutil.which("latex")
+    for name in ("crank_rocker", "sixbar_class3"):
+        (tmp_path / f"{name}.tex").write_text(documents[name])
+    (tmp_path / "main.tex").write_text(
+        "\\documentclass{article}\n\\usepackage{amsmath}\n\\setcounter{MaxMatrixCols}{20}\n"
+        "\\begin{document}\n\\input{crank_rocker}\n\\input{sixbar_class3}\n\\end{document}\n"
+    )
+    p = subprocess.run([exe, "-interaction=nonstopmode", "-halt-on-error", "main.tex"],
+                       cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stdout[-3000:]
+
+
+def test_cli_derive_latex_writes_a_file(tmp_path, capsys):
+    out = tmp_path / "eqs.tex"
+    scene = tmp_path / "s.json"
+    import json
+
+    scene.write_text(json.dumps(example_dict("crank_rocker")))
+    assert main(["derive", str(scene), "--latex", "-o", str(out)]) == 0
+    text = out.read_text()
+    assert r"\begin{equation}" in text and r"\label{eq:crank-rocker:loop-D}" in text
+    capsys.readouterr()
+    assert main(["derive", str(scene), "--numeric"]) == 0
+    plain = capsys.readouterr().out
+    assert "theta_crank" in plain and "l_AB" not in plain and "A =" in plain
+
+
+def test_cli_derive_invalid_scene_exits_2_and_writes_nothing(tmp_path):
+    import json
+
+    d = example_dict("crank_rocker")
+    d["links"][0]["mass"] = -1.0
+    scene = tmp_path / "bad.json"
+    scene.write_text(json.dumps(d))
+    out = tmp_path / "eqs.tex"
+    p = subprocess.run([sys.executable, "-m", "linkage_sym", "derive", str(scene), "--latex",
+                        "-o", str(out)], capture_output=True, text=True)
+    assert p.returncode == 2
+    assert "links[0].mass" in p.stderr
+    assert not out.exists()
