@@ -41,7 +41,8 @@ from linkage_sym.structure.parameters import driver_q0, evaluate, link_frames
 SINGULAR_COND = 1e10
 """Spec: a step is singular when the dimensionless condition number exceeds this."""
 SCREEN = 1e-3
-"""A group block whose Hadamard ratio is below this gets the exact condition number."""
+"""A group block whose Hadamard ratio (by rows or by columns) is below this gets the
+exact condition number."""
 MAX_ANGLE_STEP = math.radians(2.0)
 MAX_SLIDE_STEP = 0.02
 NEWTON_TOL = 1e-13
@@ -408,13 +409,24 @@ class CompiledMechanism:
             if c1 - c0 < 2:
                 continue
             with np.errstate(invalid="ignore", divide="ignore"):
+                # |det| over the product of the row norms, and of the column norms: a row
+                # that vanishes as a whole (every term of a loop projection zero) leaves the
+                # row ratio near one, the column ratio catches it, and the other way round
                 if c1 - c0 == 2:
                     a, b = A[:, r0, c0], A[:, r0, c0 + 1]
                     c, d = A[:, r0 + 1, c0], A[:, r0 + 1, c0 + 1]
-                    ratio = np.abs(a * d - b * c) / (np.hypot(a, b) * np.hypot(c, d))
+                    det = np.abs(a * d - b * c)
+                    ratio = np.fmin(
+                        det / (np.hypot(a, b) * np.hypot(c, d)),
+                        det / (np.hypot(a, c) * np.hypot(b, d)),
+                    )
                 else:
                     M = A[:, r0:r1, c0:c1]
-                    ratio = np.abs(np.linalg.det(M)) / np.prod(np.linalg.norm(M, axis=2), axis=1)
+                    det = np.abs(np.linalg.det(M))
+                    ratio = np.fmin(
+                        det / np.prod(np.linalg.norm(M, axis=2), axis=1),
+                        det / np.prod(np.linalg.norm(M, axis=1), axis=1),
+                    )
             screen |= ~(ratio >= SCREEN)
         if screen.any():
             cond = self.condition_numbers(A[screen])
