@@ -36,6 +36,7 @@ from linkage_sym.numeric.result import (
     JointKinematics,
     LinkKinematics,
 )
+from linkage_sym.numeric.plan import scene_sweep
 from linkage_sym.structure.parameters import driver_q0, evaluate, link_frames
 
 SINGULAR_COND = 1e10
@@ -293,12 +294,8 @@ class CompiledMechanism:
 
     # -- the run ---------------------------------------------------------------------
     def sweep(self):
-        q, qd, qdd = {}, {}, {}
-        for d in self.scene.drivers:
-            q[d.joint] = np.linspace(d.start, d.stop, d.steps)
-            qd[d.joint] = np.full(d.steps, float(d.speed))
-            qdd[d.joint] = np.full(d.steps, float(d.acceleration))
-        return q, qd, qdd
+        """Driver values ``(q, qd, qdd)`` of the scene's sweep: dicts of (N,) arrays."""
+        return scene_sweep(self.scene)
 
     def evaluate(self, q, qd, qdd) -> dict:
         """The lambdified kinematics at given driver values, without bookkeeping.

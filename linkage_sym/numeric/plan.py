@@ -71,6 +71,16 @@ def _unwrap(th: np.ndarray) -> np.ndarray:
     return th - 2 * math.pi * k
 
 
+def scene_sweep(scene: Scene):
+    """Driver values ``(q, qd, qdd)`` of a scene's sweep: dicts of (N,) arrays."""
+    q, qd, qdd = {}, {}, {}
+    for d in scene.drivers:
+        q[d.joint] = np.linspace(d.start, d.stop, d.steps)
+        qd[d.joint] = np.full(d.steps, float(d.speed))
+        qdd[d.joint] = np.full(d.steps, float(d.acceleration))
+    return q, qd, qdd
+
+
 def needed_stages(scene: Scene) -> tuple[str, ...]:
     """The stages a scene's outputs and effects call for, in order.
 
@@ -137,12 +147,7 @@ class Plan:
     # -- the sweep ---------------------------------------------------------
     def sweep(self):
         """Driver values ``(q, qd, qdd)`` of the scene's sweep: dicts of (N,) arrays."""
-        q, qd, qdd = {}, {}, {}
-        for d in self.scene.drivers:
-            q[d.joint] = np.linspace(d.start, d.stop, d.steps)
-            qd[d.joint] = np.full(d.steps, float(d.speed))
-            qdd[d.joint] = np.full(d.steps, float(d.acceleration))
-        return q, qd, qdd
+        return scene_sweep(self.scene)
 
     def _path(self, q) -> _Path:
         names = list(q)
