@@ -23,7 +23,7 @@ from importlib import metadata
 from pathlib import Path
 
 from linkage_sym.model import Scene
-from linkage_sym.structure.parameters import COINCIDENT, link_frames
+from linkage_sym.structure.parameters import ParameterTable
 
 FORMAT = 1
 """Version of the artifact layout; bump it when the generated code changes."""
@@ -51,15 +51,14 @@ def signature(scene: Scene) -> dict:
     """Everything about a scene that shapes its generated code, and nothing else."""
     from linkage_sym._version import __version__
 
-    frames = link_frames(scene)
-    L = scene.characteristic_length() or 1.0
-    at_origin = []
-    for link, fr in frames.items():
-        for j in scene.joints:
-            if link in j.links:
-                dx, dy = j.at[0] - fr.origin[0], j.at[1] - fr.origin[1]
-                if (dx * dx + dy * dy) ** 0.5 <= COINCIDENT * L:
-                    at_origin.append([link, j.name])
+    table = ParameterTable(scene)
+    frames = table.frames
+    at_origin = [
+        [link, j.name]
+        for link in frames
+        for j in scene.joints
+        if link in j.links and table.coincides_with_origin(link, j.at)
+    ]
     eff = scene.effects
     return {
         "format": FORMAT,

@@ -175,14 +175,6 @@ def build_artifact(scene: Scene) -> dict:
         )
     flush()
     # rows and columns, for the dimensionless condition number
-    row_len = []
-    for ge in eqs.groups:
-        g = ge.group
-        n_loop = ge.rows.stop - ge.rows.start - sum(
-            1 for n in g.joints if scene.joint(n).type == "P"
-        ) - len(g.drivers)
-        row_len += [True] * n_loop + [False] * sum(1 for n in g.joints if scene.joint(n).type == "P")
-        row_len += [scene.joint(n).type == "P" for n in g.drivers]
     col_len = [s.name.startswith("s_") for s in eqs.x]
     # rates
     pattern = _pattern(eqs.A)
@@ -236,7 +228,7 @@ def build_artifact(scene: Scene) -> dict:
         "sigmas": len(eqs.sigmas),
         "steps": steps,
         "groups": groups,
-        "rows_length": row_len,
+        "rows_length": eqs.row_is_length,
         "cols_length": col_len,
         "pattern": pattern,
         "layout": layout,

@@ -19,7 +19,6 @@ numeric solver returns, with ``forces.method == "symbolic"``.
 from __future__ import annotations
 
 import linecache
-import math
 
 import numpy as np
 
@@ -36,16 +35,12 @@ from linkage_sym.numeric.result import (
     JointKinematics,
     LinkKinematics,
 )
-from linkage_sym.numeric.plan import scene_sweep
-from linkage_sym.structure.parameters import driver_q0, evaluate, link_frames
+from linkage_sym.numeric.plan import SINGULAR_COND, scene_sweep, solving_path
+from linkage_sym.structure.parameters import driver_q0, evaluate, ident, link_frames
 
-SINGULAR_COND = 1e10
-"""Spec: a step is singular when the dimensionless condition number exceeds this."""
 SCREEN = 1e-3
 """A group block whose Hadamard ratio (by rows or by columns) is below this gets the
 exact condition number."""
-MAX_ANGLE_STEP = math.radians(2.0)
-MAX_SLIDE_STEP = 0.02
 NEWTON_TOL = 1e-13
 """Newton stops when the (dimensionless) correction is below this."""
 NEWTON_ITER = 30
@@ -125,22 +120,16 @@ class CompiledMechanism:
         self.x_names = art["x"]
         self.m = len(self.x_names)
         self.q0 = driver_q0(scene)
-        self.x0 = np.array(
-            [frames[self._link_of(n)].theta0 if n.startswith("theta_") else 0.0 for n in self.x_names]
-        )
+        xi = {n: i for i, n in enumerate(self.x_names)}
+        self.angle_of = {n: xi["theta_" + ident(n)] for n in scene.link_names}
+        self.x0 = np.zeros(self.m)
+        for n, c in self.angle_of.items():
+            self.x0[c] = frames[n].theta0
         self.is_angle = np.array([n.startswith("theta_") for n in self.x_names])
         self.blocks = [
             (g["rows"][0], g["rows"][1], g["cols"][0], g["cols"][-1] + 1) for g in art["groups"]
         ]
         self._choose_branches()
-
-    def _link_of(self, xname):
-        from linkage_sym.structure.parameters import ident
-
-        for n in self.scene.link_names:
-            if "theta_" + ident(n) == xname:
-                return n
-        raise KeyError(xname)  # pragma: no cover
 
     # -- positions -----------------------------------------------------------------
     def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, P=None,
@@ -192,23 +181,10 @@ class CompiledMechanism:
             self.params[len(self.params) - k + i] = float(combos[i, best])
 
     def _path(self, Q: np.ndarray):
-        """Driver values from the assembly configuration through the steps (refined)."""
-        names = self.art["q"]
-        q0 = np.array([self.q0[n] for n in names])
-        lim = np.array(
-            [MAX_ANGLE_STEP if self.scene.joint(n).type == "R" else MAX_SLIDE_STEP * self.L for n in names]
-        )
-        n_pre = max(1, int(math.ceil(np.max(np.abs(Q[:, 0] - q0) / lim))))
-        pre = q0[:, None] + (Q[:, :1] - q0[:, None]) * (np.arange(n_pre) / n_pre)[None, :]
-        N = Q.shape[1]
-        n_ref = max(1, int(math.ceil(np.max(np.abs(np.diff(Q, axis=1)) / lim[:, None])))) if N > 1 else 1
-        if n_ref > 1:
-            f = np.arange(n_ref) / n_ref
-            seg = Q[:, :-1, None] + np.diff(Q, axis=1)[:, :, None] * f
-            body = np.concatenate([seg.reshape(len(names), -1), Q[:, -1:]], axis=1)
-        else:
-            body = Q
-        return np.concatenate([pre, body], axis=1), n_pre + np.arange(N) * n_ref
+        """Driver values from the assembly configuration through the steps (refined),
+        and the path index of each step."""
+        P, out, _ = solving_path(self.scene, self.art["q"], self.q0, self.L, Q)
+        return P, out
 
     def positions(self, Qpath: np.ndarray):
         """Coordinates (m, K) along a path of driver values (D, K), and the first
@@ -366,7 +342,7 @@ class CompiledMechanism:
 
     def run(self, q=None, qd=None, qdd=None, exact_condition=False) -> Analysis:
         """Evaluate the compiled mechanism over a sweep (the scene's by default)."""
-        art, scene = self.art, self.scene
+        art = self.art
         if q is None:
             q, qd, qdd = self.sweep()
         names = art["q"]
@@ -500,8 +476,6 @@ class CompiledMechanism:
             return out
 
         fidx = {nm: i for i, nm in enumerate(art["force_names"])}
-        from linkage_sym.structure.parameters import ident
-
         reactions, moments = {}, {}
         for j in self.scene.joints:
             n = ident(j.name)
@@ -557,12 +531,9 @@ class CompiledMechanism:
             if 2 in levels:
                 jk.acceleration = vec(self._get(pts, f"joint:{j.name}:2"), rate_ok)
             joints[j.name] = jk
-        xi = {n: i for i, n in enumerate(self.x_names)}
-        from linkage_sym.structure.parameters import ident
-
         links = {}
         for link in scene.links:
-            c = xi["theta_" + ident(link.name)]
+            c = self.angle_of[link.name]
             fr = self.frames[link.name]
             rot = X[c] - fr.theta0
             rot = np.where(pos_ok, rot, np.nan)

@@ -39,6 +39,7 @@ from linkage_sym.numeric.result import (
 )
 from linkage_sym.numeric.state import LinkState
 from linkage_sym.structure import Decomposition, decompose
+from linkage_sym.structure.parameters import driver_q0
 
 SINGULAR_COND = 1e10
 """Spec: a step is singular when the dimensionless condition number exceeds this."""
@@ -69,6 +70,47 @@ def _unwrap(th: np.ndarray) -> np.ndarray:
     k = np.zeros_like(th)
     k[1:] = np.cumsum(np.where(jump, np.round(d / (2 * math.pi)), 0.0))
     return th - 2 * math.pi * k
+
+
+def solving_path(scene: Scene, names, q0: dict, L: float, Q: np.ndarray):
+    """Driver values along the solving path (see the module docstring).
+
+    Parameters
+    ----------
+    names : list of str
+        The driven joints, in the order of the rows of ``Q``.
+    q0 : dict
+        Each driver's value in the assembly configuration.
+    L : float
+        Size of the mechanism (a slide's largest increment is a fraction of it).
+    Q : ndarray (D, N)
+        The steps' driver values.
+
+    Returns
+    -------
+    P : ndarray (D, K)
+        The assembly configuration, intermediate points up to the first step,
+        then the steps, refined where consecutive steps are far apart.
+    out : ndarray (N,)
+        The path index of each step.
+    n_ref : int
+        Path intervals between consecutive steps (1: the steps are contiguous).
+    """
+    q0 = np.array([q0[n] for n in names])
+    lim = np.array(
+        [MAX_ANGLE_STEP if scene.joint(n).type == "R" else MAX_SLIDE_STEP * L for n in names]
+    )
+    n_pre = max(1, int(math.ceil(np.max(np.abs(Q[:, 0] - q0) / lim))))
+    pre = q0[:, None] + (Q[:, :1] - q0[:, None]) * (np.arange(n_pre) / n_pre)[None, :]
+    N = Q.shape[1]
+    n_ref = max(1, int(math.ceil(np.max(np.abs(np.diff(Q, axis=1)) / lim[:, None])))) if N > 1 else 1
+    if n_ref > 1:
+        f = np.arange(n_ref) / n_ref
+        seg = Q[:, :-1, None] + np.diff(Q, axis=1)[:, :, None] * f
+        body = np.concatenate([seg.reshape(len(names), -1), Q[:, -1:]], axis=1)
+    else:
+        body = Q
+    return np.concatenate([pre, body], axis=1), n_pre + np.arange(N) * n_ref, n_ref
 
 
 def scene_sweep(scene: Scene):
@@ -109,16 +151,7 @@ class Plan:
         self.decomposition = decomposition
         L = scene.characteristic_length()
         self.L = L if L > 0 else 1.0
-        self.q0 = {}
-        for d in scene.drivers:
-            if d.kind == "R":
-                j = scene.joint(d.joint)
-                t = scene.joint(d.toward)
-                phi = math.atan2(t.at[1] - j.at[1], t.at[0] - j.at[0])
-                # representative nearest start (within half a turn)
-                self.q0[d.joint] = phi + 2 * math.pi * round((d.start - phi) / (2 * math.pi))
-            else:
-                self.q0[d.joint] = 0.0
+        self.q0 = driver_q0(scene)
         self.constraints = scene_constraints(scene, self.q0)
         self.solvers = []
         for g in decomposition.groups:
@@ -152,31 +185,9 @@ class Plan:
     def _path(self, q) -> _Path:
         names = list(q)
         Q = np.stack([np.asarray(q[n], dtype=float) for n in names])  # (nd, N)
-        q0 = np.array([self.q0[n] for n in names])
-        lim = np.array(
-            [
-                MAX_ANGLE_STEP if self.scene.joint(n).type == "R" else MAX_SLIDE_STEP * self.L
-                for n in names
-            ]
-        )
-        n_pre = int(math.ceil(np.max(np.abs(Q[:, 0] - q0) / lim)))
-        pre = [q0[:, None]]
-        if n_pre > 1:
-            f = np.arange(1, n_pre) / n_pre
-            pre.append(q0[:, None] + (Q[:, :1] - q0[:, None]) * f[None, :])
-        N = Q.shape[1]
-        n_ref = int(math.ceil(np.max(np.abs(np.diff(Q, axis=1)) / lim[:, None]))) if N > 1 else 1
-        if n_ref > 1:
-            f = np.arange(n_ref) / n_ref
-            seg = Q[:, :-1, None] + np.diff(Q, axis=1)[:, :, None] * f[None, None, :]
-            body = np.concatenate([seg.reshape(len(names), -1), Q[:, -1:]], axis=1)
-            out = np.arange(N) * n_ref
-        else:
-            body, out = Q, np.arange(N)
-        start = sum(p.shape[1] for p in pre)
-        P = np.concatenate([*pre, body], axis=1)
+        P, out, n_ref = solving_path(self.scene, names, self.q0, self.L, Q)
         # the steps as a slice when they are contiguous: views, no copies
-        sel = slice(start, start + N) if n_ref <= 1 else out + start
+        sel = slice(int(out[0]), int(out[0]) + len(out)) if n_ref == 1 else out
         return _Path({n: P[i] for i, n in enumerate(names)}, sel)
 
     # -- running -----------------------------------------------------------

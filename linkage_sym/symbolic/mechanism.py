@@ -105,6 +105,9 @@ class MechanismEquations:
         The closed vector loop of every joint that closes a loop (``= 0``).
     Phi : Matrix
         All position equations, group by group.
+    row_is_length : list of bool
+        Whether each row of ``Phi`` has the dimension of a length (loop
+        projections, slide drivers) rather than of an angle.
     A, B : Matrix
         ``A = dPhi/dx``, ``B = -dPhi/dq``: ``A xd = B qd``.
     acc_rhs : Matrix
@@ -133,6 +136,7 @@ class MechanismEquations:
         self.loops: list = []
         self.closed_forms: list = []
         self.sigmas: list = []
+        self.row_is_length: list[bool] = []
         rows = []
         for gi, g in enumerate(self.decomposition.groups):
             rows += self._group(gi, g, len(rows))
@@ -304,8 +308,11 @@ class MechanismEquations:
                 loop = self.pos(b, J.name) - self.pos(a, J.name) - u
             self.loops.append((J.name, loop))
             rows += [loop.x, loop.y]
-        rows += [self._angle_eq(J) for J in joints if J.type == "P"]
-        rows += [self._driver_eq(d) for d in drivers]
+        angles = [self._angle_eq(J) for J in joints if J.type == "P"]
+        # which rows are lengths (loop projections, slide drivers) rather than angles
+        self.row_is_length += [True] * len(rows) + [False] * len(angles)
+        self.row_is_length += [d.kind == "P" for d in drivers]
+        rows += angles + [self._driver_eq(d) for d in drivers]
         x = [self.th[n] for n in g.links] + [self.slide[J.name] for J in joints if J.type == "P"]
         ge = GroupEquations(gi, g, x, slice(row0, row0 + len(rows)))
         if g.kind == "input":

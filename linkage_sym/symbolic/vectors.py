@@ -38,9 +38,6 @@ class Vec:
     def __sub__(self, other: "Vec") -> "Vec":
         return self + (-other)
 
-    def scale(self, k) -> "Vec":
-        return Vec(((k * l, t) for l, t in self.polar), ((k * x, k * y) for x, y in self.cart))
-
     def rotate(self, phi) -> "Vec":
         """This vector turned by ``phi`` (polar terms keep their form)."""
         c, s = sp.cos(phi), sp.sin(phi)
