@@ -24,3 +24,18 @@ class SceneError(ValueError):
         n = len(self.problems)
         head = f"invalid scene ({n} problem{'s' if n != 1 else ''}):"
         super().__init__("\n  ".join([head, *self.problems]))
+
+
+class BalanceError(ValueError):
+    """A balancing request that cannot be met (e.g. conditions that no
+    counterweights on the given links satisfy).
+
+    Examples
+    --------
+    >>> print(BalanceError("counterweights on crank only cannot balance the force"))
+    cannot balance: counterweights on crank only cannot balance the force
+    """
+
+    def __init__(self, reason: str):
+        self.reason = reason
+        super().__init__(f"cannot balance: {reason}")
