@@ -13,6 +13,15 @@ derive SCENE.json [--latex] [--numeric] [-o FILE]
     ``--latex`` as a LaTeX fragment in seed 003's notation (for ``\\input``
     in a document that loads amsmath).  ``--numeric`` puts the scene's
     numbers in place of the parameter symbols.
+balance SCENE.json -o BALANCE.json [--latex] [--plots DIR] [--balanced-scene FILE]
+        [--optimize FILE [--weights F,M,T] [--max-mass KG]]
+    Derive a hinged linkage's shaking moment in seed 002's mass and
+    acceleration parameters, its shaking force and moment balance
+    conditions, counterweights that balance the force, and the shaking
+    force and moment over the sweep (from the lambdified modules);
+    ``--plots`` writes the polar plot and the moment curve before and after
+    balancing; ``--optimize`` writes the scene with counterweights that
+    minimise a weighted sum of RMS shaking force, moment and driving effort.
 structure SCENE.json
     Print the drivers and Assur groups in solving order, with the
     disconnection choices of class-III groups.
@@ -35,7 +44,7 @@ import json
 import sys
 from pathlib import Path
 
-from linkage_sym.errors import SceneError
+from linkage_sym.errors import BalanceError, SceneError
 
 DEMO_EXAMPLES = ("crank_rocker", "shaper")
 
@@ -122,6 +131,53 @@ def cmd_derive(args) -> int:
     return 0
 
 
+def cmd_balance(args) -> int:
+    from linkage_sym.balancing.report import balance_report
+
+    scene = _load(args.scene)
+    report = balance_report(scene, latex=args.latex)
+    series = report.pop("_series_objects")
+    written = []
+    if args.balanced_scene:
+        if "balanced_scene" not in report:
+            print(f"linkage-sym: {report['counterweights']['error']}", file=sys.stderr)
+            return 2
+        Path(args.balanced_scene).write_text(json.dumps(report["balanced_scene"], indent=2) + "\n")
+        written.append(args.balanced_scene)
+    if args.optimize:
+        from linkage_sym.balancing.optimize import optimize_counterweights
+
+        weights = tuple(float(w) for w in args.weights.split(","))
+        if len(weights) != 3:
+            raise SceneError([f"--weights: three numbers F,M,T expected, got {args.weights!r}"])
+        res = optimize_counterweights(scene, weights=weights, max_mass=args.max_mass)
+        Path(args.optimize).write_text(json.dumps(res.scene, indent=2) + "\n")
+        report["optimized"] = {
+            "weights": list(weights), "objective_start": res.objective, "objective": res.objective,
+            "rms_start": res.rms_start, "rms_final": res.rms_final, "message": res.message,
+            "counterweights": [{"link": c.link, "mass": c.mass, "at": list(c.at)} for c in res.counterweights],
+        }
+        report["optimized"]["objective_start"] = res.objective_start
+        written.append(args.optimize)
+    if args.plots:
+        from linkage_sym.plotting.balance import shaking_force_polar, shaking_moment_curve
+
+        out = Path(args.plots)
+        out.mkdir(parents=True, exist_ok=True)
+        stem = Path(args.scene).stem
+        written.append(str(shaking_force_polar(series, out / f"{stem}_shaking_force_polar.png", title=scene.name)))
+        written.append(str(shaking_moment_curve(series, out / f"{stem}_shaking_moment.png", title=scene.name)))
+    text = json.dumps(report, indent=2 if args.pretty else None)
+    if args.output in (None, "-"):
+        sys.stdout.write(text + "\n")
+    else:
+        Path(args.output).write_text(text + "\n")
+        written.insert(0, args.output)
+    for w in written:
+        print(f"wrote {w}", file=sys.stderr if args.output in (None, "-") else sys.stdout)
+    return 0
+
+
 def cmd_structure(args) -> int:
     from linkage_sym.structure import decompose, structure_report
 
@@ -200,6 +256,17 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--numeric", action="store_true", help="the scene's numbers instead of parameter symbols")
     v.add_argument("-o", "--output", help="output file (default: standard output)")
     v.set_defaults(func=cmd_derive)
+    b = sub.add_parser("balance", help="derive balancing conditions of a hinged linkage (seed 002)")
+    b.add_argument("scene", help="scene JSON file (R joints only)")
+    b.add_argument("-o", "--output", help="balance JSON file (default: standard output)")
+    b.add_argument("--pretty", action="store_true", help="indent the JSON")
+    b.add_argument("--latex", action="store_true", help="add the expressions as LaTeX")
+    b.add_argument("--plots", metavar="DIR", help="write the shaking force polar plot and moment curve, before and after")
+    b.add_argument("--balanced-scene", metavar="FILE", help="write the scene with force-balancing counterweights")
+    b.add_argument("--optimize", metavar="FILE", help="write the scene with optimised counterweights")
+    b.add_argument("--weights", default="1,1,1", help="weights of RMS shaking force, moment, driving effort (default 1,1,1)")
+    b.add_argument("--max-mass", type=float, default=None, help="bound on each counterweight's mass (kg)")
+    b.set_defaults(func=cmd_balance)
     s = sub.add_parser("structure", help="print drivers and Assur groups in solving order")
     s.add_argument("scene", help="scene JSON file")
     s.set_defaults(func=cmd_structure)
@@ -218,7 +285,7 @@ def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
-    except SceneError as err:
+    except (SceneError, BalanceError) as err:
         print(f"linkage-sym: {err}", file=sys.stderr)
         return 2
 

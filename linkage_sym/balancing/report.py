@@ -1,0 +1,138 @@
+"""The JSON written by ``linkage-sym balance SCENE.json -o BALANCE.json``.
+
+Keys (expressions are SymPy strings that :func:`sympy.sympify` reads back;
+a *condition* is an expression that must equal zero):
+
+``symbols``                    every symbol used, with its meaning
+``link_frames``                ``{link: {"u": joint, "v": joint}}``
+``parameters``                 the scene's value of every link parameter
+``mass_parameters``            ``{"M_AB_1": expression in m, a, p, q, k}``
+``acceleration_parameters``    ``{"D_AB_4": expression in pin coordinates and accelerations}``
+``shaking_moment``             ``assembled`` (eq. 12 form), ``vanishing`` (eq. 10),
+                               ``merged`` (eq. 11), ``regrouped`` (eq. 17 form),
+                               ``force_balanced`` (eq. 18 form), ``pin_residuals``
+``force_balance``              ``independent``/``dependent`` links, conditions by name
+``force_balance_conditions``   list of conditions
+``moment_balance_conditions``  list of conditions; ``moment_balance_reasons`` says why each
+``counterweights``             counterweights satisfying the force conditions (or why none)
+``series``                     shaking force and moment at every step, from the modules
+``series_balanced``            the same with the counterweights
+``seconds``                    derivation times
+``latex``                      with ``--latex``: the same expressions as LaTeX
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from linkage_sym.balancing.conditions import Balance, derive_balance
+from linkage_sym.balancing.series import ModuleFunctions, kinematics, module_series
+from linkage_sym.errors import BalanceError
+from linkage_sym.model import Scene
+
+
+def latex_names(symbols) -> dict:
+    """LaTeX for the balancing symbols: ``M_{AB1}``, ``\\ddot{x}_{B}``, ``\\ddot{\\varphi}_{2}``."""
+    out = {}
+    for s in symbols:
+        n = s.name
+        head, _, rest = n.partition("_")
+        if head in ("M", "D") and rest:
+            out[s] = f"{head}_{{{rest.replace('_', '')}}}"
+        elif head in ("xdd", "ydd"):
+            out[s] = rf"\ddot{{{head[0]}}}_{{{rest}}}"
+        elif head == "phidd":
+            out[s] = rf"\ddot{{\varphi}}_{{{rest}}}"
+        elif head in ("xi", "eta"):
+            out[s] = rf"\{head}_{{{rest.replace('_', ',')}}}"
+        elif rest:
+            sub = rest.replace("_", r"\_")
+            out[s] = f"{head}_{{{sub}}}"
+    return out
+
+
+def _s(e) -> str:
+    return sp.sstr(e)
+
+
+def _latex(e, names) -> str:
+    return sp.latex(e, symbol_names=names)
+
+
+def balance_report(scene: Scene, balance: Balance | None = None, latex: bool = False,
+                   counterweights: bool = True) -> dict:
+    """Everything ``linkage-sym balance`` writes (see the module docstring)."""
+    from linkage_sym.balancing.counterweights import force_balancing_counterweights
+    from linkage_sym.balancing.optimize import with_counterweights
+    from linkage_sym.scene import load_scene
+
+    b = balance or derive_balance(scene)
+    model, sm, fb = b.model, b.moment, b.force
+    meanings = dict(model.meanings)
+    meanings.update(sm.symbol_meanings())
+    for link in model.links:
+        model.phidd(link)
+    meanings.update({k: v for k, v in model.meanings.items() if k not in meanings})
+    out = {
+        "scene": scene.name,
+        "symbols": dict(sorted(meanings.items())),
+        "link_frames": {l: {"u": f.u, "v": f.v} for l, f in model.frames.items()},
+        "pins": {P: list(pin.joints) for P, pin in model.pins.items()},
+        "parameters": model.values(),
+        "mass_parameters": {n: _s(e) for n, e in sm.mass_parameters.items()},
+        "acceleration_parameters": {D.name: _s(D.expr) for _, D in sm.terms},
+        "shaking_moment": {
+            "assembled": _s(sm.expression),
+            "vanishing": list(sm.vanishing),
+            "merged": {k: list(v) for k, v in sm.merged},
+            "regrouped": _s(sm.regrouped_expression()),
+            "force_balanced": _s(b.remaining),
+            "pin_residuals": {P: _s(r) for P, r in b.pin_residuals.items()},
+        },
+        "force_balance": {
+            "independent": list(fb.independent),
+            "dependent": list(fb.dependent),
+            "conditions": {c.name: _s(c.expr) for c in fb.conditions},
+        },
+        "force_balance_conditions": [_s(c.expr) for c in fb.conditions],
+        "moment_balance_conditions": [_s(c.expr) for c in b.moment_conditions],
+        "moment_balance_reasons": [f"{c.name}: {c.reason}" for c in b.moment_conditions],
+        "constant_speed_links": list(b.constant_speed_links),
+        "seconds": {k: round(v, 4) for k, v in b.seconds.items()},
+    }
+    functions = ModuleFunctions(sm)
+    analysis = kinematics(scene)
+    before = module_series(scene, sm, functions, analysis, label="as given")
+    out["series"] = before.to_dict()
+    series = [before]
+    if counterweights:
+        try:
+            cws = force_balancing_counterweights(scene, b)
+        except BalanceError as err:
+            out["counterweights"] = {"error": str(err)}
+        else:
+            new = load_scene(with_counterweights(scene, cws))
+            after = module_series(new, sm, functions, analysis, label="force-balanced")
+            out["counterweights"] = [{"link": c.link, "mass": c.mass, "at": list(c.at)} for c in cws]
+            out["balanced_scene"] = with_counterweights(scene, cws)
+            out["series_balanced"] = after.to_dict()
+            series.append(after)
+    if latex:
+        syms = set()
+        for e in [sm.expression, b.remaining, sm.regrouped_expression(), *sm.mass_parameters.values(),
+                  *(D.expr for _, D in sm.terms), *fb.expressions(), *(c.expr for c in b.moment_conditions)]:
+            syms |= sp.sympify(e).free_symbols
+        names = latex_names(syms)
+        out["latex"] = {
+            "mass_parameters": {n: _latex(e, names) for n, e in sm.mass_parameters.items()},
+            "acceleration_parameters": {D.name: _latex(D.expr, names) for _, D in sm.terms},
+            "shaking_moment": {
+                "assembled": _latex(sm.expression, names),
+                "regrouped": _latex(sm.regrouped_expression(), names),
+                "force_balanced": _latex(b.remaining, names),
+            },
+            "force_balance_conditions": [_latex(c.expr, names) + " = 0" for c in fb.conditions],
+            "moment_balance_conditions": [_latex(c.expr, names) + " = 0" for c in b.moment_conditions],
+        }
+    out["_series_objects"] = series
+    return out
