@@ -269,6 +269,10 @@ def test_fourbar_remaining_moment_is_eq18():
 
 def test_seed002_conditions_reproduce_eq13_15_18():
     b = derive_balance(load_example("seed002_sixbar"))
+    # eqs. 10-11: the vanishing and the merged acceleration parameters
+    assert set(b.moment.vanishing) == {"D_AB_1", "D_AB_2", "D_AB_3", "D_DC_1", "D_FE_1"}
+    assert dict(b.moment.merged) == {"D_AB_4": ("D_BC_1",), "D_BC_4": ("D_DC_4", "D_CE_1"),
+                                     "D_CE_4": ("D_FE_4",)}
     names = [c.name for c in b.moment_conditions]
     assert {"q_2", "q_4"} <= set(names)  # eq. 13
     assert not b.pin_residuals  # force balance cancels every pin share: eq. 18 holds
