@@ -221,8 +221,29 @@ def cmd_demo(args) -> int:
         print(f"  {out / (name + '_result.json')}")
         for f in files:
             print(f"  {f}")
+        if all(j.type == "R" for j in scene.joints):
+            files = _demo_balance(scene, name, out)
+            print(f"{name}: balancing conditions and force-balancing counterweights; wrote")
+            for f in files:
+                print(f"  {f}")
     print(f"demo output is in {out.resolve()}")
     return 0
+
+
+def _demo_balance(scene, name, out) -> list:
+    """Seed 002's balancing of a hinged example: JSON and before/after plots."""
+    from linkage_sym.balancing.report import balance_report
+    from linkage_sym.plotting.balance import shaking_force_polar, shaking_moment_curve
+
+    report = balance_report(scene)
+    series = report.pop("_series_objects")
+    path = out / f"{name}_balance.json"
+    path.write_text(json.dumps(report) + "\n")
+    return [
+        path,
+        shaking_force_polar(series, out / f"{name}_balance_force_polar.png", title=scene.name),
+        shaking_moment_curve(series, out / f"{name}_balance_moment.png", title=scene.name),
+    ]
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -103,6 +103,6 @@ def test_structure_command(capsys):
 def test_demo_writes_pngs(tmp_path):
     assert main(["demo", "-o", str(tmp_path), "--example", "crank_rocker"]) == 0
     for suffix in ("positions", "velocities", "accelerations", "paths", "driving", "reactions",
-                   "frame", "shaking"):
+                   "frame", "shaking", "balance_force_polar", "balance_moment"):
         f = tmp_path / f"crank_rocker_{suffix}.png"
         assert f.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
