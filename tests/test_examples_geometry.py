@@ -35,6 +35,7 @@ EXPECTED = [
     "guide_bar_quick_return",
     "hydraulic_boom",
     "printing_mechanism",
+    "seed002_sixbar",
     "shaper",
     "sixbar_class3",
     "slider_crank_offset",
