@@ -153,11 +153,10 @@ def cmd_balance(args) -> int:
         res = optimize_counterweights(scene, weights=weights, max_mass=args.max_mass)
         Path(args.optimize).write_text(json.dumps(res.scene, indent=2) + "\n")
         report["optimized"] = {
-            "weights": list(weights), "objective_start": res.objective, "objective": res.objective,
+            "weights": list(weights), "objective_start": res.objective_start, "objective": res.objective,
             "rms_start": res.rms_start, "rms_final": res.rms_final, "message": res.message,
             "counterweights": [{"link": c.link, "mass": c.mass, "at": list(c.at)} for c in res.counterweights],
         }
-        report["optimized"]["objective_start"] = res.objective_start
         written.append(args.optimize)
     if args.plots:
         from linkage_sym.plotting.balance import shaking_force_polar, shaking_moment_curve

@@ -339,3 +339,18 @@ def test_cli_balance_refuses_prismatic_and_writes_nothing(tmp_path):
                         str(linkage_sym.examples.example_path("slider_crank_offset")), "-o", str(out)],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "prismatic" in r.stderr and not out.exists()
+
+
+def test_cli_balance_writes_balanced_and_optimised_scenes(tmp_path):
+    out, bal, opt = tmp_path / "b.json", tmp_path / "bal.json", tmp_path / "opt.json"
+    r = subprocess.run([sys.executable, "-m", "linkage_sym", "balance",
+                        str(linkage_sym.examples.example_path("crank_rocker")), "-o", str(out),
+                        "--balanced-scene", str(bal), "--optimize", str(opt), "--max-mass", "0.3"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    F, _ = frame_loads(load_scene(str(bal)))
+    assert peak(F) <= 1e-9 * peak(frame_loads(load_example("crank_rocker"))[0])
+    d = json.loads(out.read_text())["optimized"]
+    assert d["objective"] <= d["objective_start"]
+    assert all(c["mass"] <= 0.3 for c in d["counterweights"])
+    load_scene(str(opt))  # a valid scene
