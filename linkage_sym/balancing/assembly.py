@@ -222,11 +222,8 @@ def shaking_moment(scene: Scene, model: BalanceModel | None = None) -> ShakingMo
     expression = -sum(c * D.symbol for c, D in terms)
     normal = {}
     for link in model.links:
-        u, v = model.uv(link)
-        name = f"D_{pair(u, v)}_3"
         D = next((D for _, D in terms if any(mm[0] == link and mm[1] == 3 for mm in D.members)), None)
         normal[link] = (c3[link], D)
-        del name
     return ShakingMoment(
         model, mass_parameters, vanishing, tuple(merged), tuple(terms), expression,
         sp.expand(explicit), (sp.expand(fx), sp.expand(fy)), pin_C, X, normal,
