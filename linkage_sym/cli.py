@@ -135,8 +135,7 @@ def cmd_balance(args) -> int:
     from linkage_sym.balancing.report import balance_report
 
     scene = _load(args.scene)
-    report = balance_report(scene, latex=args.latex)
-    series = report.pop("_series_objects")
+    report, series = balance_report(scene, latex=args.latex)
     written = []
     if args.balanced_scene:
         if "balanced_scene" not in report:
@@ -234,8 +233,7 @@ def _demo_balance(scene, name, out) -> list:
     from linkage_sym.balancing.report import balance_report
     from linkage_sym.plotting.balance import shaking_force_polar, shaking_moment_curve
 
-    report = balance_report(scene)
-    series = report.pop("_series_objects")
+    report, series = balance_report(scene)
     path = out / f"{name}_balance.json"
     path.write_text(json.dumps(report) + "\n")
     return [

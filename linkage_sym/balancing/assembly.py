@@ -142,14 +142,15 @@ class ShakingMoment:
     def regrouped_expression(self) -> sp.Expr:
         """The regrouped form (module docstring) in ``D`` and ``phidd_<link>`` symbols."""
         m = self.model
-        total = sum(C * self.acceleration_parameter(self._pin_D[P]).symbol
-                    for P, C in self.pin_coefficients.items() if P in self._pin_D)
+        pin_D = self.pin_parameters
+        total = sum(C * self.acceleration_parameter(pin_D[P]).symbol
+                    for P, C in self.pin_coefficients.items() if P in pin_D)
         total += sum(self.X[link] * m.phidd(link) for link in m.links)
         total += sum(c * D.symbol for c, D in self.normal_terms.values() if D is not None)
         return -total
 
     @property
-    def _pin_D(self) -> dict:
+    def pin_parameters(self) -> dict:
         """Name of the merged parameter ``x_P y_P'' - y_P x_P''`` of each moving pin."""
         out = {}
         for _, D in self.terms:

@@ -147,7 +147,7 @@ def derive_balance(scene: Scene) -> Balance:
     zero_q.update({model.link_symbols(k)[3]: sp.Integer(0) for k in fb.independent
                    if solution[model.link_symbols(k)[3]] == 0})
     remaining = -sum(sp.factor(sm.X[link].xreplace(zero_q)) * model.phidd(link) for link in model.links)
-    pin_D = sm._pin_D
+    pin_D = sm.pin_parameters
     remaining -= sum(r * sm.acceleration_parameter(pin_D[P]).symbol for P, r in residuals.items())
 
     steady = constant_speed_links(scene)

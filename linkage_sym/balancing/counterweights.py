@@ -118,7 +118,7 @@ def solve_counterweights(scene: Scene, balance: Balance, links, radius=None, mas
         rep[m] = m_new
         rep[p] = (mv * pv + mu * gx + sx) / m_new
         rep[q] = (mv * qv + mu * gy + sy) / m_new
-    numeric = {s: v for s, v in ((model.sym(n, ""), v) for n, v in values.items())}
+    numeric = model.substitution()
     eqs = []
     for c in balance.force.conditions:
         e = c.expr.xreplace(rep)

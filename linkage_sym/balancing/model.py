@@ -218,6 +218,11 @@ class BalanceModel:
         return self.sym(f"phidd_{tag(link)}", f"angular acceleration of link {link}", real=True)
 
     # -- values --------------------------------------------------------------
+    def substitution(self) -> dict:
+        """``{symbol: value}`` for every registered symbol the scene gives a value."""
+        values = self.values()
+        return {s: values[n] for n, s in self._symbols.items() if n in values}
+
     def values(self) -> dict:
         """Value of every link and local-point parameter, read off the scene."""
         out = {}

@@ -60,8 +60,13 @@ def _latex(e, names) -> str:
 
 
 def balance_report(scene: Scene, balance: Balance | None = None, latex: bool = False,
-                   counterweights: bool = True) -> dict:
-    """Everything ``linkage-sym balance`` writes (see the module docstring)."""
+                   counterweights: bool = True) -> tuple:
+    """Everything ``linkage-sym balance`` writes (see the module docstring).
+
+    Returns ``(report, series)``: the JSON-ready dict and the
+    :class:`~.series.BalanceSeries` before (and, when counterweights balance
+    the force, after) balancing, for the plots.
+    """
     from linkage_sym.balancing.counterweights import force_balancing_counterweights
     from linkage_sym.balancing.optimize import with_counterweights
     from linkage_sym.scene import load_scene
@@ -111,10 +116,10 @@ def balance_report(scene: Scene, balance: Balance | None = None, latex: bool = F
         except BalanceError as err:
             out["counterweights"] = {"error": str(err)}
         else:
-            new = load_scene(with_counterweights(scene, cws))
-            after = module_series(new, sm, functions, analysis, label="force-balanced")
+            balanced = with_counterweights(scene, cws)
+            after = module_series(load_scene(balanced), sm, functions, analysis, label="force-balanced")
             out["counterweights"] = [{"link": c.link, "mass": c.mass, "at": list(c.at)} for c in cws]
-            out["balanced_scene"] = with_counterweights(scene, cws)
+            out["balanced_scene"] = balanced
             out["series_balanced"] = after.to_dict()
             series.append(after)
     if latex:
@@ -134,5 +139,4 @@ def balance_report(scene: Scene, balance: Balance | None = None, latex: bool = F
             "force_balance_conditions": [_latex(c.expr, names) + " = 0" for c in fb.conditions],
             "moment_balance_conditions": [_latex(c.expr, names) + " = 0" for c in b.moment_conditions],
         }
-    out["_series_objects"] = series
-    return out
+    return out, series
