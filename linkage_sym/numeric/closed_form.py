@@ -225,7 +225,11 @@ class DyadSolver:
             v = (Yx - C[0], Yy - C[1])
             v0 = _sub(self.J0, self.E0 if i == 0 else self.E1)
             st = b0 if i == 0 else b1
-            st.set_pose(np.arctan2(_cross(v0, v), v0[0] * v[0] + v0[1] * v[1]), 0.0, 0.0)
+            cr, dt = _cross(v0, v), v0[0] * v[0] + v0[1] * v[1]
+            # cos and sin of the rotation from the two vectors: no transcendental call
+            with np.errstate(invalid="ignore", divide="ignore"):
+                scale = 1.0 / (math.hypot(*v0) * np.hypot(v[0], v[1]))
+            st.set_pose(np.arctan2(cr, dt), 0.0, 0.0, dt * scale, cr * scale)
         _set_from_point(b1, (Yx, Yy), self.J0)
         if t != "RPP":
             _set_from_point(b0, (Yx, Yy), self.J0)
@@ -246,8 +250,9 @@ class DyadSolver:
             ny = (h * Dy + self.sigma * w * Dx) / D2
             ind = w / dd
         n0x, n0y = self.n0
-        th = np.arctan2(n0x * ny - n0y * nx, n0x * nx + n0y * ny)
-        c, s = np.cos(th), np.sin(th)
+        # n and n0 are unit vectors: cos and sin of the rotation without a transcendental call
+        c, s = n0x * nx + n0y * ny, n0x * ny - n0y * nx
+        th = np.arctan2(s, c)
         for st, E, X in ((b0, E0, self.E0), (b1, E1, self.E1)):
             st.set_pose(th, 0.0, 0.0, c, s)
             _set_from_point(st, E, X)
