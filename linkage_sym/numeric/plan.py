@@ -143,6 +143,66 @@ def needed_stages(scene: Scene) -> tuple[str, ...]:
     return tuple(stages)
 
 
+class _Layout:
+    """Where each result array lives in a run's result block.
+
+    Every result array is a row (scalars over the steps) or a pair of rows
+    (vectors, handed out as the ``(N, 2)`` transposed view) of one
+    ``(n_rows, N)`` block: one allocation per run instead of one per array
+    and per temporary, which is most of the cost of a sweep once the groups
+    are solved.  Positional rows come first, so the steps without a
+    position (or without rates) are set to NaN in two operations.
+
+    ``rows`` maps ``(link, field)`` for ``rotation, origin, com, w, vx, al,
+    ax, com_velocity, com_acceleration`` and ``(joint, field)`` for
+    ``position, velocity, acceleration`` to the first row (``vx``/``ax``
+    start the pairs ``vx, vy`` / ``ax, ay``).
+    """
+
+    def __init__(self, scene: Scene, stages):
+        rows = {}
+        i = 0
+
+        def put(key, n):
+            nonlocal i
+            rows[key] = i
+            i += n
+
+        for link in scene.links:
+            put((link.name, "rotation"), 1)
+            put((link.name, "origin"), 2)
+            if link.com is not None:
+                put((link.name, "com"), 2)
+        for j in scene.joints:
+            put((j.name, "position"), 2)
+        self.n_pos = i
+        for stage, (rot, lin, name) in (
+            ("velocity", ("w", "vx", "velocity")),
+            ("acceleration", ("al", "ax", "acceleration")),
+        ):
+            if stage not in stages:
+                continue
+            for link in scene.links:
+                put((link.name, rot), 1)
+                put((link.name, lin), 2)
+                if link.com is not None:
+                    put((link.name, f"com_{name}"), 2)
+            for j in scene.joints:
+                put((j.name, name), 2)
+        self.rows = rows
+        self.n_rows = i
+
+    def rate_rows(self, block, link) -> dict:
+        """The rows of ``block`` a link's rate fields are bound to (see ``LinkState``)."""
+        out = {}
+        for rot, lin in (("w", "vx"), ("al", "ax")):
+            if (link, rot) in self.rows:
+                i = self.rows[link, lin]
+                out[rot] = block[self.rows[link, rot]]
+                out[lin], out[lin[0] + "y"] = block[i], block[i + 1]
+        return out
+
+
 class Plan:
     """A compiled solving plan; see :func:`compile_plan`."""
 
@@ -162,6 +222,8 @@ class Plan:
             else:
                 self.solvers.append(NewtonSolver(scene, g, self.constraints, self.L))
         self.stages = needed_stages(scene)
+        self.layout = _Layout(scene, self.stages)
+        self._own_sweep = None
         # links whose rotation may come wrapped to one turn (atan2 in a dyad, or
         # copied or offset from such a link) and is unwrapped along the path;
         # Newton groups move continuously from the assembly configuration, and an
@@ -181,6 +243,17 @@ class Plan:
     def sweep(self):
         """Driver values ``(q, qd, qdd)`` of the scene's sweep: dicts of (N,) arrays."""
         return scene_sweep(self.scene)
+
+    def _scene_sweep(self):
+        """The scene's sweep and its solving path, made once (read-only arrays, shared by runs)."""
+        if self._own_sweep is None:
+            q, qd, qdd = self.sweep()
+            path = self._path(q)
+            for arrays in (q, qd, qdd, path.q):
+                for a in arrays.values():
+                    a.flags.writeable = False
+            self._own_sweep = (q, qd, qdd, path)
+        return self._own_sweep
 
     def _path(self, q) -> _Path:
         names = list(q)
@@ -207,10 +280,11 @@ class Plan:
         """
         check_method(method)  # before the kinematics, not after
         if q is None:
-            q, qd, qdd = self.sweep()
-        q = {k: np.asarray(v, dtype=float) for k, v in q.items()}
+            q, qd, qdd, path = self._scene_sweep()
+        else:
+            q = {k: np.asarray(v, dtype=float) for k, v in q.items()}
+            path = self._path(q)
         N = len(next(iter(q.values())))
-        path = self._path(q)
         S = {GROUND: LinkState()}
         for n in self.scene.link_names:
             S[n] = LinkState()
@@ -231,6 +305,9 @@ class Plan:
         all_valid = bool(valid.all())
         for n in self.wrapped:
             st = S[n]
+            if all_valid and np.shape(st.th) == (npath,):
+                st.th = _unwrap(st.th)  # a new array only where it changes
+                continue
             th = np.array(np.broadcast_to(st.th, (npath,)), dtype=float)
             if all_valid:
                 th = _unwrap(th)
@@ -266,16 +343,24 @@ class Plan:
                 )
         qd = {k: np.asarray(v, dtype=float) for k, v in qd.items()}
         qdd = {k: np.asarray(v, dtype=float) for k, v in qdd.items()}
+        # one block holds every result array; the solvers write rates straight into it
+        block = np.empty((self.layout.n_rows, N))
+        for link in self.scene.links:
+            rows = self.layout.rate_rows(block, link.name)
+            if rows:
+                S[link.name].bind_rates(rows)
         if "velocity" in self.stages:
             for solver in self.solvers:
                 solver.velocity(S, q, qd)
         if "acceleration" in self.stages:
             for solver in self.solvers:
                 solver.acceleration(S, q, qd, qdd)
+        for link in self.scene.links:
+            S[link.name].fill_rates()
         forces = None
         if self.force_plan is not None:
             forces = self.force_plan.run(S, status == OK, method)
-        return self._analysis(S, q, qd, qdd, status, messages, condition, forces)
+        return self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
 
     def condition_numbers(self, S, idx) -> np.ndarray:
         """Exact dimensionless condition number of the full constraint Jacobian at steps ``idx``."""
@@ -285,62 +370,75 @@ class Plan:
         with np.errstate(divide="ignore"):
             return sv[:, 0] / sv[:, -1]
 
-    def _analysis(self, S, q, qd, qdd, status, messages, condition, forces) -> Analysis:
+    def _analysis(self, S, block, q, qd, qdd, status, messages, condition, forces) -> Analysis:
+        """Assemble the result arrays in ``block`` (see :class:`_Layout`).
+
+        The rates of the links are there already (the solvers wrote them);
+        positions are copied in, points of links are written in place.
+        """
         N = len(status)
         bad = status != OK
-        sing = status == SINGULAR
+        lay = self.layout
         has_v = "velocity" in self.stages
         has_a = "acceleration" in self.stages
+        tmp = np.empty(N) if has_a else None
 
-        def clean(arr, mask):
-            out = np.empty(N)
-            out[:] = arr
-            if any_bad:
-                out[mask] = np.nan
-            return out
+        def pair(key):
+            i = lay.rows[key]
+            return block[i : i + 2]
 
-        any_bad = bool(bad.any())
-
-        def vec(pair, mask):
-            # filled as (2, N) rows (contiguous writes), returned as its (N, 2) view
-            out = np.empty((2, N))
-            out[0] = pair[0]
-            out[1] = pair[1]
-            out = out.T
-            if any_bad:
-                out[mask] = np.nan
-            return out
-
-        pos_bad = bad & ~sing
         links = {}
         for link in self.scene.links:
-            st = S[link.name]
-            lk = LinkKinematics(
-                rotation=clean(st.th, pos_bad),
-                origin=vec((st.dx, st.dy), pos_bad),
-            )
+            n, st = link.name, S[link.name]
+            r = block[lay.rows[n, "rotation"]]
+            r[...] = st.th
+            o = pair((n, "origin"))
+            o[0] = st.dx
+            o[1] = st.dy
+            lk = LinkKinematics(rotation=r, origin=o.T)
             if has_v:
-                lk.omega = clean(st.w, bad)
-                lk.origin_velocity = vec((st.vx, st.vy), bad)
+                lk.omega = block[lay.rows[n, "w"]]
+                lk.origin_velocity = pair((n, "vx")).T
             if has_a:
-                lk.alpha = clean(st.al, bad)
-                lk.origin_acceleration = vec((st.ax, st.ay), bad)
+                lk.alpha = block[lay.rows[n, "al"]]
+                lk.origin_acceleration = pair((n, "ax")).T
             if link.com is not None:
-                lk.com = vec(st.point(link.com), pos_bad)
+                out = pair((n, "com"))
+                st.point_into(link.com, out[0], out[1])
+                lk.com = out.T
                 if has_v:
-                    lk.com_velocity = vec(st.point_velocity(link.com), bad)
-                if has_a:
-                    lk.com_acceleration = vec(st.point_acceleration(link.com), bad)
-            links[link.name] = lk
+                    out = pair((n, "com_velocity"))
+                    st.point_velocity_into(link.com, out[0], out[1])
+                    lk.com_velocity = out.T
+            links[n] = lk
         joints = {}
         for j in self.scene.joints:
             st = S[j.links[1]]
-            jk = JointKinematics(position=vec(st.point(j.at), pos_bad))
+            out = pair((j.name, "position"))
+            st.point_into(j.at, out[0], out[1])
+            jk = JointKinematics(position=out.T)
             if has_v:
-                jk.velocity = vec(st.point_velocity(j.at), bad)
-            if has_a:
-                jk.acceleration = vec(st.point_acceleration(j.at), bad)
+                out = pair((j.name, "velocity"))
+                st.point_velocity_into(j.at, out[0], out[1])
+                jk.velocity = out.T
             joints[j.name] = jk
+        if has_a:
+            w2 = {n: np.multiply(st.w, st.w) for n, st in S.items()}
+            for link in self.scene.links:
+                if link.com is not None:
+                    n = link.name
+                    out = pair((n, "com_acceleration"))
+                    S[n].point_acceleration_into(link.com, out[0], out[1], w2[n], tmp)
+                    links[n].com_acceleration = out.T
+            for j in self.scene.joints:
+                k = j.links[1]
+                out = pair((j.name, "acceleration"))
+                S[k].point_acceleration_into(j.at, out[0], out[1], w2[k], tmp)
+                joints[j.name].acceleration = out.T
+        if bad.any():
+            # a singular step keeps its positions; no step without a solution keeps rates
+            block[: lay.n_pos, bad & (status != SINGULAR)] = np.nan
+            block[lay.n_pos :, bad] = np.nan
         drivers = {
             k: {"q": np.asarray(q[k], float), "qd": np.asarray(qd[k], float), "qdd": np.asarray(qdd[k], float)}
             for k in q

@@ -160,12 +160,20 @@ class Analysis:
     messages : list of (str or None)
         Why a step is not ``ok``; ``None`` for ``ok`` steps.
     drivers : dict
-        ``{joint: {"q": (N,), "qd": (N,), "qdd": (N,)}}``.
+        ``{joint: {"q": (N,), "qd": (N,), "qdd": (N,)}}``.  For the scene's
+        own sweep these arrays are read-only and shared by every run of a
+        plan.
     joints, links : dict
-        :class:`JointKinematics` / :class:`LinkKinematics` by name.
+        :class:`JointKinematics` / :class:`LinkKinematics` by name.  Their
+        arrays are views of one block per run: a run's arrays share no
+        memory with another run's.
     condition : ndarray, shape (N,)
-        Dimensionless condition-number estimate of the constraint Jacobian
-        (exact where it matters: see :mod:`linkage_sym.numeric.singularity`).
+        Exact dimensionless condition number of the full constraint
+        Jacobian (lengths divided by the mechanism's size) at the steps
+        where it was computed: where a group's cheap indicator fell below
+        ``linkage_sym.numeric.plan.SCREEN``, or at every step with
+        ``Plan.run(exact_condition=True)``.  NaN at the other steps (well
+        conditioned by their indicators) and at unassemblable steps.
     outputs : tuple of str
         The outputs the scene asked for.
     warnings : list of str
