@@ -10,20 +10,34 @@ machine; each timing is the best of several repeats.
 
 Compared
 --------
-Allocator state.  NumPy temporaries come from glibc's heap; in a fresh
-process glibc trims the heap top back to the system after each run (trim
-threshold 128 kB), so the next run page-faults its temporaries in again.
-Once the process has freed one large block, glibc raises the threshold and
-that cost disappears.  The four-bar is measured in both states (``fresh``,
-``steady``), both contenders in the same state; ``MALLOC_TRIM_THRESHOLD_``
-in the environment gives the steady state from the start.
+Allocator state.  NumPy temporaries come from glibc's heap.  In a fresh
+process glibc trims the heap top back to the system whenever more than
+128 kB is free there, so every run page-faults its temporaries in again;
+once the process has freed one block above the mmap threshold, glibc raises
+both thresholds and the heap is kept.  A ``Plan.run`` writes all its result
+arrays into one block (see ``Plan._analysis``), so its first run in a
+process does this; a one-off formula with small arrays never does.
+Three states are measured:
+
+* ``fresh``: each contender alone in its own new interpreter: the first
+  (cold) call and the best of the following calls, with the minor page
+  faults of a warm call, and the bytes a call allocates (tracemalloc: what
+  the result keeps, and the peak).
+* ``steady``: both contenders in one process after it has freed a large
+  block (as any session that imported Matplotlib or SymPy has);
+  ``MALLOC_TRIM_THRESHOLD_`` in the environment gives this state from the
+  start.
+
+Contenders:
 
 * ``linkage_sym`` four-bar: ``Plan.run`` over 3600 steps, producing every
-  link's rotation/omega/alpha, every joint's and centre of mass's position,
-  velocity and acceleration (what the result file holds).
-* hand-written four-bar: the same quantities from a vectorised NumPy closed
-  form written for this one mechanism (circle intersection, eqs. 3-13/3-14/
-  3-16 of seed 003).
+  link's rotation/omega/alpha and origin motion, every joint's and centre
+  of mass's position, velocity and acceleration (what the result file
+  holds), with validity and singularity screening.
+* hand-written four-bar: the links' and centres of mass's motion and the
+  moving joints' motion from a vectorised NumPy closed form written for
+  this one mechanism (circle intersection, eqs. 3-13/3-14/3-16 of seed 003),
+  no checks.
 * six-bar (the shipped Watt six-bar), 3600 and 100,000 steps.
 * the class-III six-bar (Newton, step by step), 360 steps.
 """
@@ -38,7 +52,10 @@ for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 import dataclasses  # noqa: E402
 import json  # noqa: E402
 import platform  # noqa: E402
+import resource  # noqa: E402
+import subprocess  # noqa: E402
 import sys  # noqa: E402
+import tracemalloc  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
@@ -135,6 +152,39 @@ def handwritten_fourbar(scene):
     return run
 
 
+def fourbar_contenders():
+    four = with_steps(linkage_sym.load_example("crank_rocker"), 3600)
+    plan = compile_plan(four)
+    return four, {"linkage_sym": plan.run, "handwritten": handwritten_fourbar(four)}
+
+
+def fresh(name):
+    """Measure one contender alone in this (fresh) interpreter; returns a dict."""
+    _, contenders = fourbar_contenders()
+    fn = contenders[name]
+    t0 = time.perf_counter()
+    fn()
+    cold = time.perf_counter() - t0
+    warm = best_time(fn)
+    f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+    fn()
+    faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0
+    tracemalloc.start()
+    base = tracemalloc.get_traced_memory()[0]
+    tracemalloc.reset_peak()
+    res = fn()
+    kept, peak = tracemalloc.get_traced_memory()
+    del res
+    tracemalloc.stop()
+    return {
+        "cold_us_per_position": 1e6 * cold / 3600,
+        "us_per_position": 1e6 * warm / 3600,
+        "minor_page_faults_per_call": faults,
+        "result_MB": (kept - base) / 1e6,
+        "peak_MB": (peak - base) / 1e6,
+    }
+
+
 def main():
     results = {
         "python": sys.version.split()[0],
@@ -145,28 +195,39 @@ def main():
     }
     cases = results["cases"]
 
-    four = with_steps(linkage_sym.load_example("crank_rocker"), 3600)
+    four, contenders = fourbar_contenders()
     plan = compile_plan(four)
-    hand = handwritten_fourbar(four)
     # check the two agree before timing means anything
-    ref = hand()
+    ref = contenders["handwritten"]()
     res = plan.run()
     err = np.max(np.abs(res.links["rocker"].omega - ref["rocker"][1]))
     assert err < 1e-9 * np.max(np.abs(ref["rocker"][1])), err
-    # "fresh": a new process whose heap glibc trims back after every run, so each
-    # run page-faults its temporaries in again; "steady": after the process has
-    # once freed a large block (as any session that imported Matplotlib or SymPy
-    # has), glibc raises its trim threshold and keeps the heap
-    for state in ("fresh", "steady"):
-        if state == "steady":
-            steady_heap()
-        t_lib = best_time(plan.run)
-        t_hand = best_time(hand)
-        cases[f"fourbar_3600_{state}"] = {
-            "linkage_sym_us_per_position": 1e6 * t_lib / 3600,
-            "handwritten_us_per_position": 1e6 * t_hand / 3600,
-            "ratio": t_lib / t_hand,
-        }
+    del res, ref
+
+    # fresh: each contender in its own new interpreter
+    env = {k: v for k, v in os.environ.items() if not k.startswith("MALLOC_")}
+    fr = {}
+    for name in contenders:
+        out = subprocess.run(
+            [sys.executable, __file__, "--fresh", name],
+            capture_output=True, text=True, check=True, env=env,
+        )
+        fr[name] = json.loads(out.stdout)
+    fr["ratio"] = fr["linkage_sym"]["us_per_position"] / fr["handwritten"]["us_per_position"]
+    fr["ratio_cold"] = (
+        fr["linkage_sym"]["cold_us_per_position"] / fr["handwritten"]["cold_us_per_position"]
+    )
+    cases["fourbar_3600_fresh"] = fr
+
+    # steady: both in this process after a large block was freed
+    steady_heap()
+    t_lib = best_time(contenders["linkage_sym"])
+    t_hand = best_time(contenders["handwritten"])
+    cases["fourbar_3600_steady"] = {
+        "linkage_sym_us_per_position": 1e6 * t_lib / 3600,
+        "handwritten_us_per_position": 1e6 * t_hand / 3600,
+        "ratio": t_lib / t_hand,
+    }
     t_compile = best_time(lambda: compile_plan(four), repeats=5)
     cases["fourbar_compile_ms"] = 1e3 * t_compile
 
@@ -188,4 +249,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    if len(sys.argv) == 3 and sys.argv[1] == "--fresh":
+        print(json.dumps(fresh(sys.argv[2])))
+    else:
+        main()
