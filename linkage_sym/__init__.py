@@ -20,6 +20,7 @@ from linkage_sym._version import __version__
 
 __all__ = [
     "SceneError",
+    "__version__",
     "analyze",
     "compile_mechanism",
     "compile_plan",

@@ -61,7 +61,6 @@ Run:  python3 paper_repro/printing_forces.py     (needs linkage_sym: run from th
 from __future__ import annotations
 
 import copy
-import math
 import pathlib
 import sys
 

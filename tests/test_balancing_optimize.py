@@ -18,7 +18,6 @@ tested:
 
 from __future__ import annotations
 
-import cmath
 import copy
 import math
 

@@ -79,7 +79,6 @@ def test_closed_forms_and_rates_near_dead_centre(gap_deg):
     assert np.all(res.status == "ok")
     num = linkage_sym.analyze(scene)
     q = np.asarray(res.drivers["A"]["q"], dtype=float)
-    qd = np.full_like(q, W1)
     # float64: the generated closed forms, called with float64 arrays
     X = [np.asarray(v, dtype=float) for v in
          cm.functions["positions_0"](None, None, None, [q], None, None, None, cm.params)]
