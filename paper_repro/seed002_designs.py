@@ -73,8 +73,8 @@ Findings (peaks over each half-turn, balanced / unbalanced reference):
   the reference mid-sweep to ~3e-10 at 1 deg from a change point, about eps * cond^2 (accelerations
   are solved from velocities that already carry cond * eps errors).
 * Passing through the change point (design 1 over 1..359 deg from one assembly): with a step on
-  180 deg exactly, that step is "unassemblable" (DCEF is flat there, |CF| = a4 + a5, and rounding
-  puts it just out of reach); with or without that step the solver resumes with the same
+  180 deg exactly, that step is "singular" (DCEF is flat there, |CF| = a4 + a5; rounding puts it
+  a few ulps out of reach, which the solver takes as the tangency); with or without that step the solver resumes with the same
   determinant sign, as the spec prescribes, which for ABCD is the anti-parallelogram: C leaves the
   parallelogram by up to 80 mm, the force stays balanced (the mass centre is fixed in every
   configuration) but the moment comes back, 0.056 N m (23 % of the reference).  A real machine

@@ -197,9 +197,9 @@ def test_sweep_through_dead_centre(gap_deg, beyond):
 # DC = (-6, 8)), so that the scene's doubles *are* the mechanism: at th1 = 0,
 # B = (7, 0), |BD| = 7 = l2 - l3 exactly, all four joints in line with
 # C = (24, 0), and both assembly modes meet there.  (With assembly points
-# rounded to doubles the change point may be missed by an ulp either way --
-# then "unassemblable" at that step is right, so such a scene cannot test
-# the singular status.)
+# rounded to doubles the change point may be missed by an ulp either way;
+# such a miss, within rounding of the coordinates, is taken as a tangency:
+# see test_limit_position_within_rounding_is_singular.)
 def _change_point_run():
     d = {
         "name": "change point",
@@ -259,6 +259,57 @@ def test_exactly_singular_step_keeps_positions_only():
     for ln, rec in step["links"].items():
         assert "rotation" in rec and "omega" not in rec and "alpha" not in rec, ln
     _assert_json_clean(res)
+
+
+# Limit position of a triple rocker hit by a step in exact arithmetic only: A at
+# the origin, D = (2, 0), crank 1, l2 + l3 = sqrt(3) = |BD| at th1 = 60 deg.  The
+# doubles miss the tangency by a few ulps one way or the other (which way depends
+# on the placement); loci.TANGENT_ULPS takes a miss within 8 ulps of the
+# coordinates as the tangency it is.
+L_LIMIT = (1.0, math.sqrt(3.0) - 0.8, 0.8, 2.0)
+
+
+@pytest.mark.parametrize("rotate_deg, origin", [
+    (0.0, (0.0, 0.0)), (30.0, (0.0, 0.0)), (77.0, (0.0, 0.0)),
+    (0.0, (100.0, -50.0)), (-123.0, (1e3, 1e3)), (200.0, (-3.0, 7.0)),
+])
+def test_limit_position_within_rounding_is_singular(rotate_deg, origin):
+    """The step at the limit angle is never ``unassemblable``: missed outward
+    it is the tangency, ``singular`` (condition number infinite); missed
+    inward by an ulp the half-chord is ~sqrt(eps) and the spec's condition
+    number ~1e8 < 1e10 makes it ``ok``, its condition number reported.
+    Either way its position is the tangent one (C on the line BD at l2 from
+    B, to the double root's 4 sqrt(eps) x size).  The steps before it are
+    ok, the steps after it unassemblable (|BD| > l2 + l3 by far more than
+    rounding)."""
+    d, _ = scenes.fourbar(*L_LIMIT, start_deg=0, stop_deg=120, steps=121, speed=W1,
+                          acceleration=A1, assembly_deg=10.0, rotate_deg=rotate_deg,
+                          origin=origin)
+    scene, res = scenes.run(d)
+    i = 60
+    assert res.status[i] in ("singular", "ok"), f"limit step: {res.status[i]} ({res.messages[i]})"
+    assert res.condition[i] > 1e6, "the screen must flag the limit step"
+    _check_ok_finite(res, range(i))
+    _check_unassemblable(res, range(i + 1, 121))
+    B, C = res.joints["B"].position[i], res.joints["C"].position[i]
+    D = np.array(d["joints"][3]["at"])
+    expect = B + L_LIMIT[1] * (D - B) / np.linalg.norm(D - B)
+    size = scene.characteristic_length()
+    assert np.linalg.norm(C - expect) <= 4 * math.sqrt(EPS) * size
+    _assert_json_clean(res)
+
+
+def test_tangency_tolerance_is_rounding_only():
+    """circle_circle: centres one ulp beyond the reach give the tangent point;
+    1e-12 relative beyond it (far above rounding) give NaN."""
+    from linkage_sym.numeric.loci import circle_circle
+
+    r1, r2 = 0.1, 0.2
+    reach = r1 + r2
+    Yx, Yy, h, _ = circle_circle((0.0, 0.0), r1, (np.nextafter(reach, 1.0), 0.0), r2, 1.0)
+    assert float(h) == 0.0 and float(Yx) == pytest.approx(r1, rel=1e-15) and float(Yy) == 0.0
+    Yx, Yy, h, _ = circle_circle((0.0, 0.0), r1, (reach * (1 + 1e-12), 0.0), r2, 1.0)
+    assert np.isnan(h) and np.isnan(Yx)
 
 
 # ---------------------------------------------------------------------------

@@ -176,3 +176,18 @@ def test_breaking_eq14_unbalances_the_force():
     f = p["force"]
     assert f.min() >= 1e-3 * p["peak_force_ref"]  # clearly non-zero (2.1e-3; balanced: 5e-15)
     assert np.abs(f - p["expected"]).max() <= REL * p["peak_force_ref"]  # = m1 |dp1| omega^2
+
+
+def test_sweep_through_the_change_point():
+    """Design 1 over 1..359 deg from one assembly: the step on 180 deg (DCEF flat, |CF| =
+    a4 + a5 missed by rounding) is singular, not unassemblable; every other step is ok, and
+    after 180 deg the solver keeps the determinant sign, so ABCD goes on as the
+    anti-parallelogram (C off the parallelogram by millimetres) while DCEF stays one."""
+    t = sd.through_change_point("1", 359)
+    theta, status = t["theta"], t["status"]
+    flat = np.flatnonzero(theta == 180.0)
+    assert list(np.flatnonzero(status != "ok")) == list(flat)
+    assert status[flat[0]] == "singular"
+    after = theta > 181
+    assert np.min(t["off_ABCD"][after]) > 1e-4
+    assert np.max(t["off_DCEF"][after]) < 1e-12

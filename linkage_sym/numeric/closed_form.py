@@ -22,7 +22,16 @@ import numpy as np
 
 from linkage_sym.errors import SceneError
 from linkage_sym.model import Scene
-from linkage_sym.numeric.loci import Circle, Line, circle_circle, circle_line, line_line, solve2
+from linkage_sym.numeric.loci import (
+    Circle,
+    Line,
+    clamp_tangent,
+    coordinate_size,
+    circle_circle,
+    circle_line,
+    line_line,
+    solve2,
+)
 from linkage_sym.structure import Group
 
 ASSEMBLY_TOL = 1e-12
@@ -243,8 +252,9 @@ class DyadSolver:
         h = self.h
         with np.errstate(invalid="ignore", divide="ignore"):
             dd = np.sqrt(D2)
-            prod = (dd - h) * (dd + h)
-            w = np.sqrt(np.where(prod >= 0.0, prod, np.nan))
+            f1, f2 = dd - h, dd + h
+            prod = clamp_tangent(f1 * f2, (f1, f2), lambda: coordinate_size(h, *E0, *E1))
+            w = np.sqrt(prod)
             # unit normal n of the slide with n.D = h, on the branch sigma = sign(cross(D, n))
             nx = (h * Dx - self.sigma * w * Dy) / D2
             ny = (h * Dy + self.sigma * w * Dx) / D2

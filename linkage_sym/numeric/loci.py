@@ -15,6 +15,46 @@ import math
 
 import numpy as np
 
+TANGENT_ULPS = 8.0
+"""A locus miss within this many units of rounding of the coordinates is a tangency.
+
+Positions, lengths and centres carry rounding errors of a few ulps of the
+largest coordinate involved, so a distance that should equal a sum or a
+difference of radii exactly (a flat parallelogram, a toggle position) can
+come out a few ulps outside the reach.  Such a step is a tangency (half-chord
+0): assemblable and singular, found by the singularity screen, instead of
+being reported unassemblable.
+"""
+_EPS = float(np.finfo(float).eps)
+
+
+def clamp_tangent(prod, factors, scale):
+    """``prod`` (a product of ``factors``) with rounding-level misses set to 0, real misses to NaN.
+
+    ``scale()`` gives the size of the coordinates the factors were computed
+    from (called only when needed); a factor above
+    ``-TANGENT_ULPS * eps * scale`` counts as zero.  Only the (rare) negative
+    entries are examined.
+    """
+    prod = np.asarray(prod, dtype=float)
+    neg = prod < 0.0
+    if not neg.any():
+        return prod
+    prod = prod.copy()
+    scale = scale()
+    tol = TANGENT_ULPS * _EPS * np.broadcast_to(scale, prod.shape)[neg]
+    worst = np.min([np.broadcast_to(f, prod.shape)[neg] for f in factors], axis=0)
+    prod[neg] = np.where(worst >= -tol, 0.0, np.nan)
+    return prod
+
+
+def coordinate_size(*values):
+    """Largest magnitude among scalars/arrays (elementwise), for rounding tolerances."""
+    out = 0.0
+    for v in values:
+        out = np.maximum(out, np.abs(v))
+    return out
+
 
 class Circle:
     """Points at distance ``r`` from the point ``C`` (local) of link ``link``."""
@@ -96,8 +136,13 @@ def circle_circle(C1, r1, C2, r2, sigma):
     d = np.hypot(ex, ey)
     # Heron form of the half-chord: no cancellation near tangency
     with np.errstate(invalid="ignore", divide="ignore"):
-        prod = (r1 + r2 - d) * (d + r1 - r2) * (d - r1 + r2) * (r1 + r2 + d)
-        h = np.sqrt(np.where(prod >= 0.0, prod, np.nan)) / (2.0 * d)
+        f1, f2, f3 = r1 + r2 - d, d + r1 - r2, d - r1 + r2
+        prod = clamp_tangent(
+            f1 * f2 * f3 * (r1 + r2 + d),
+            (f1, f2, f3),
+            lambda: coordinate_size(r1, r2, C1[0], C1[1], C2[0], C2[1]),
+        )
+        h = np.sqrt(prod) / (2.0 * d)
         a = (d * d + r1 * r1 - r2 * r2) / (2.0 * d)
         ex, ey = ex / d, ey / d
     Yx = C1[0] + a * ex - sigma * h * ey
@@ -119,8 +164,9 @@ def circle_line(C, r, Qx, Qy, ux, uy, sigma):
     nx, ny = -uy, ux
     delta = nx * (C[0] - Qx) + ny * (C[1] - Qy)
     with np.errstate(invalid="ignore"):
-        prod = (r - delta) * (r + delta)
-        h = np.sqrt(np.where(prod >= 0.0, prod, np.nan))
+        f1, f2 = r - delta, r + delta
+        prod = clamp_tangent(f1 * f2, (f1, f2), lambda: coordinate_size(r, C[0], C[1], Qx, Qy))
+        h = np.sqrt(prod)
     Fx, Fy = C[0] - delta * nx, C[1] - delta * ny
     return Fx + sigma * h * ux, Fy + sigma * h * uy, h
 
