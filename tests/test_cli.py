@@ -94,6 +94,16 @@ def test_malformed_json_exits_2(tmp_path):
     assert not out.exists()
 
 
+def test_repeated_key_exits_2(tmp_path):
+    scene = tmp_path / "bad.json"
+    scene.write_text(example_path("crank_rocker").read_text().replace(
+        '"name":', '"name": "x", "name":', 1))
+    out = tmp_path / "r.json"
+    p = run("analyze", str(scene), "-o", str(out))
+    assert p.returncode == 2 and "name: given more than once" in p.stderr
+    assert not out.exists()
+
+
 def test_structure_command(capsys):
     assert main(["structure", str(example_path("crank_rocker"))]) == 0
     text = capsys.readouterr().out

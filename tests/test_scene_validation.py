@@ -207,6 +207,23 @@ def test_json_syntax_error_reports_the_exact_position(tmp_path):
     assert info.value.problems == [f"{path}: line 3, column 13: invalid JSON: Expecting value"]
 
 
+def test_repeated_keys_are_refused_with_their_fields(tmp_path):
+    """json.loads keeps the last of repeated keys; a scene file must not mean that silently.
+    Every repeated key is reported, by its field path."""
+    text = json.dumps(CRANK_ROCKER, indent=2)
+    text = text.replace('"name": "crank-rocker",', '"name": "crank-rocker",\n  "name": "other",', 1)
+    text = text.replace('"type": "R",', '"type": "R", "type": "P",', 2)
+    path = tmp_path / "twice.json"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(SceneError) as info:
+        load_scene(path)
+    assert info.value.problems == [
+        f"{path}: name: given more than once",
+        f"{path}: joints[0].type: given more than once",
+        f"{path}: joints[1].type: given more than once",
+    ]
+
+
 def test_missing_file(tmp_path):
     path = tmp_path / "nowhere.json"
     with pytest.raises(SceneError) as info:

@@ -81,9 +81,44 @@ def _read_json(path: str) -> Any:
     except UnicodeDecodeError as err:
         raise SceneError([f"{path}: not UTF-8 text (byte {err.start})"]) from err
     try:
-        return json.loads(text)
+        value = json.loads(text, object_pairs_hook=_JSONObject.from_pairs)
     except json.JSONDecodeError as err:
         raise SceneError([f"{path}: line {err.lineno}, column {err.colno}: invalid JSON: {err.msg}"]) from err
+    repeated = list(_repeated_keys(value, ""))
+    if repeated:
+        # json.loads keeps the last of repeated keys silently; a scene must not
+        raise SceneError([f"{path}: {field}: given more than once" for field in repeated])
+    return value
+
+
+class _JSONObject(dict):
+    """A JSON object that remembers the keys its text gave more than once."""
+
+    repeated: tuple = ()
+
+    @classmethod
+    def from_pairs(cls, pairs):
+        obj = cls()
+        repeated = []
+        for key, val in pairs:
+            if key in obj and key not in repeated:
+                repeated.append(key)
+            obj[key] = val
+        if repeated:
+            obj.repeated = tuple(repeated)
+        return obj
+
+
+def _repeated_keys(value, where):
+    """Field paths (``joints[3].at``) of every key given more than once, in file order."""
+    if isinstance(value, dict):
+        for key in getattr(value, "repeated", ()):
+            yield f"{where}.{key}" if where else key
+        for key, val in value.items():
+            yield from _repeated_keys(val, f"{where}.{key}" if where else key)
+    elif isinstance(value, list):
+        for i, val in enumerate(value):
+            yield from _repeated_keys(val, f"{where}[{i}]")
 
 
 def dump_scene(scene: Scene) -> dict[str, Any]:
