@@ -299,6 +299,23 @@ def test_limit_position_within_rounding_is_singular(rotate_deg, origin):
     _assert_json_clean(res)
 
 
+def test_ill_conditioned_ok_step_is_warned():
+    """An ok step near the limit (condition ~4e8, measured by SVD: a rounding-level
+    tangency missed inward) is named in ``warnings``, in the JSON too, with the
+    digits it loses; a sweep that stays away from the limit has no warning."""
+    d, _ = scenes.fourbar(*L_LIMIT, start_deg=0, stop_deg=120, steps=121, speed=W1,
+                          acceleration=A1, assembly_deg=10.0)
+    scene, res = scenes.run(d)
+    assert res.status[60] == "ok" and res.condition[60] > 1e8  # this placement misses inward
+    assert len(res.warnings) == 1
+    w = res.warnings[0]
+    assert "1 ok step(s)" in w and "step 60" in w and "fewer significant digits" in w
+    assert res.to_dict()["warnings"] == res.warnings
+    d, _ = scenes.fourbar(*L_LIMIT, start_deg=0, stop_deg=50, steps=51, speed=W1,
+                          acceleration=A1, assembly_deg=10.0)
+    assert scenes.run(d)[1].warnings == []
+
+
 def test_tangency_tolerance_is_rounding_only():
     """circle_circle: centres one ulp beyond the reach give the tangent point;
     1e-12 relative beyond it (far above rounding) give NaN."""

@@ -218,3 +218,18 @@ def test_exactly_singular_step_keeps_positions():
         V = np.nanmax(np.abs(num.joints[jn].velocity[others])) + 1.0
         np.testing.assert_allclose(sym.joints[jn].velocity[others],
                                    num.joints[jn].velocity[others], rtol=0, atol=1e-10 * V)
+
+
+def test_generated_run_warns_like_the_numeric_one():
+    """A triple rocker whose step 60 sits a rounding-level miss inside its limit position
+    (condition ~1e8, see test_kinematics_hard_cases.L_LIMIT): the generated code's run
+    names that step in its warnings, as the numeric plan does; the condition numbers
+    themselves differ (each method's own rounding of a near-double root)."""
+    lengths = (1.0, math.sqrt(3.0) - 0.8, 0.8, 2.0)
+    d, _ = scenes.fourbar(*lengths, start_deg=0, stop_deg=120, steps=121, speed=10.0,
+                          acceleration=3.0, assembly_deg=10.0)
+    sym = compile_mechanism(load_scene(d)).run()
+    num = linkage_sym.analyze(load_scene(d))
+    for res in (sym, num):
+        assert res.status[60] == "ok"
+        assert len(res.warnings) == 1 and "step 60" in res.warnings[0], res.warnings

@@ -35,7 +35,7 @@ from linkage_sym.numeric.result import (
     JointKinematics,
     LinkKinematics,
 )
-from linkage_sym.numeric.plan import SINGULAR_COND, scene_sweep, solving_path
+from linkage_sym.numeric.plan import SINGULAR_COND, run_warnings, scene_sweep, solving_path
 from linkage_sym.structure.parameters import driver_q0, evaluate, ident, link_frames
 
 SCREEN = 1e-3
@@ -566,7 +566,7 @@ class CompiledMechanism:
             k: {"q": np.asarray(q[k], float), "qd": np.asarray(qd[k], float), "qdd": np.asarray(qdd[k], float)}
             for k in art["q"]
         }
-        return Analysis(
+        res = Analysis(
             scene=scene.name,
             stages=stages,
             status=status,
@@ -579,6 +579,8 @@ class CompiledMechanism:
             forces=forces,
             p_joints=tuple(j.name for j in scene.joints if j.type == "P"),
         )
+        res.warnings.extend(run_warnings(res))
+        return res
 
 
 def load_compiled(scene: Scene) -> CompiledMechanism | None:

@@ -38,6 +38,7 @@ from linkage_sym.numeric.result import (
     LinkKinematics,
 )
 from linkage_sym.numeric.state import LinkState
+from linkage_sym.numeric.superposition import AMPLIFICATION_LIMIT
 from linkage_sym.structure import Decomposition, decompose
 from linkage_sym.structure.parameters import driver_q0
 
@@ -45,6 +46,8 @@ SINGULAR_COND = 1e10
 """Spec: a step is singular when the dimensionless condition number exceeds this."""
 SCREEN = 1e-3
 """A group indicator below this triggers the exact condition number at that step."""
+WARN_COND = 1e6
+"""An ``ok`` step whose computed condition number exceeds this is named in ``Analysis.warnings``."""
 MAX_ANGLE_STEP = math.radians(2.0)
 """Largest driver increment (R drivers) between two points of the solving path."""
 MAX_SLIDE_STEP = 0.02
@@ -360,7 +363,9 @@ class Plan:
         forces = None
         if self.force_plan is not None:
             forces = self.force_plan.run(S, status == OK, method)
-        return self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
+        res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
+        res.warnings.extend(run_warnings(res))
+        return res
 
     def condition_numbers(self, S, idx) -> np.ndarray:
         """Exact dimensionless condition number of the full constraint Jacobian at steps ``idx``."""
@@ -456,6 +461,49 @@ class Plan:
             forces=forces,
             p_joints=tuple(j.name for j in self.scene.joints if j.type == "P"),
         )
+
+
+def _steps_text(idx) -> str:
+    idx = [int(i) for i in idx]
+    return ", ".join(map(str, idx[:5])) + (f" and {len(idx) - 5} more" if len(idx) > 5 else "")
+
+
+def run_warnings(res: Analysis) -> list[str]:
+    """What a caller must know that no step's status says: ``ok`` steps that lose digits.
+
+    * ``ok`` steps whose computed condition number exceeds :data:`WARN_COND`
+      (near a dead centre or a limit position): rates there carry about
+      ``log10(cond)`` fewer significant digits than positions.
+    * Groups whose force superposition still cancels beyond
+      ``AMPLIFICATION_LIMIT`` with the best disconnection available.
+    """
+    out = []
+    ok = res.status == OK
+    with np.errstate(invalid="ignore"):
+        ill = np.flatnonzero(ok & (res.condition > WARN_COND))
+    if len(ill):
+        worst = int(ill[np.argmax(res.condition[ill])])
+        out.append(
+            f"{len(ill)} ok step(s) have a condition number above {WARN_COND:.0e} (steps "
+            f"{_steps_text(ill)}; largest {res.condition[worst]:.3g} at step {worst}): their "
+            f"velocities and accelerations carry about {np.log10(res.condition[worst]):.0f} "
+            "fewer significant digits than their positions"
+        )
+    if res.forces is not None:
+        for g in res.forces.groups:
+            if g.amplification is None:
+                continue
+            with np.errstate(invalid="ignore"):
+                bad = np.flatnonzero(ok & (g.amplification > AMPLIFICATION_LIMIT))
+            if len(bad):
+                worst = int(bad[np.argmax(g.amplification[bad])])
+                out.append(
+                    f"group ({', '.join(g.links)}): the superposition cancels at {len(bad)} "
+                    f"step(s) (steps {_steps_text(bad)}; amplification up to "
+                    f"{g.amplification[worst]:.3g} at step {worst}) with every disconnection: "
+                    f"its reactions lose about {np.log10(g.amplification[worst]):.0f} digits there"
+                )
+    return out
 
 
 def compile_plan(scene: Scene, disconnection=None) -> Plan:

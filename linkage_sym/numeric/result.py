@@ -177,7 +177,10 @@ class Analysis:
     outputs : tuple of str
         The outputs the scene asked for.
     warnings : list of str
-        Things the caller must know (e.g. an output not computed).
+        What no step's status says (see ``linkage_sym.numeric.plan.run_warnings``):
+        ``ok`` steps whose computed condition number exceeds 1e6, and force
+        superpositions that cancel with every disconnection.  Written to the
+        JSON as ``warnings`` and printed by the command line.
     forces : Forces or None
         Reactions, efforts and frame loads when the ``forces`` stage ran.
     p_joints : tuple of str
