@@ -266,6 +266,8 @@ def test_fourbar_matches_complex_vector_solution(case):
     d, pl = scenes.fourbar(*l, start_deg=case["start"], stop_deg=case["stop"], steps=181,
                            speed=case["speed"], acceleration=case["acc"], sigma=sigma,
                            rotate_deg=pl_rot, origin=case["origin"], coupler_com=cp)
+    # the same point E also as a traced point (the format's ``points`` extension)
+    d["points"] = [{"name": "E", "link": "coupler", "at": d["links"][1]["com"]}]
     scene, res = scenes.run(d)
     assert np.all(res.status == "ok"), set(res.status)
     _check_driver(res, d)
@@ -308,6 +310,8 @@ def test_fourbar_matches_complex_vector_solution(case):
     for name, got_p, got_v, got_a in (
         ("point()", cl.point(E_at), cl.point_velocity(E_at), cl.point_acceleration(E_at)),
         ("com", cl.com, cl.com_velocity, cl.com_acceleration),
+        ("traced point", res.points["E"].position, res.points["E"].velocity,
+         res.points["E"].acceleration),
     ):
         scenes.assert_close(got_p, pl.point(E), RTOL, f"coupler {name} (eq. 3-18)", scale=size)
         scenes.assert_close(got_v, pl.vector(vE), RTOL, f"coupler {name} velocity (eq. 3-18')")

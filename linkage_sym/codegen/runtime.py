@@ -566,6 +566,17 @@ class CompiledMechanism:
             k: {"q": np.asarray(q[k], float), "qd": np.asarray(qd[k], float), "qdd": np.asarray(qdd[k], float)}
             for k in art["q"]
         }
+        # traced points (the format's ``points`` extension): rigid with their link, from its
+        # rotation and origin motion (not part of the generated code)
+        points = {}
+        for pt in scene.points:
+            lk = links[pt.link]
+            pk = JointKinematics(position=lk.point(pt.at))
+            if 1 in levels:
+                pk.velocity = lk.point_velocity(pt.at)
+            if 2 in levels:
+                pk.acceleration = lk.point_acceleration(pt.at)
+            points[pt.name] = pk
         res = Analysis(
             scene=scene.name,
             stages=stages,
@@ -578,6 +589,7 @@ class CompiledMechanism:
             outputs=tuple(scene.outputs),
             forces=forces,
             p_joints=tuple(j.name for j in scene.joints if j.type == "P"),
+            points=points,
         )
         res.warnings.extend(run_warnings(res))
         return res

@@ -10,6 +10,8 @@ from linkage_sym.model.scene import (
     Link,
     Load,
     Scene,
+    TracedPoint,
 )
 
-__all__ = ["GROUND", "OUTPUTS", "STAGES", "Driver", "Effects", "Joint", "Link", "Load", "Scene"]
+__all__ = ["GROUND", "OUTPUTS", "STAGES", "Driver", "Effects", "Joint", "Link", "Load", "Scene",
+           "TracedPoint"]

@@ -92,6 +92,20 @@ class Load:
 
 
 @dataclass(frozen=True)
+class TracedPoint:
+    """A named point fixed on a moving link, whose motion the result reports.
+
+    An extension of the scene format (``points``): a coupler point, a tool
+    tip, any point of interest.  ``at`` is its position in the assembly
+    configuration (so its local coordinates on ``link``).
+    """
+
+    name: str
+    link: str
+    at: Point
+
+
+@dataclass(frozen=True)
 class Effects:
     """Which physical effects a scene asks to simulate."""
 
@@ -111,6 +125,7 @@ class Scene:
     loads: tuple[Load, ...] = ()
     effects: Effects = field(default_factory=Effects)
     outputs: tuple[str, ...] = OUTPUTS
+    points: tuple[TracedPoint, ...] = ()
 
     @property
     def link_names(self) -> tuple[str, ...]:

@@ -157,8 +157,9 @@ class _Layout:
     position (or without rates) are set to NaN in two operations.
 
     ``rows`` maps ``(link, field)`` for ``rotation, origin, com, w, vx, al,
-    ax, com_velocity, com_acceleration`` and ``(joint, field)`` for
-    ``position, velocity, acceleration`` to the first row (``vx``/``ax``
+    ax, com_velocity, com_acceleration``, ``(joint, field)`` and
+    ``("point", name, field)`` for ``position, velocity, acceleration`` to
+    the first row (``vx``/``ax``
     start the pairs ``vx, vy`` / ``ax, ay``).
     """
 
@@ -178,6 +179,8 @@ class _Layout:
                 put((link.name, "com"), 2)
         for j in scene.joints:
             put((j.name, "position"), 2)
+        for pt in scene.points:
+            put(("point", pt.name, "position"), 2)
         self.n_pos = i
         for stage, (rot, lin, name) in (
             ("velocity", ("w", "vx", "velocity")),
@@ -192,6 +195,8 @@ class _Layout:
                     put((link.name, f"com_{name}"), 2)
             for j in scene.joints:
                 put((j.name, name), 2)
+            for pt in scene.points:
+                put(("point", pt.name, name), 2)
         self.rows = rows
         self.n_rows = i
 
@@ -427,8 +432,23 @@ class Plan:
                 st.point_velocity_into(j.at, out[0], out[1])
                 jk.velocity = out.T
             joints[j.name] = jk
+        points = {}
+        for pt in self.scene.points:
+            st = S[pt.link]
+            out = pair(("point", pt.name, "position"))
+            st.point_into(pt.at, out[0], out[1])
+            pk = JointKinematics(position=out.T)
+            if has_v:
+                out = pair(("point", pt.name, "velocity"))
+                st.point_velocity_into(pt.at, out[0], out[1])
+                pk.velocity = out.T
+            points[pt.name] = pk
         if has_a:
             w2 = {n: np.multiply(st.w, st.w) for n, st in S.items()}
+            for pt in self.scene.points:
+                out = pair(("point", pt.name, "acceleration"))
+                S[pt.link].point_acceleration_into(pt.at, out[0], out[1], w2[pt.link], tmp)
+                points[pt.name].acceleration = out.T
             for link in self.scene.links:
                 if link.com is not None:
                     n = link.name
@@ -460,6 +480,7 @@ class Plan:
             outputs=tuple(self.scene.outputs),
             forces=forces,
             p_joints=tuple(j.name for j in self.scene.joints if j.type == "P"),
+            points=points,
         )
 
 

@@ -185,6 +185,9 @@ class Analysis:
         Reactions, efforts and frame loads when the ``forces`` stage ran.
     p_joints : tuple of str
         Names of the prismatic joints (their reactions carry a moment).
+    points : dict
+        :class:`JointKinematics` of the scene's traced points (its
+        ``points``, an extension of the format), by name.
     """
 
     scene: str
@@ -199,6 +202,7 @@ class Analysis:
     warnings: list = field(default_factory=list)
     forces: Forces | None = None
     p_joints: tuple[str, ...] = ()
+    points: dict = field(default_factory=dict)
 
     @property
     def ok(self) -> np.ndarray:
@@ -252,6 +256,16 @@ class Analysis:
                     links[name] = rec
                 step["joints"] = joints
                 step["links"] = links
+                if self.points:
+                    pts = {}
+                    for name, pk in self.points.items():
+                        rec = {"position": _vec(pk.position[i])}
+                        if rates and has_vel:
+                            rec["velocity"] = _vec(pk.velocity[i])
+                        if rates and has_acc:
+                            rec["acceleration"] = _vec(pk.acceleration[i])
+                        pts[name] = rec
+                    step["points"] = pts
             if forces is not None and rates:
                 if "reactions" in self.outputs:
                     joints = step.setdefault("joints", {})

@@ -47,8 +47,9 @@ def _hull(points) -> list:
 def link_points(scene: Scene) -> dict:
     """Assembly positions of the points that outline each moving link.
 
-    A link's points are those of its ``R`` joints and of the ``P`` joints whose
-    reference point is fixed on it (``links[1]``).  The guide of a ``P`` joint
+    A link's points are those of its ``R`` joints, of the ``P`` joints whose
+    reference point is fixed on it (``links[1]``) and of the traced points
+    (``points``) on it.  The guide of a ``P`` joint
     (``links[0]``) also gets the reference point when it has fewer than two
     other points, so that it is drawn as a bar.
 
@@ -71,6 +72,9 @@ def link_points(scene: Scene) -> dict:
     for link, at in guides:
         if len(pts[link]) < 2 and tuple(at) not in pts[link]:
             pts[link].append(tuple(at))
+    for pt in scene.points:  # a traced point is part of its link's body
+        if pt.link in pts and tuple(pt.at) not in pts[pt.link]:
+            pts[pt.link].append(tuple(pt.at))
     return pts
 
 
@@ -332,11 +336,12 @@ def snapshot_steps(analysis: Analysis, count: int = 4) -> list:
 
 
 def coupler_curves(scene: Scene, analysis: Analysis, out_file) -> Path:
-    """Write the paths of the joints and centres of mass over the sweep as a PNG.
+    """Write the paths of the joints, traced points and centres of mass over the sweep as a PNG.
 
     The figure shows, with an equal aspect ratio, the path of every moving
     joint point (the point fixed on the joint's ``links[1]``; a point on the
-    ground has none), dashed the path of every link's centre of mass, the
+    ground has none), bold the coupler curve of every traced point of the
+    scene (``points``), dashed the path of every link's centre of mass, the
     mechanism in its assembly configuration with the joints' names, and faded
     the mechanism at four steps spread over the sweep.  Steps without a
     solution break the paths.
@@ -392,6 +397,19 @@ def coupler_curves(scene: Scene, analysis: Analysis, out_file) -> Path:
         per_color[col] = k + 1
         ax.plot(pos[:, 0] * scale, pos[:, 1] * scale, color=col, lw=1.6,
                 ls=styles[k % len(styles)], zorder=4, label=f"path of {', '.join(names)}")
+    points = getattr(analysis, "points", {}) or {}
+    for k, pt in enumerate(scene.points):
+        pk = points.get(pt.name)
+        if pk is None:
+            continue
+        pos = np.asarray(pk.position, dtype=float)
+        col = lcolors.get(pt.link)
+        ax.plot(pos[:, 0] * scale, pos[:, 1] * scale, color=col, lw=2.4,
+                ls=styles[k % len(styles)], zorder=5, label=f"point {pt.name} (on {pt.link})")
+        ax.plot([pt.at[0] * scale], [pt.at[1] * scale], marker="o", ms=6, mfc="white",
+                mec=col, mew=1.6, zorder=6, ls="none")
+        ax.annotate(pt.name, (pt.at[0] * scale, pt.at[1] * scale), textcoords="offset points",
+                    xytext=(6, 4), fontsize=10, fontweight="bold", color="0.1", zorder=6)
     for link in scene.links:
         lk = analysis.links.get(link.name)
         if lk is None or lk.com is None:
@@ -409,7 +427,7 @@ def coupler_curves(scene: Scene, analysis: Analysis, out_file) -> Path:
     ax.autoscale_view()
     ax.margins(0.08)
     where = ", ".join(str(s) for s in snaps)
-    ax.set_title(f"{scene.name}: joint and centre-of-mass paths\n"
+    ax.set_title(f"{scene.name}: {'coupler curves, ' if scene.points else ''}joint and centre-of-mass paths\n"
                  f"bold: assembly configuration; faded: steps {where}" if snaps else
                  f"{scene.name}: assembly configuration (no solved step)", fontsize=11)
     if ax.get_legend_handles_labels()[0]:

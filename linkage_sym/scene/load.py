@@ -127,8 +127,9 @@ def dump_scene(scene: Scene) -> dict[str, Any]:
     Angles go back to degrees (``axis_deg``, and ``start_deg``/``stop_deg`` of
     ``R`` drivers; ``P`` drivers keep ``start``/``stop`` in metres).  Every
     default is written out, except absent optional values (``com``, a load's
-    force, gravity).  ``parse_scene(dump_scene(s)) == s`` for every scene
-    ``s`` that :func:`parse_scene` produces.
+    force, gravity) and ``points`` when there are none.
+    ``parse_scene(dump_scene(s)) == s`` for every scene ``s`` that
+    :func:`parse_scene` produces.
 
     Parameters
     ----------
@@ -149,7 +150,7 @@ def dump_scene(scene: Scene) -> dict[str, Any]:
     >>> dump_scene(scene)["joints"]
     [{'name': 'S', 'type': 'P', 'links': ['ground', 'block'], 'at': [0.0, 0.0], 'axis_deg': 90.0}]
     """
-    return {
+    out = {
         "name": scene.name,
         "links": [_dump_link(link) for link in scene.links],
         "joints": [_dump_joint(joint) for joint in scene.joints],
@@ -158,6 +159,9 @@ def dump_scene(scene: Scene) -> dict[str, Any]:
         "effects": _dump_effects(scene.effects),
         "outputs": list(scene.outputs),
     }
+    if scene.points:  # an extension of the format: written only when used
+        out["points"] = [{"name": p.name, "link": p.link, "at": list(p.at)} for p in scene.points]
+    return out
 
 
 def _dump_link(link: Link) -> dict[str, Any]:

@@ -31,17 +31,19 @@ from linkage_sym.model.scene import (
     Load,
     Point,
     Scene,
+    TracedPoint,
 )
 
 __all__ = ["parse_scene"]
 
-TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs")
+TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs", "points")
 LINK_KEYS = ("name", "mass", "com", "inertia")
 JOINT_KEYS = ("name", "type", "links", "at", "axis_deg")
 R_DRIVER_KEYS = ("toward", "start_deg", "stop_deg")
 P_DRIVER_KEYS = ("start", "stop")
 DRIVER_KEYS = ("joint", *R_DRIVER_KEYS, *P_DRIVER_KEYS, "steps", "speed", "acceleration")
 LOAD_KEYS = ("link", "force", "at", "torque")
+POINT_KEYS = ("name", "link", "at")
 EFFECTS_KEYS = ("inertia", "gravity", "loads")
 JOINT_TYPES = ("R", "P")
 
@@ -146,12 +148,13 @@ class _SceneReader:
         loads = self.read_loads(data)
         effects = self.read_effects(data)
         outputs = self.read_outputs(data)
+        points = self.read_points(data)
         if self.links_ok and self.joints_ok and self.check_connected() and self.drivers_ok:
             self.check_mobility(len(data["drivers"]))
         if self.problems:
             raise SceneError(self.problems)
         assert name is not None and effects is not None and outputs is not None
-        return Scene(name, links, joints, drivers, loads, effects, outputs)
+        return Scene(name, links, joints, drivers, loads, effects, outputs, points)
 
     def read_links(self, data: Mapping[str, Any]) -> tuple[Link, ...]:
         entries = self.array(data, "links", "")
@@ -329,6 +332,39 @@ class _SceneReader:
             if len(self.problems) == before:
                 loads.append(Load(link, force, at, torque))
         return tuple(loads)
+
+    def read_points(self, data: Mapping[str, Any]) -> tuple[TracedPoint, ...]:
+        """``points`` (an extension of the format): named points fixed on moving links."""
+        if "points" not in data:
+            return ()
+        entries = self.array(data, "points", "")
+        if entries is None:
+            return ()
+        seen: dict[str, int] = {}
+        points = []
+        for i, entry in enumerate(entries):
+            path = f"points[{i}]"
+            before = len(self.problems)
+            if not self.object(entry, path):
+                continue
+            self.keys(entry, path, POINT_KEYS)
+            name = self.name(entry, "name", path)
+            if name in seen:
+                self.add(f"{path}.name", f"duplicate point name '{name}' (first at points[{seen[name]}])")
+            elif name is not None and self.joints is not None and name in self.joints:
+                first = self.joints[name].index
+                self.add(f"{path}.name", f"'{name}' already names joints[{first}]; a point needs its own name")
+            elif name is not None:
+                seen[name] = i
+            link = self.name(entry, "link", path)
+            if link == GROUND:
+                self.add(f"{path}.link", f"a point on '{GROUND}' does not move; points trace moving links")
+            elif link is not None and self.link_index is not None and link not in self.link_index:
+                self.add(f"{path}.link", f"unknown link '{link}'{_suggest(link, self.link_index)}")
+            at = self.point(entry, "at", path)
+            if len(self.problems) == before:
+                points.append(TracedPoint(name, link, at))
+        return tuple(points)
 
     def read_effects(self, data: Mapping[str, Any]) -> Effects | None:
         if "effects" not in data:
