@@ -51,8 +51,6 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Rectangle
 
 from linkage_sym.plotting import style
-from linkage_sym.plotting.forces import _fmt, _no_data
-from linkage_sym.plotting.motion import _x_ticks
 
 __all__ = [
     "SMALL_RATIO",
@@ -205,7 +203,7 @@ def _x_axis(q: np.ndarray, driver_kind: str, known: bool = True
 
 def _at(s: _Series, k: int, driver_kind: str) -> str:
     x, _, unit, sym = _x_axis(s.q[k:k + 1], driver_kind, s.q_known)
-    return f"{sym} = {_fmt(float(x[0]))}{'°' if unit == 'deg' else ' ' + unit}".rstrip()
+    return f"{sym} = {style.fmt_number(float(x[0]))}{'°' if unit == 'deg' else ' ' + unit}".rstrip()
 
 
 def _skipped_text(series: list) -> str:
@@ -340,8 +338,8 @@ def _force_label(s: _Series, zero: bool, driver_kind: str, zoom: float | None) -
         return f"{s.label}: no solved step{_gap_note(s)}"
     peak, k = pk
     if zero:
-        return f"{s.label}: numerically zero (peak |F| = {_fmt(peak)} N){_gap_note(s)}"
-    text = f"{s.label}: peak |F| = {_fmt(peak)} N at {_at(s, k, driver_kind)}"
+        return f"{s.label}: numerically zero (peak |F| = {style.fmt_number(peak)} N){_gap_note(s)}"
+    text = f"{s.label}: peak |F| = {style.fmt_number(peak)} N at {_at(s, k, driver_kind)}"
     if zoom is not None:
         text += " (also in the zoom panel)"
     return text + _gap_note(s)
@@ -414,7 +412,7 @@ def shaking_force_polar_figure(series_list, title: str | None = None, *, driver_
     _mark_origin(ax)
     every = np.vstack([s.values for s in series])
     if not np.isfinite(every).any():
-        _no_data(ax, "no solved step in any series")
+        style.no_data_note(ax, "no solved step in any series")
     _polar_axes(ax, _square_limits(every))
 
     if zax is not None:
@@ -427,7 +425,7 @@ def shaking_force_polar_figure(series_list, title: str | None = None, *, driver_
                                ls="--", lw=1.0, ec="0.35", zorder=2))
         ax.annotate("zoom", (cx + half, cy + half), xytext=(3, 3), textcoords="offset points",
                     fontsize=8, color="0.35")
-        zax.set_title(f"zoom ×{_fmt(zoom)}: series below {SMALL_RATIO:.0%} of the largest "
+        zax.set_title(f"zoom ×{style.fmt_number(zoom)}: series below {SMALL_RATIO:.0%} of the largest "
                       "peak, own scale\n(the dashed square on the left)", fontsize=10)
 
     fig.legend(handles=handles, loc="outside lower center", ncols=1, fontsize=9, frameon=False)
@@ -477,10 +475,10 @@ def _moment_label(s: _Series, zero: bool, driver_kind: str, in_zoom: bool) -> st
     peak, k = pk
     rms = float(np.sqrt(np.mean(s.values[s.ok] ** 2)))
     if zero:
-        return (f"{s.label}: numerically zero (peak |M| = {_fmt(peak)} N·m, "
-                f"RMS {_fmt(rms)} N·m){_gap_note(s)}")
-    text = (f"{s.label}: peak |M| = {_fmt(peak)} N·m at {_at(s, k, driver_kind)}, "
-            f"RMS {_fmt(rms)} N·m")
+        return (f"{s.label}: numerically zero (peak |M| = {style.fmt_number(peak)} N·m, "
+                f"RMS {style.fmt_number(rms)} N·m){_gap_note(s)}")
+    text = (f"{s.label}: peak |M| = {style.fmt_number(peak)} N·m at {_at(s, k, driver_kind)}, "
+            f"RMS {style.fmt_number(rms)} N·m")
     if in_zoom:
         text += " (also in the zoom panel)"
     return text + _gap_note(s)
@@ -584,7 +582,7 @@ def shaking_moment_figure(series_list, title: str | None = None, *, driver_kind:
             _moment_curve(zax, x, s, z, None)
     _, xlabel, unit, _ = _x_axis(series[0].q, driver_kind, series[0].q_known)
     if not any(s.ok.any() for s in series):
-        _no_data(ax, "no solved step in any series")
+        style.no_data_note(ax, "no solved step in any series")
 
     status = _common_status(series)
     band_handles = []
@@ -598,12 +596,12 @@ def shaking_moment_figure(series_list, title: str | None = None, *, driver_kind:
         a.set_xlim(float(allx.min()), float(allx.max()))
         a.margins(x=0)
         _readable_ticks(a, "y")
-    _x_ticks(axes[-1], allx, xlabel, unit)
+    style.driver_ticks(axes[-1], allx, xlabel, unit)
     if zax is not None:
         ax.tick_params(labelbottom=True)
         zoom = _zoom_factor(series, small, largest)
         ax.set_title("all series, common scale", fontsize=10)
-        zax.set_title(f"zoom ×{_fmt(zoom)}: series below {SMALL_RATIO:.0%} of the largest "
+        zax.set_title(f"zoom ×{style.fmt_number(zoom)}: series below {SMALL_RATIO:.0%} of the largest "
                       "peak, own scale", fontsize=10)
         zax.set_ylabel("shaking moment M (N·m)\nzoomed")
         top = max(s.peak()[0] for s, m in zip(series, small) if m)

@@ -29,7 +29,7 @@ import numpy as np
 from linkage_sym.model import Scene
 from linkage_sym.numeric.result import Analysis
 from linkage_sym.plotting import style
-from linkage_sym.plotting.motion import _x_ticks, driver_axis
+from linkage_sym.plotting.motion import driver_axis
 
 _TORQUE = "N·m"
 _FORCE = "N"
@@ -78,17 +78,8 @@ def _stats(values) -> tuple[float, float, int] | None:
     return rms, float(v[k]), k
 
 
-def _fmt(value: float) -> str:
-    """A number with 3 significant digits, no exponent for ordinary magnitudes."""
-    if value == 0.0 or 1e-3 <= abs(value) < 1e5:
-        return f"{value:.3g}"
-    return f"{value:.2e}"
 
 
-def _no_data(ax, text: str) -> None:
-    ax.text(0.5, 0.5, text, ha="center", va="center", transform=ax.transAxes, color="0.3",
-            fontsize=9, zorder=10,
-            bbox={"boxstyle": "round,pad=0.3", "facecolor": "white", "edgecolor": "0.7"})
 
 
 def _bad_note(analysis: Analysis) -> str:
@@ -180,19 +171,19 @@ def driving_effort_figure(scene: Scene, analysis: Analysis):
                 label = f"{sym} at {name}{between}: no solved step"
             else:
                 rms, peak, k = st
-                label = (f"{sym} at {name}{between}\n  RMS {_fmt(rms)} {unit}, "
-                         f"peak {_fmt(peak)} {unit} at {_fmt(float(x[k]))} {xunit}")
+                label = (f"{sym} at {name}{between}\n  RMS {style.fmt_number(rms)} {unit}, "
+                         f"peak {style.fmt_number(peak)} {unit} at {style.fmt_number(float(x[k]))} {xunit}")
             ls = ("-", "--", "-.", ":")[mine.index(name) % 4]  # equal efforts stay visible
             ax.plot(x, values, color=col, lw=1.8, ls=ls, label=label)
             if st is not None:
                 ax.plot([x[st[2]]], [st[1]], marker="o", ms=6, mfc="white", mec=col,
                         mew=1.6, ls="none", zorder=3, clip_on=False)
         if not any(_finite(forces.driving[n]).size for n in mine):
-            _no_data(ax, "no driving effort: no solved step" if mine
+            style.no_data_note(ax, "no driving effort: no solved step" if mine
                      else "no driver effort in this analysis")
 
     band_handles = style.shade_bad_steps(axes, x, analysis.status, label_ax=axes[0])
-    _x_ticks(axes[-1], x, xlabel, xunit)
+    style.driver_ticks(axes[-1], x, xlabel, xunit)
     for ax in axes:
         ax.grid(True, color="0.9", lw=0.6)
         ax.set_xlim(float(np.min(x)), float(np.max(x)))
@@ -283,7 +274,7 @@ def hodograph(ax, vectors, *, color="C0", closed=False, label=None) -> float | N
     if not good.any():
         ax.set_rmax(1.0)
         ax.set_yticklabels([])
-        _no_data(ax, "no solved step")
+        style.no_data_note(ax, "no solved step")
         return None
     mag = np.hypot(v[:, 0], v[:, 1])
     ang = np.arctan2(v[:, 1], v[:, 0])
@@ -375,11 +366,11 @@ def reaction_hodographs_figure(scene: Scene, analysis: Analysis, joints=None):
             head = f"{name}: {joint.links[0]} on {joint.links[1]}{kind}"
         else:
             head = name
-        tail = f"peak |R| = {_fmt(peak)} N" if peak is not None else "no solved step"
+        tail = f"peak |R| = {style.fmt_number(peak)} N" if peak is not None else "no solved step"
         if joint is not None and joint.type == "P" and name in forces.reaction_moments:
             st = _stats(forces.reaction_moments[name])
             if st is not None:
-                tail += f", |M| ≤ {_fmt(abs(st[1]))} N·m"
+                tail += f", |M| ≤ {style.fmt_number(abs(st[1]))} N·m"
         ax.set_title(f"{head}\n{tail}", fontsize=9, pad=10)
     span = "cycle" if closed else "sweep"
     lines = [f"{scene.name}: joint reaction hodographs over the {span}",
@@ -462,7 +453,7 @@ def frame_loads_figure(scene: Scene, analysis: Analysis):
     ax = fig.add_subplot(gs[0, 1])
 
     peak = hodograph(polar, forces.frame_force, color=style.PALETTE[0], closed=closed)
-    tail = f"peak |F| = {_fmt(peak)} N" if peak is not None else "no solved step"
+    tail = f"peak |F| = {style.fmt_number(peak)} N" if peak is not None else "no solved step"
     polar.set_title(f"{fword} on the ground (N)\n{tail}", fontsize=10)
     polar.legend(handles=_legend_handles(style.PALETTE[0]), loc="upper center",
                  bbox_to_anchor=(0.5, -0.08), ncols=2, fontsize=8, frameon=False)
@@ -473,18 +464,18 @@ def frame_loads_figure(scene: Scene, analysis: Analysis):
         label = f"{mword}: no solved step"
     else:
         rms, pk, k = st
-        label = (f"{mword}\n  RMS {_fmt(rms)} N·m, peak {_fmt(pk)} N·m "
-                 f"at {_fmt(float(x[k]))} {xunit}")
+        label = (f"{mword}\n  RMS {style.fmt_number(rms)} N·m, peak {style.fmt_number(pk)} N·m "
+                 f"at {style.fmt_number(float(x[k]))} {xunit}")
     ax.plot(x, moment, color=style.PALETTE[1], lw=1.8, label=label)
     if st is not None:
         ax.plot([x[st[2]]], [st[1]], marker="o", ms=6, mfc="white", mec=style.PALETTE[1],
                 mew=1.6, ls="none", zorder=3, clip_on=False)
     else:
-        _no_data(ax, f"no {mword}: no solved step")
+        style.no_data_note(ax, f"no {mword}: no solved step")
     ax.axhline(0.0, color="0.45", lw=0.8, zorder=0.5)
     ax.set_ylabel(f"{mword} M about the global origin (N·m)")
     band_handles = style.shade_bad_steps([ax], x, analysis.status, label_ax=ax)
-    _x_ticks(ax, x, xlabel, xunit)
+    style.driver_ticks(ax, x, xlabel, xunit)
     ax.grid(True, color="0.9", lw=0.6)
     ax.set_xlim(float(np.min(x)), float(np.max(x)))
     ax.margins(x=0)

@@ -253,7 +253,7 @@ def motion_figure(scene: Scene, analysis: Analysis, quantity: str):
                      va="center", transform=axes[0].transAxes, color="0.4")
 
     band_handles = style.shade_bad_steps(axes, x, analysis.status, label_ax=axes[0])
-    _x_ticks(axes[-1], x, xlabel, xunit)
+    style.driver_ticks(axes[-1], x, xlabel, xunit)
     for ax in axes:
         ax.grid(True, color="0.9", lw=0.6)
         ax.set_xlim(float(np.min(x)), float(np.max(x)))
@@ -272,16 +272,6 @@ def motion_figure(scene: Scene, analysis: Analysis, quantity: str):
     return fig
 
 
-def _x_ticks(ax, x, xlabel, unit):
-    from matplotlib.ticker import MultipleLocator
-
-    ax.set_xlabel(xlabel)
-    if unit == "deg":
-        span = float(np.max(x) - np.min(x))
-        for step in (15.0, 30.0, 45.0, 60.0, 90.0, 180.0):
-            if span / step <= 13:
-                ax.xaxis.set_major_locator(MultipleLocator(step))
-                break
 
 
 def motion_diagrams(scene: Scene, analysis: Analysis, out_dir, prefix: str | None = None) -> list:

@@ -180,3 +180,30 @@ def shade_bad_steps(axes, x, status, *, label_ax=None) -> list:
             )
         seen.setdefault(st, Patch(label=f"{st} step", **style))
     return list(seen.values())
+
+
+def fmt_number(value: float) -> str:
+    """A number with 3 significant digits, no exponent for ordinary magnitudes."""
+    if value == 0.0 or 1e-3 <= abs(value) < 1e5:
+        return f"{value:.3g}"
+    return f"{value:.2e}"
+
+
+def no_data_note(ax, text: str) -> None:
+    """A boxed note in the middle of an axes that has nothing to plot."""
+    ax.text(0.5, 0.5, text, ha="center", va="center", transform=ax.transAxes, color="0.3",
+            fontsize=9, zorder=10,
+            bbox={"boxstyle": "round,pad=0.3", "facecolor": "white", "edgecolor": "0.7"})
+
+
+def driver_ticks(ax, x, xlabel, unit):
+    """Label the driver axis; in degrees, ticks every 15..180 deg (at most 13 of them)."""
+    from matplotlib.ticker import MultipleLocator
+
+    ax.set_xlabel(xlabel)
+    if unit == "deg":
+        span = float(np.max(x) - np.min(x))
+        for step in (15.0, 30.0, 45.0, 60.0, 90.0, 180.0):
+            if span / step <= 13:
+                ax.xaxis.set_major_locator(MultipleLocator(step))
+                break
