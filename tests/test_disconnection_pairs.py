@@ -185,7 +185,7 @@ def test_one_class_iv_group_of_eight_links(scene):
     assert [(g.kind, set(g.links)) for g in dec.groups] == [
         ("input", {"crank"}), ("group", set(GROUP))]
     g = dec.groups[1]
-    assert g.assur_class == 4 and g.label == "group (class 4)"
+    assert g.assur_class == 4 and g.label == "group (class IV)"
     assert set(g.external) == {"B", "D2", "H1", "H2"}
     assert set(g.internal) == {"C1", "C2", "E1", "F1", "E2", "F2", "G1", "G2"}
 
@@ -215,8 +215,7 @@ def test_structure_command_lists_the_pair_choices(tmp_path, capsys, scene, group
     path.write_text(json.dumps(SCENE))
     assert main(["structure", str(path)]) == 0
     text = capsys.readouterr().out
-    # (the heading reads "group (class 4) (class IV): ...": the label already names the class)
-    assert "(class IV): a1, P, a2, c1, c2, Q, b1, b2;" in text
+    assert "group (class IV): a1, P, a2, c1, c2, Q, b1, b2;" in text
     lines = [ln.strip() for ln in text.splitlines() if ") remove link '" in ln]
     assert len(lines) == 20
     assert sum(ln.endswith("(default)") for ln in lines) == 1

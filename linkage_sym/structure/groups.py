@@ -69,7 +69,7 @@ class Group:
 
     @property
     def label(self) -> str:
-        """Short human-readable name, e.g. ``"dyad RRP"`` or ``"triad (class III)"``."""
+        """Short human-readable name, e.g. ``"dyad RRP"``, ``"triad (class III)"``, ``"group (class IV)"``."""
         if self.kind == "dyad":
             return f"dyad {self.dyad_type}"
         if self.kind == "triad":
@@ -78,7 +78,8 @@ class Group:
             return "input link"
         if self.kind == "driven":
             return "driven group"
-        return f"group (class {self.assur_class})"
+        roman = {4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VIII"}
+        return f"group (class {roman.get(self.assur_class, self.assur_class)})"
 
 
 @dataclass(frozen=True)

@@ -36,7 +36,7 @@ def structure_report(scene: Scene, dec: Decomposition) -> str:
     jtype = {j.name: j.type for j in scene.joints}
     for i, g in enumerate(dec.groups, 1):
         head = g.label
-        if g.assur_class is not None and g.kind != "triad":
+        if g.assur_class is not None and g.kind in ("dyad", "input", "driven"):
             head += f" (class {roman.get(g.assur_class, g.assur_class)})"
         text = f"  {i}. {head}: {', '.join(g.links)}"
         if g.drivers:
