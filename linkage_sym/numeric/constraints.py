@@ -221,7 +221,10 @@ def jacobian(constraints, S, links, n_steps, L=None) -> np.ndarray:
     With ``L`` given, rows and columns are scaled to make it dimensionless.
     """
     nrows = sum(c.rows for c in constraints)
-    J = np.zeros((n_steps, nrows, 3 * len(links)))
+    # each (row, column) entry comes from one constraint and one link (a joint joins
+    # two different links), so the entries are gathered and written in one assignment;
+    # constant zeros are skipped
+    rr, cc, vals = [], [], []
     r = 0
     for c in constraints:
         for k, name in enumerate(links):
@@ -229,8 +232,19 @@ def jacobian(constraints, S, links, n_steps, L=None) -> np.ndarray:
                 continue
             for i, row in enumerate(c.jac(S, name)):
                 for m in range(3):
-                    J[:, r + i, 3 * k + m] += row[m]
+                    v = row[m]
+                    if type(v) is float and v == 0.0:
+                        continue
+                    rr.append(r + i)
+                    cc.append(3 * k + m)
+                    vals.append(v)
         r += c.rows
+    J = np.zeros((n_steps, nrows, 3 * len(links)))
+    if vals:
+        V = np.empty((len(vals), n_steps))
+        for e, v in enumerate(vals):
+            V[e] = v
+        J[:, rr, cc] = V.T
     if L is not None:
         length_rows = np.concatenate([c.length_rows for c in constraints])
         rs = np.where(length_rows, 1.0 / L, 1.0)
