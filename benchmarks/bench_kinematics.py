@@ -22,7 +22,9 @@ Three states are measured:
 * ``fresh``: each contender alone in its own new interpreter: the first
   (cold) call and the best of the following calls, with the minor page
   faults of a warm call, and the bytes a call allocates (tracemalloc: what
-  the result keeps, and the peak).
+  the result keeps, and the peak).  Whether glibc keeps the heap depends on
+  its layout after the imports, which varies between interpreters, so each
+  contender runs in ``FRESH_RUNS`` interpreters; medians and ranges.
 * ``steady``: both contenders in one process after it has freed a large
   block (as any session that imported Matplotlib or SymPy has);
   ``MALLOC_TRIM_THRESHOLD_`` in the environment gives this state from the
@@ -65,6 +67,7 @@ import linkage_sym  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
+FRESH_RUNS = 7
 
 
 def best_time(fn, repeats=7):
@@ -204,18 +207,30 @@ def main():
     assert err < 1e-9 * np.max(np.abs(ref["rocker"][1])), err
     del res, ref
 
-    # fresh: each contender in its own new interpreter
+    # fresh: each contender in its own new interpreter, FRESH_RUNS times (alternating):
+    # whether glibc keeps the heap depends on the heap's layout after the imports, so
+    # one interpreter is one sample; medians and ranges are reported
     env = {k: v for k, v in os.environ.items() if not k.startswith("MALLOC_")}
-    fr = {}
-    for name in contenders:
-        out = subprocess.run(
-            [sys.executable, __file__, "--fresh", name],
-            capture_output=True, text=True, check=True, env=env,
-        )
-        fr[name] = json.loads(out.stdout)
-    fr["ratio"] = fr["linkage_sym"]["us_per_position"] / fr["handwritten"]["us_per_position"]
-    fr["ratio_cold"] = (
-        fr["linkage_sym"]["cold_us_per_position"] / fr["handwritten"]["cold_us_per_position"]
+    samples = {name: [] for name in contenders}
+    for _ in range(FRESH_RUNS):
+        for name in contenders:
+            out = subprocess.run(
+                [sys.executable, __file__, "--fresh", name],
+                capture_output=True, text=True, check=True, env=env,
+            )
+            samples[name].append(json.loads(out.stdout))
+    fr = {"interpreters_per_contender": FRESH_RUNS}
+    for name, runs in samples.items():
+        fr[name] = {
+            key: {"median": float(np.median([r[key] for r in runs])),
+                  "min": float(np.min([r[key] for r in runs])),
+                  "max": float(np.max([r[key] for r in runs]))}
+            for key in runs[0]
+        }
+    lib, hand = fr["linkage_sym"], fr["handwritten"]
+    fr["ratio_of_medians"] = lib["us_per_position"]["median"] / hand["us_per_position"]["median"]
+    fr["ratio_of_medians_cold"] = (
+        lib["cold_us_per_position"]["median"] / hand["cold_us_per_position"]["median"]
     )
     cases["fourbar_3600_fresh"] = fr
 

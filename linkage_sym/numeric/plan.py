@@ -159,8 +159,7 @@ class _Layout:
     ``rows`` maps ``(link, field)`` for ``rotation, origin, com, w, vx, al,
     ax, com_velocity, com_acceleration``, ``(joint, field)`` and
     ``("point", name, field)`` for ``position, velocity, acceleration`` to
-    the first row (``vx``/``ax``
-    start the pairs ``vx, vy`` / ``ax, ay``).
+    the first row (``vx``/``ax`` start the pairs ``vx, vy`` / ``ax, ay``).
     """
 
     def __init__(self, scene: Scene, stages):
