@@ -3,8 +3,10 @@
 Commands
 --------
 analyze SCENE.json -o RESULT.json [--method dyad|global|symbolic] [--disconnection K]
+        [--plots DIR]
     Solve the scene's sweep and write the result of the contract: kinematics,
-    joint reactions, driver efforts and frame loads, as the scene asks.
+    joint reactions, driver efforts and frame loads, as the scene asks; with
+    ``--plots`` also its pictures.
     ``symbolic`` evaluates the SymPy-derived, lambdified equations (compiled
     once per topology and cached) instead of the numeric dyad solver.
 derive SCENE.json [--latex] [--numeric] [-o FILE]
@@ -64,14 +66,15 @@ def cmd_analyze(args) -> int:
 
         if args.disconnection is not None:
             print("note: --disconnection ignored by the symbolic method", file=sys.stderr)
-        result = compile_mechanism(scene).run().to_dict()
+        analysis = compile_mechanism(scene).run()
     else:
         plan = compile_plan(scene, args.disconnection)
         if args.disconnection is not None and not any(
             g.kind not in ("input", "dyad") for g in plan.decomposition.groups
         ):
             print("note: --disconnection ignored: the mechanism has no complex group", file=sys.stderr)
-        result = plan.run(method=args.method).to_dict()
+        analysis = plan.run(method=args.method)
+    result = analysis.to_dict()
     for w in result.get("warnings", []):
         print(f"warning: {w}", file=sys.stderr)
     text = json.dumps(result, indent=1 if args.pretty else None)
@@ -84,6 +87,15 @@ def cmd_analyze(args) -> int:
             f"wrote {args.output}: {len(result['steps'])} steps, stages {', '.join(result['stages'])}"
             + (f", {n_bad} steps not ok (see their 'message')" if n_bad else "")
         )
+    if args.plots:
+        from linkage_sym.plotting import plot_all
+
+        written = plot_all(scene, analysis, args.plots)
+        # the JSON may be on standard output: the list of pictures goes beside it
+        to = sys.stderr if args.output in (None, "-") else sys.stdout
+        print(f"wrote {len(written)} plots into {args.plots}:", file=to)
+        for path in written:
+            print(f"  {path}", file=to)
     return 0
 
 
@@ -266,6 +278,12 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="K",
         help="seed-000 disconnection to use for complex groups (index in the list "
         "`linkage-sym structure` prints, from 0; default: the best-suited one)",
+    )
+    a.add_argument(
+        "--plots",
+        metavar="DIR",
+        help="also write the sweep's pictures into DIR (motion diagrams, paths and coupler "
+        "curves; driving effort, reaction hodographs and frame loads when forces ran)",
     )
     a.set_defaults(func=cmd_analyze)
     v = sub.add_parser("derive", help="derive the scene's equations with SymPy (text or LaTeX)")

@@ -35,6 +35,26 @@ def test_analyze_writes_the_contract(tmp_path):
     assert "warnings" not in r
 
 
+def test_analyze_plots(tmp_path, capsys):
+    """``--plots DIR`` writes the sweep's pictures; with the JSON on standard output the
+    list of pictures goes to standard error, so standard output stays one JSON document."""
+    d = example_dict("crank_rocker")
+    d["drivers"][0]["steps"] = 37
+    d["outputs"] = ["kinematics", "driving"]
+    scene = tmp_path / "s.json"
+    scene.write_text(json.dumps(d))
+    pics = tmp_path / "pics"
+    assert main(["analyze", str(scene), "--plots", str(pics)]) == 0
+    out, err = capsys.readouterr()
+    assert json.loads(out)["scene"] == "crank-rocker"
+    names = sorted(p.name for p in pics.iterdir())
+    assert names == sorted(f"crank-rocker_{k}.png" for k in
+                           ("positions", "velocities", "accelerations", "paths", "driving"))
+    for p in pics.iterdir():
+        assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", p
+        assert p.name in err
+
+
 def test_analyze_global_method_and_p_joint_moments(tmp_path):
     out_d, out_g = tmp_path / "d.json", tmp_path / "g.json"
     path = str(example_path("slider_crank_offset"))
