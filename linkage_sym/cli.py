@@ -24,6 +24,9 @@ balance SCENE.json -o BALANCE.json [--latex] [--plots DIR] [--balanced-scene FIL
     ``--plots`` writes the polar plot and the moment curve before and after
     balancing; ``--optimize`` writes the scene with counterweights that
     minimise a weighted sum of RMS shaking force, moment and driving effort.
+    A scene with prismatic joints has no module: it is refused, unless
+    ``--optimize`` is given, which then runs alone (series from the force
+    solver).
 structure SCENE.json
     Print the drivers and Assur groups in solving order, with the
     disconnection choices of class-III groups.
@@ -143,40 +146,74 @@ def cmd_derive(args) -> int:
     return 0
 
 
-def cmd_balance(args) -> int:
-    from linkage_sym.balancing.report import balance_report
+def _optimize(scene, args) -> tuple:
+    """Run ``--optimize``: the JSON section, and the optimised scene's shaking series (solver)."""
+    from linkage_sym.balancing.optimize import optimize_counterweights
+    from linkage_sym.balancing.series import solver_series
 
-    scene = _load(args.scene)
-    report, series = balance_report(scene, latex=args.latex)
-    written = []
-    if args.balanced_scene:
-        if "balanced_scene" not in report:
-            print(f"linkage-sym: {report['counterweights']['error']}", file=sys.stderr)
+    weights = tuple(float(w) for w in args.weights.split(","))
+    if len(weights) != 3:
+        raise SceneError([f"--weights: three numbers F,M,T expected, got {args.weights!r}"])
+    res = optimize_counterweights(scene, weights=weights, max_mass=args.max_mass)
+    Path(args.optimize).write_text(json.dumps(res.scene, indent=2) + "\n")
+    after = solver_series(_load_dict(res.scene), label="optimised")
+    section = {
+        "weights": list(weights), "objective_start": res.objective_start, "objective": res.objective,
+        "rms_start": res.rms_start, "rms_final": res.rms_final, "message": res.message,
+        "counterweights": [{"link": c.link, "mass": c.mass, "at": list(c.at)} for c in res.counterweights],
+    }
+    return section, after
+
+
+def _load_dict(d):
+    from linkage_sym.scene import load_scene
+
+    return load_scene(d)
+
+
+def _balance_sliding(scene, args) -> int:
+    """``balance --optimize`` for a scene with prismatic joints: no module, optimisation only."""
+    from linkage_sym.balancing.model import require_hinged
+    from linkage_sym.balancing.series import solver_series
+
+    for flag, given in (("--latex", args.latex), ("--balanced-scene", args.balanced_scene)):
+        if given:
+            print(f"linkage-sym: {flag} needs the derived balance conditions, which cover hinged "
+                  "(R-joint) linkages only; with prismatic joints only --optimize (and --plots) "
+                  "run", file=sys.stderr)
             return 2
-        Path(args.balanced_scene).write_text(json.dumps(report["balanced_scene"], indent=2) + "\n")
-        written.append(args.balanced_scene)
-    if args.optimize:
-        from linkage_sym.balancing.optimize import optimize_counterweights
+    try:
+        require_hinged(scene, "the mass/acceleration-parameter module (seed 002)")
+    except SceneError as err:
+        why = "; ".join(err.problems)
+    else:  # not reached: called for scenes with a P joint
+        raise AssertionError("_balance_sliding called for a hinged scene")
+    before = solver_series(scene, label="as given")
+    section, after = _optimize(scene, args)
+    report = {
+        "scene": scene.name,
+        "conditions_derived": False,
+        "reasons": {"conditions": why},
+        "optimized": section,
+        "series": before.to_dict(),
+        "series_optimized": after.to_dict(),
+        "series_source": "numeric force solver, inertia only (no module: prismatic joints)",
+    }
+    return _write_balance(scene, args, report, [before, after], [args.optimize])
 
-        weights = tuple(float(w) for w in args.weights.split(","))
-        if len(weights) != 3:
-            raise SceneError([f"--weights: three numbers F,M,T expected, got {args.weights!r}"])
-        res = optimize_counterweights(scene, weights=weights, max_mass=args.max_mass)
-        Path(args.optimize).write_text(json.dumps(res.scene, indent=2) + "\n")
-        report["optimized"] = {
-            "weights": list(weights), "objective_start": res.objective_start, "objective": res.objective,
-            "rms_start": res.rms_start, "rms_final": res.rms_final, "message": res.message,
-            "counterweights": [{"link": c.link, "mass": c.mass, "at": list(c.at)} for c in res.counterweights],
-        }
-        written.append(args.optimize)
+
+def _write_balance(scene, args, report, series, written) -> int:
     if args.plots:
         from linkage_sym.plotting.balance import shaking_force_polar, shaking_moment_curve
 
         out = Path(args.plots)
         out.mkdir(parents=True, exist_ok=True)
         stem = Path(args.scene).stem
-        written.append(str(shaking_force_polar(series, out / f"{stem}_shaking_force_polar.png", title=scene.name)))
-        written.append(str(shaking_moment_curve(series, out / f"{stem}_shaking_moment.png", title=scene.name)))
+        kind = scene.joint(scene.drivers[0].joint).type
+        written.append(str(shaking_force_polar(series, out / f"{stem}_shaking_force_polar.png",
+                                               title=scene.name, driver_kind=kind)))
+        written.append(str(shaking_moment_curve(series, out / f"{stem}_shaking_moment.png",
+                                                title=scene.name, driver_kind=kind)))
     text = json.dumps(report, indent=2 if args.pretty else None)
     if args.output in (None, "-"):
         sys.stdout.write(text + "\n")
@@ -186,6 +223,28 @@ def cmd_balance(args) -> int:
     for w in written:
         print(f"wrote {w}", file=sys.stderr if args.output in (None, "-") else sys.stdout)
     return 0
+
+
+def cmd_balance(args) -> int:
+    from linkage_sym.balancing.report import balance_report
+
+    scene = _load(args.scene)
+    if args.optimize and any(j.type == "P" for j in scene.joints):
+        return _balance_sliding(scene, args)
+    report, series = balance_report(scene, latex=args.latex)
+    written = []
+    if args.balanced_scene:
+        if "balanced_scene" not in report:
+            print(f"linkage-sym: {report['counterweights']['error']}", file=sys.stderr)
+            return 2
+        Path(args.balanced_scene).write_text(json.dumps(report["balanced_scene"], indent=2) + "\n")
+        written.append(args.balanced_scene)
+    if args.optimize:
+        report["optimized"], after = _optimize(scene, args)
+        report["series_optimized"] = after.to_dict()
+        series = [*series, after]
+        written.append(args.optimize)
+    return _write_balance(scene, args, report, series, written)
 
 
 def cmd_structure(args) -> int:

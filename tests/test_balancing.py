@@ -354,3 +354,43 @@ def test_cli_balance_writes_balanced_and_optimised_scenes(tmp_path):
     assert d["objective"] <= d["objective_start"]
     assert all(c["mass"] <= 0.3 for c in d["counterweights"])
     load_scene(str(opt))  # a valid scene
+
+
+def _momentum_force(scene):
+    """-sum m a_G over the moving links, from the kinematics (no force solver)."""
+    res = linkage_sym.analyze(dataclasses.replace(scene, outputs=("kinematics",)))
+    return -sum(link.mass * res.links[link.name].com_acceleration
+                for link in scene.links if link.mass > 0)
+
+
+def test_cli_balance_optimises_a_slider_crank(tmp_path):
+    """Prismatic joints: no module, so no derived conditions (the JSON says why), but
+    --optimize runs.  With the force weight only, full force balance is possible (rod and
+    crank counterweights): the optimised scene's shaking force, as -sum m a_G from its
+    kinematics, is <= 1e-9 of the original's peak; the JSON's series come from the force
+    solver and equal -sum m a_G to 1e-9 of the peak."""
+    out, opt, pics = tmp_path / "b.json", tmp_path / "opt.json", tmp_path / "pics"
+    src = linkage_sym.examples.example_path("slider_crank_offset")
+    r = subprocess.run([sys.executable, "-m", "linkage_sym", "balance", str(src), "-o", str(out),
+                        "--optimize", str(opt), "--weights", "1,0,0", "--plots", str(pics)],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    d = json.loads(out.read_text())
+    assert d["conditions_derived"] is False and "prismatic" in d["reasons"]["conditions"]
+    before = _momentum_force(load_example("slider_crank_offset"))
+    after = _momentum_force(load_scene(str(opt)))
+    assert peak(after) <= 1e-9 * peak(before)
+    got = np.array([[np.nan, np.nan] if v is None else v for v in d["series"]["shaking_force"]])
+    assert peak(got - before) <= 1e-9 * peak(before)
+    assert d["optimized"]["objective"] <= d["optimized"]["objective_start"]
+    assert sorted(p.name for p in pics.iterdir()) == [
+        "slider_crank_offset_shaking_force_polar.png", "slider_crank_offset_shaking_moment.png"]
+
+
+def test_cli_balance_refuses_latex_for_a_slider_crank(tmp_path):
+    out, opt = tmp_path / "b.json", tmp_path / "opt.json"
+    src = linkage_sym.examples.example_path("slider_crank_offset")
+    r = subprocess.run([sys.executable, "-m", "linkage_sym", "balance", str(src), "-o", str(out),
+                        "--optimize", str(opt), "--latex"], capture_output=True, text=True)
+    assert r.returncode == 2 and "--latex" in r.stderr and "hinged" in r.stderr
+    assert not out.exists() and not opt.exists()

@@ -17,6 +17,8 @@ a *condition* is an expression that must equal zero):
 ``counterweights``             counterweights satisfying the force conditions (or why none)
 ``series``                     shaking force and moment at every step, from the modules
 ``series_balanced``            the same with the counterweights
+``optimized``, ``series_optimized``  with ``--optimize`` (command line): the optimised
+                               counterweights and the force solver's series of the new scene
 ``seconds``                    derivation times
 ``latex``                      with ``--latex``: the same expressions as LaTeX
 """

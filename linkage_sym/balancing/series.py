@@ -115,6 +115,24 @@ def kinematics(scene: Scene):
     return compile_plan(kin).run()
 
 
+def solver_series(scene: Scene, label: str = "") -> BalanceSeries:
+    """Shaking force and moment at every step of ``scene``'s sweep, from the force solver.
+
+    The frame force and moment of the numeric kinetostatics with inertia as
+    the only effect (spec: then they are the shaking force and moment).  It
+    needs no module, so it serves scenes with prismatic joints too, and it is
+    the independent check of :func:`module_series`.
+    """
+    from linkage_sym.numeric.plan import compile_plan
+
+    sh = dataclasses.replace(scene, outputs=("frame",),
+                             effects=Effects(inertia=True, gravity=None, loads=False))
+    res = compile_plan(sh).run()
+    d0 = scene.drivers[0].joint
+    return BalanceSeries(label or scene.name, np.asarray(res.drivers[d0]["q"]),
+                         np.asarray(res.status), res.forces.frame_force, res.forces.frame_moment)
+
+
 def module_series(scene: Scene, sm: ShakingMoment | None = None, functions: ModuleFunctions | None = None,
                   analysis=None, label: str = "") -> BalanceSeries:
     """Shaking force and moment at every step of ``scene``'s sweep, from the modules."""
