@@ -60,6 +60,13 @@ def _load(path):
     return load_scene(path)
 
 
+def _write(path, text: str) -> None:
+    """Write a file the command was asked for, creating its folder if needed."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+
+
 def cmd_analyze(args) -> int:
     from linkage_sym.numeric.plan import compile_plan
 
@@ -84,7 +91,7 @@ def cmd_analyze(args) -> int:
     if args.output in (None, "-"):
         print(text)
     else:
-        Path(args.output).write_text(text + "\n")
+        _write(args.output, text + "\n")
         n_bad = sum(s["status"] != "ok" for s in result["steps"])
         print(
             f"wrote {args.output}: {len(result['steps'])} steps, stages {', '.join(result['stages'])}"
@@ -141,7 +148,7 @@ def cmd_derive(args) -> int:
     if args.output in (None, "-"):
         sys.stdout.write(text)
     else:
-        Path(args.output).write_text(text)
+        _write(args.output, text)
         print(f"wrote {args.output}")
     return 0
 
@@ -155,7 +162,7 @@ def _optimize(scene, args) -> tuple:
     if len(weights) != 3:
         raise SceneError([f"--weights: three numbers F,M,T expected, got {args.weights!r}"])
     res = optimize_counterweights(scene, weights=weights, max_mass=args.max_mass)
-    Path(args.optimize).write_text(json.dumps(res.scene, indent=2) + "\n")
+    _write(args.optimize, json.dumps(res.scene, indent=2) + "\n")
     after = solver_series(_load_dict(res.scene), label="optimised")
     section = {
         "weights": list(weights), "objective_start": res.objective_start, "objective": res.objective,
@@ -218,7 +225,7 @@ def _write_balance(scene, args, report, series, written) -> int:
     if args.output in (None, "-"):
         sys.stdout.write(text + "\n")
     else:
-        Path(args.output).write_text(text + "\n")
+        _write(args.output, text + "\n")
         written.insert(0, args.output)
     for w in written:
         print(f"wrote {w}", file=sys.stderr if args.output in (None, "-") else sys.stdout)
@@ -237,7 +244,7 @@ def cmd_balance(args) -> int:
         if "balanced_scene" not in report:
             print(f"linkage-sym: {report['counterweights']['error']}", file=sys.stderr)
             return 2
-        Path(args.balanced_scene).write_text(json.dumps(report["balanced_scene"], indent=2) + "\n")
+        _write(args.balanced_scene, json.dumps(report["balanced_scene"], indent=2) + "\n")
         written.append(args.balanced_scene)
     if args.optimize:
         report["optimized"], after = _optimize(scene, args)

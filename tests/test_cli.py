@@ -35,6 +35,12 @@ def test_analyze_writes_the_contract(tmp_path):
     assert "warnings" not in r
 
 
+def test_output_folders_are_created(tmp_path):
+    out = tmp_path / "new" / "deeper" / "r.json"
+    assert main(["analyze", str(example_path("crank_rocker")), "-o", str(out)]) == 0
+    assert json.loads(out.read_text())["scene"] == "crank-rocker"
+
+
 def test_analyze_plots(tmp_path, capsys):
     """``--plots DIR`` writes the sweep's pictures; with the JSON on standard output the
     list of pictures goes to standard error, so standard output stays one JSON document."""
