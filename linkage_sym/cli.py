@@ -16,7 +16,7 @@ derive SCENE.json [--latex] [--numeric] [-o FILE]
     in a document that loads amsmath).  ``--numeric`` puts the scene's
     numbers in place of the parameter symbols.
 balance SCENE.json -o BALANCE.json [--latex] [--plots DIR] [--balanced-scene FILE]
-        [--optimize FILE [--weights F,M,T] [--max-mass KG]]
+        [--optimize FILE [--weights F,M,T] [--max-mass KG] [--links L1,L2]]
     Derive a hinged linkage's shaking moment in seed 002's mass and
     acceleration parameters, its shaking force and moment balance
     conditions, counterweights that balance the force, and the shaking
@@ -153,19 +153,45 @@ def cmd_derive(args) -> int:
     return 0
 
 
-def _optimize(scene, args) -> tuple:
+def _optimize_options(scene, args) -> tuple:
+    """``(weights, links)`` of ``--optimize``, checked before anything is computed or written."""
+    try:
+        weights = tuple(float(w) for w in args.weights.split(","))
+    except ValueError:
+        weights = ()
+    problems = []
+    if len(weights) != 3 or not all(w >= 0 for w in weights) or not any(w > 0 for w in weights):
+        problems.append(f"--weights: three numbers F,M,T >= 0, not all 0, expected; got {args.weights!r}")
+    links = None
+    if args.links:
+        links = [n.strip() for n in args.links.split(",")]
+        bad = [n for n in links if n not in scene.link_names]
+        if bad:
+            problems.append(f"--links: {', '.join(map(repr, bad))} not among the moving links "
+                            f"{', '.join(scene.link_names)}")
+        elif len(set(links)) != len(links):
+            problems.append(f"--links: a link is listed twice in {args.links!r}")
+    if args.max_mass is not None and not args.max_mass >= 0:
+        problems.append(f"--max-mass: a mass >= 0 expected, got {args.max_mass!r}")
+    if problems:
+        raise SceneError(problems)
+    return weights, links
+
+
+def _optimize(scene, args, weights, links) -> tuple:
     """Run ``--optimize``: the JSON section, and the optimised scene's shaking series (solver)."""
     from linkage_sym.balancing.optimize import optimize_counterweights
     from linkage_sym.balancing.series import solver_series
 
-    weights = tuple(float(w) for w in args.weights.split(","))
-    if len(weights) != 3:
-        raise SceneError([f"--weights: three numbers F,M,T expected, got {args.weights!r}"])
-    res = optimize_counterweights(scene, weights=weights, max_mass=args.max_mass)
+    try:
+        res = optimize_counterweights(scene, links=links, weights=weights, max_mass=args.max_mass)
+    except ValueError as err:  # what the optimiser refuses (e.g. no ok step): a clear exit 2
+        raise BalanceError(f"--optimize: {err}") from err
     _write(args.optimize, json.dumps(res.scene, indent=2) + "\n")
     after = solver_series(_load_dict(res.scene), label="optimised")
     section = {
-        "weights": list(weights), "objective_start": res.objective_start, "objective": res.objective,
+        "weights": list(weights), "links": list(links or scene.link_names),
+        "objective_start": res.objective_start, "objective": res.objective,
         "rms_start": res.rms_start, "rms_final": res.rms_final, "message": res.message,
         "counterweights": [{"link": c.link, "mass": c.mass, "at": list(c.at)} for c in res.counterweights],
     }
@@ -195,8 +221,9 @@ def _balance_sliding(scene, args) -> int:
         why = "; ".join(err.problems)
     else:  # not reached: called for scenes with a P joint
         raise AssertionError("_balance_sliding called for a hinged scene")
+    options = _optimize_options(scene, args)
     before = solver_series(scene, label="as given")
-    section, after = _optimize(scene, args)
+    section, after = _optimize(scene, args, *options)
     report = {
         "scene": scene.name,
         "conditions_derived": False,
@@ -238,6 +265,7 @@ def cmd_balance(args) -> int:
     scene = _load(args.scene)
     if args.optimize and any(j.type == "P" for j in scene.joints):
         return _balance_sliding(scene, args)
+    options = _optimize_options(scene, args) if args.optimize else None
     report, series = balance_report(scene, latex=args.latex)
     written = []
     if args.balanced_scene:
@@ -247,7 +275,7 @@ def cmd_balance(args) -> int:
         _write(args.balanced_scene, json.dumps(report["balanced_scene"], indent=2) + "\n")
         written.append(args.balanced_scene)
     if args.optimize:
-        report["optimized"], after = _optimize(scene, args)
+        report["optimized"], after = _optimize(scene, args, *options)
         report["series_optimized"] = after.to_dict()
         series = [*series, after]
         written.append(args.optimize)
@@ -368,6 +396,8 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--optimize", metavar="FILE", help="write the scene with optimised counterweights")
     b.add_argument("--weights", default="1,1,1", help="weights of RMS shaking force, moment, driving effort (default 1,1,1)")
     b.add_argument("--max-mass", type=float, default=None, help="bound on each counterweight's mass (kg)")
+    b.add_argument("--links", default=None, metavar="L1,L2",
+                   help="links that get a counterweight in --optimize (default: every moving link)")
     b.set_defaults(func=cmd_balance)
     s = sub.add_parser("structure", help="print drivers and Assur groups in solving order")
     s.add_argument("scene", help="scene JSON file")

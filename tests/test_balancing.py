@@ -372,11 +372,13 @@ def test_cli_balance_optimises_a_slider_crank(tmp_path):
     out, opt, pics = tmp_path / "b.json", tmp_path / "opt.json", tmp_path / "pics"
     src = linkage_sym.examples.example_path("slider_crank_offset")
     r = subprocess.run([sys.executable, "-m", "linkage_sym", "balance", str(src), "-o", str(out),
-                        "--optimize", str(opt), "--weights", "1,0,0", "--plots", str(pics)],
+                        "--optimize", str(opt), "--weights", "1,0,0", "--plots", str(pics),
+                        "--links", "crank,connecting_rod"],
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     d = json.loads(out.read_text())
     assert d["conditions_derived"] is False and "prismatic" in d["reasons"]["conditions"]
+    assert {c["link"] for c in d["optimized"]["counterweights"]} <= {"crank", "connecting_rod"}
     before = _momentum_force(load_example("slider_crank_offset"))
     after = _momentum_force(load_scene(str(opt)))
     assert peak(after) <= 1e-9 * peak(before)
@@ -394,3 +396,20 @@ def test_cli_balance_refuses_latex_for_a_slider_crank(tmp_path):
                         "--optimize", str(opt), "--latex"], capture_output=True, text=True)
     assert r.returncode == 2 and "--latex" in r.stderr and "hinged" in r.stderr
     assert not out.exists() and not opt.exists()
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--weights", "1,0"], "--weights"),
+    (["--weights", "0,0,0"], "--weights"),
+    (["--links", "crank,cuopler"], "--links: 'cuopler' not among"),
+    (["--links", "crank,crank"], "listed twice"),
+    (["--max-mass", "-1"], "--max-mass"),
+])
+def test_cli_balance_refuses_bad_optimise_options_and_writes_nothing(tmp_path, args, message):
+    out, bal, opt = tmp_path / "b.json", tmp_path / "bal.json", tmp_path / "opt.json"
+    r = subprocess.run([sys.executable, "-m", "linkage_sym", "balance",
+                        str(linkage_sym.examples.example_path("crank_rocker")), "-o", str(out),
+                        "--balanced-scene", str(bal), "--optimize", str(opt), *args],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and message in r.stderr, r.stderr
+    assert not any(p.exists() for p in (out, bal, opt))
