@@ -56,3 +56,50 @@ assert err < 1e-12
 w = res.links["rocker"].omega
 flips = np.flatnonzero(np.sign(w[1:]) != np.sign(w[:-1]))
 print("rocker reverses near crank angles (deg):", np.round(np.degrees(th1[flips]), 1))
+
+# %% [markdown]
+# ## Stroke-time ratio K (seed 001)
+#
+# The rocker's extreme positions are where crank and coupler are in line:
+# stretched, $|AC_1| = l_2 + l_1$, and folded, $|AC_2| = l_2 - l_1$.  The
+# angle $\theta$ between $AC_1$ and $AC_2$ is the extreme-position angle and
+# $K = (180° + \theta)/(180° - \theta)$ (slow stroke over quick stroke).  From the sweep instead: the crank
+# angles where $\omega_3$ changes sign (linear interpolation between the 1°
+# steps, error $O(h^2)$ of the step) split the turn into the two strokes.
+
+# %%
+l2 = np.linalg.norm(C - B)
+lAD = np.linalg.norm(D - A)
+
+
+def angle_at_A(r):  # angle DAC of triangle A, D, C with |AC| = r (law of cosines)
+    return np.arccos((r**2 + lAD**2 - l3**2) / (2 * r * lAD))
+
+
+theta = abs(np.degrees(angle_at_A(l2 - l1) - angle_at_A(l2 + l1)))  # both with C above AD
+K_closed = (180 + theta) / (180 - theta)
+t = th1[flips] + (th1[flips + 1] - th1[flips]) * w[flips] / (w[flips] - w[flips + 1])
+stroke = np.degrees(t[1] - t[0])
+K_sweep = max(stroke, 360 - stroke) / min(stroke, 360 - stroke)
+print(f"extreme-position angle {theta:.4f} deg; K = {K_closed:.5f} (closed form), "
+      f"{K_sweep:.5f} (from the sweep)")
+assert abs(K_sweep - K_closed) < 1e-3  # interpolation over 1-deg steps
+
+# %% [markdown]
+# ## The coupler point P (seed 003, eq. 3-18)
+#
+# The scene traces a coupler point `P` (its `points`).  With $(a, b)$ its
+# coordinates along and across $BC$, eq. 3-18 gives
+# $l_P = l_1 e^{i\theta_1} + (a + i b) e^{i\theta_2}$ from the crank pivot.
+
+# %%
+P0 = np.array(scene.points[0].at)
+u = (C - B) / l2
+a, b = (P0 - B) @ u, u[0] * (P0 - B)[1] - u[1] * (P0 - B)[0]
+zP = (A[0] + 1j * A[1]) + l1 * np.exp(1j * th1) + (a + 1j * b) * np.exp(1j * th2)
+got = res.points["P"].position
+err = np.max(np.abs(got[:, 0] + 1j * got[:, 1] - zP)) / l2
+print(f"coupler curve of P: x in [{got[:, 0].min():.4f}, {got[:, 0].max():.4f}] m, "
+      f"y in [{got[:, 1].min():.4f}, {got[:, 1].max():.4f}] m; "
+      f"max difference from eq. 3-18: {err:.1e} of BC")
+assert err < 1e-12
