@@ -420,45 +420,34 @@ class Plan:
                     st.point_velocity_into(link.com, out[0], out[1])
                     lk.com_velocity = out.T
             links[n] = lk
-        joints = {}
-        for j in self.scene.joints:
-            st = S[j.links[1]]
-            out = pair((j.name, "position"))
-            st.point_into(j.at, out[0], out[1])
-            jk = JointKinematics(position=out.T)
+        # joints (their point on links[1]) and traced points: (layout key, link, point, record)
+        tracked = [((j.name,), j.links[1], j.at, JointKinematics(position=None))
+                   for j in self.scene.joints]
+        tracked += [(("point", pt.name), pt.link, pt.at, JointKinematics(position=None))
+                    for pt in self.scene.points]
+        for key, k, X, rec in tracked:
+            out = pair((*key, "position"))
+            S[k].point_into(X, out[0], out[1])
+            rec.position = out.T
             if has_v:
-                out = pair((j.name, "velocity"))
-                st.point_velocity_into(j.at, out[0], out[1])
-                jk.velocity = out.T
-            joints[j.name] = jk
-        points = {}
-        for pt in self.scene.points:
-            st = S[pt.link]
-            out = pair(("point", pt.name, "position"))
-            st.point_into(pt.at, out[0], out[1])
-            pk = JointKinematics(position=out.T)
-            if has_v:
-                out = pair(("point", pt.name, "velocity"))
-                st.point_velocity_into(pt.at, out[0], out[1])
-                pk.velocity = out.T
-            points[pt.name] = pk
+                out = pair((*key, "velocity"))
+                S[k].point_velocity_into(X, out[0], out[1])
+                rec.velocity = out.T
         if has_a:
             w2 = {n: np.multiply(st.w, st.w) for n, st in S.items()}
-            for pt in self.scene.points:
-                out = pair(("point", pt.name, "acceleration"))
-                S[pt.link].point_acceleration_into(pt.at, out[0], out[1], w2[pt.link], tmp)
-                points[pt.name].acceleration = out.T
             for link in self.scene.links:
                 if link.com is not None:
                     n = link.name
                     out = pair((n, "com_acceleration"))
                     S[n].point_acceleration_into(link.com, out[0], out[1], w2[n], tmp)
                     links[n].com_acceleration = out.T
-            for j in self.scene.joints:
-                k = j.links[1]
-                out = pair((j.name, "acceleration"))
-                S[k].point_acceleration_into(j.at, out[0], out[1], w2[k], tmp)
-                joints[j.name].acceleration = out.T
+            for key, k, X, rec in tracked:
+                out = pair((*key, "acceleration"))
+                S[k].point_acceleration_into(X, out[0], out[1], w2[k], tmp)
+                rec.acceleration = out.T
+        joints = {j.name: rec for j, (_, _, _, rec) in zip(self.scene.joints, tracked)}
+        points = {pt.name: rec for pt, (_, _, _, rec) in
+                  zip(self.scene.points, tracked[len(self.scene.joints):])}
         if bad.any():
             # a singular step keeps its positions; no step without a solution keeps rates
             block[: lay.n_pos, bad & (status != SINGULAR)] = np.nan

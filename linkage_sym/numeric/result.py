@@ -221,6 +221,16 @@ class Analysis:
         has_acc = "acceleration" in self.stages
         forces = self.forces
         p_joints = set(self.p_joints)
+
+        def motion(k: JointKinematics, i: int, rates: bool) -> dict:
+            """A joint's or traced point's record at step ``i``."""
+            rec = {"position": _vec(k.position[i])}
+            if rates and has_vel:
+                rec["velocity"] = _vec(k.velocity[i])
+            if rates and has_acc:
+                rec["acceleration"] = _vec(k.acceleration[i])
+            return rec
+
         for i in range(self.n_steps):
             st = str(self.status[i])
             step: dict = {"status": st}
@@ -232,14 +242,7 @@ class Analysis:
             positions = st in (OK, SINGULAR)
             rates = st == OK
             if want_kin and positions:
-                joints = {}
-                for name, jk in self.joints.items():
-                    rec = {"position": _vec(jk.position[i])}
-                    if rates and has_vel:
-                        rec["velocity"] = _vec(jk.velocity[i])
-                    if rates and has_acc:
-                        rec["acceleration"] = _vec(jk.acceleration[i])
-                    joints[name] = rec
+                joints = {name: motion(jk, i, rates) for name, jk in self.joints.items()}
                 links = {}
                 for name, lk in self.links.items():
                     rec = {"rotation": float(lk.rotation[i])}
@@ -257,15 +260,7 @@ class Analysis:
                 step["joints"] = joints
                 step["links"] = links
                 if self.points:
-                    pts = {}
-                    for name, pk in self.points.items():
-                        rec = {"position": _vec(pk.position[i])}
-                        if rates and has_vel:
-                            rec["velocity"] = _vec(pk.velocity[i])
-                        if rates and has_acc:
-                            rec["acceleration"] = _vec(pk.acceleration[i])
-                        pts[name] = rec
-                    step["points"] = pts
+                    step["points"] = {name: motion(pk, i, rates) for name, pk in self.points.items()}
             if forces is not None and rates:
                 if "reactions" in self.outputs:
                     joints = step.setdefault("joints", {})
