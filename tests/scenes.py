@@ -265,6 +265,28 @@ def watt_sixbar(l1, l2, l3, l4, *, e_len, e_ang_deg, G, l5=None, l6=None, sigma=
     return scene, dict(A=A, B=B, C=C, D=D, E=E, F=F, G=G)
 
 
+def change_point_fourbar(name="change point", speed=10.0, acceleration=0.0):
+    """A change-point four-bar (7 + 17 = 10 + 14) whose doubles *are* the mechanism.
+
+    Integer assembly points (Pythagorean: BC = (15, 8), DC = (-6, 8)); at the crank
+    angle 0 (step 18 of the sweep -180..180 deg in 37 steps) B = (7, 0), |BD| = 7 =
+    l2 - l3 exactly, all four joints in line with C = (24, 0).
+    """
+    return {
+        "name": name,
+        "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "rocker"}],
+        "joints": [
+            {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
+            {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": [-7.0, 0.0]},
+            {"name": "C", "type": "R", "links": ["coupler", "rocker"], "at": [8.0, 8.0]},
+            {"name": "D", "type": "R", "links": ["rocker", "ground"], "at": [14.0, 0.0]},
+        ],
+        "drivers": [{"joint": "A", "toward": "B", "start_deg": -180, "stop_deg": 180,
+                     "steps": 37, "speed": speed, "acceleration": acceleration}],
+        "outputs": ["kinematics"],
+    }
+
+
 def run(scene_dict):
     """Load a scene dict and analyse it: ``(scene, analysis)``."""
     import linkage_sym

@@ -201,19 +201,7 @@ def test_sweep_through_dead_centre(gap_deg, beyond):
 # such a miss, within rounding of the coordinates, is taken as a tangency:
 # see test_limit_position_within_rounding_is_singular.)
 def _change_point_run():
-    d = {
-        "name": "change point",
-        "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "rocker"}],
-        "joints": [
-            {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
-            {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": [-7.0, 0.0]},
-            {"name": "C", "type": "R", "links": ["coupler", "rocker"], "at": [8.0, 8.0]},
-            {"name": "D", "type": "R", "links": ["rocker", "ground"], "at": [14.0, 0.0]},
-        ],
-        "drivers": [{"joint": "A", "toward": "B", "start_deg": -180, "stop_deg": 180,
-                     "steps": 37, "speed": W1, "acceleration": A1}],
-        "outputs": ["kinematics"],
-    }
+    d = scenes.change_point_fourbar("change point", W1, A1)
     scene, res = scenes.run(d)
     return d, scene, res
 

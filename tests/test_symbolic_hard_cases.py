@@ -177,19 +177,7 @@ def test_exactly_singular_step_keeps_positions():
     th1 = 0 the joints are exactly in line (C = (24, 0)), so the step is
     ``singular``: positions kept (to 4 sqrt(eps) x size: a double root),
     no rates, a message, no NaN in to_dict(); the other steps as numeric."""
-    d = {
-        "name": "symbolic change point",
-        "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "rocker"}],
-        "joints": [
-            {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
-            {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": [-7.0, 0.0]},
-            {"name": "C", "type": "R", "links": ["coupler", "rocker"], "at": [8.0, 8.0]},
-            {"name": "D", "type": "R", "links": ["rocker", "ground"], "at": [14.0, 0.0]},
-        ],
-        "drivers": [{"joint": "A", "toward": "B", "start_deg": -180, "stop_deg": 180,
-                     "steps": 37, "speed": W1, "acceleration": A1}],
-        "outputs": ["kinematics"],
-    }
+    d = scenes.change_point_fourbar("symbolic change point", W1, A1)
     scene = load_scene(d)
     sym = compile_mechanism(scene).run()
     num = linkage_sym.analyze(scene)
