@@ -50,7 +50,7 @@ def structure_report(scene: Scene, dec: Decomposition) -> str:
             choices = usable_disconnections(scene, g)
             if choices:
                 lines.append(
-                    "     disconnection choices (seed 000: virtual pure-dyad mechanism; "
+                    "     disconnection choices (Dang and Zhang's virtual pure-dyad mechanism; "
                     "pick one with --disconnection K):"
                 )
                 best = default_choice(choices)
