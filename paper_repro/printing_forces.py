@@ -1,7 +1,8 @@
-"""Seed 000's printed reactions of the printing mechanism against linkage_sym.
+"""Dang and Zhang's printed reactions of the printing mechanism against linkage_sym.
 
-Seed 000 (Dang Zuqi, Zhang Qixian), section 4, prints at its one position
-(theta1 = 300 deg, omega1 = pi rad/s) the reactions
+Dang Zuqi, Zhang Qixian, "A simplified method for the force analysis of complex planar
+multi-bar mechanisms" (year not shown in the text; [1] of the README's Sources), section 4,
+prints at its one position (theta1 = 300 deg, omega1 = pi rad/s) the reactions
 
 * R34n = 47.219, R34t = 934.03: the force of the lever 3 on the rocker 4 at D,
   normal to and along the rocker; t points from D to E, n is t turned by
@@ -241,7 +242,7 @@ def report(samples=200, seed=0):
     spread, nominal, dev = rounding_spread(samples, seed)
     bound, terms = linear_bound()
     wide, _, _ = rounding_spread(samples, seed, LENGTH_HALF_AS_PRINTED)
-    out.append("== seed 000, printing mechanism at theta1 = 300 deg: reactions at D and F (N)")
+    out.append("== Dang and Zhang (undated), printing mechanism at theta1 = 300 deg: reactions at D and F (N)")
     out.append("   R34 = force of lever 3 on rocker 4 at D (n normal to, t along D->E);"
                " R53 = force of slider 5 on lever 3 at F (n = x, t = y)")
     out.append(f"   {'':5s} {'linkage_sym':>12s} {'printed':>10s} {'difference':>11s} {'MC spread':>10s}"

@@ -1,6 +1,8 @@
-"""Seed 002's three shaking-moment-balanced six-bars, simulated with linkage_sym.
+"""Song and Wang's (1992) three shaking-moment-balanced six-bars, simulated with linkage_sym.
 
-Seed 002 (Song Liqun, Wang Bingle 1992) balances the hinged six-bar of its Fig. 2 (missing):
+Song Liqun, Wang Bingle, "Mass and acceleration parameter equations of the inertia moment of
+planar hinged linkages, and a module 'assembly' balancing algorithm" (1992; [3] of the README's
+Sources) balances the hinged six-bar of its Fig. 2 (missing):
 crank 1 = AB (A at the origin), coupler 2 = BC, rocker 3 = DC (D on the x-axis), link 4 = CE,
 rocker 5 = FE; C is a pin of links 2, 3, 4.  Link j has a frame with origin u and x-axis u->v
 (AB, BC, DC, CE, FE), length a_j, centre of mass (p_j, q_j) in it, mass m_j, radius of gyration
@@ -481,7 +483,7 @@ def describe(d: Design) -> list[str]:
 
 
 def report() -> str:
-    out = [f"seed 002: crank at {OMEGA:g} rad/s, inertia only; bare links: uniform bars of {RHO:g} kg/m"]
+    out = [f"Song and Wang 1992: crank at {OMEGA:g} rad/s, inertia only; bare links: uniform bars of {RHO:g} kg/m"]
     for d in designs().values():
         out += describe(d)
         for sweep, variant in sweeps_of(d):

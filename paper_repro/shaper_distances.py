@@ -1,4 +1,6 @@
-"""Derive the two missing distances of the shaper of seed 003, example 3-7.
+"""Derive the two missing distances of the shaper of example 3-7 of the textbook chapter
+"Kinematic analysis of planar mechanisms" ([4] of the README's Sources; author and year not
+shown in the text).
 
 The textbook gives l1 = 125 mm (crank AB), l3 = 600 mm (guide bar CD), l4 = 150 mm
 (link DE), omega1 = 1 rad/s, and Table 3-1 of positions, velocities and
