@@ -2,31 +2,35 @@
 
 Commands
 --------
-analyze SCENE.json -o RESULT.json [--method dyad|global|symbolic] [--disconnection K]
-        [--plots DIR]
+analyze SCENE.json [-o RESULT.json | -o -] [--method dyad|global|symbolic]
+        [--disconnection K] [--plots DIR]
     Solve the scene's sweep and write the result of the contract: kinematics,
     joint reactions, driver efforts and frame loads, as the scene asks; with
-    ``--plots`` also its pictures.
-    ``symbolic`` evaluates the SymPy-derived, lambdified equations (compiled
-    once per topology and cached) instead of the numeric dyad solver.
+    ``--plots`` also its pictures.  The console gets a summary (statuses
+    counted, peak driving efforts, the largest reaction, frame/shaking force
+    and moment peaks, warnings); ``-o -`` writes the JSON to standard output
+    instead.  ``symbolic`` evaluates the SymPy-derived, lambdified equations
+    (compiled once per topology and cached) instead of the numeric dyad
+    solver.
 derive SCENE.json [--latex] [--numeric] [-o FILE]
     Derive the scene's equations with SymPy (loops, closed forms, velocity,
     acceleration and force equations) and print them as SymPy text, or with
-    ``--latex`` as a LaTeX fragment in seed 003's notation (for ``\\input``
+    ``--latex`` as a LaTeX fragment in the notation of the textbook chapter
+    "Kinematic analysis of planar mechanisms" (for ``\\input``
     in a document that loads amsmath).  ``--numeric`` puts the scene's
     numbers in place of the parameter symbols.
 balance SCENE.json -o BALANCE.json [--latex] [--plots DIR] [--balanced-scene FILE]
         [--optimize FILE [--weights F,M,T] [--max-mass KG] [--links L1,L2]]
-    Derive a hinged linkage's shaking moment in seed 002's mass and
+    Derive a hinged linkage's shaking moment in Song and Wang's (1992) mass and
     acceleration parameters, its shaking force and moment balance
     conditions, counterweights that balance the force, and the shaking
     force and moment over the sweep (from the lambdified modules);
     ``--plots`` writes the polar plot and the moment curve before and after
     balancing; ``--optimize`` writes the scene with counterweights that
     minimise a weighted sum of RMS shaking force, moment and driving effort.
-    A scene with prismatic joints has no module: it is refused, unless
-    ``--optimize`` is given, which then runs alone (series from the force
-    solver).
+    The derived conditions cover hinged (R-joint only) linkages: for a scene
+    with prismatic joints only ``--optimize`` (and ``--plots``) run, with
+    series from the force solver.
 structure SCENE.json
     Print the drivers and Assur groups in solving order, with the
     disconnection choices of class-III groups.
@@ -37,8 +41,15 @@ demo [-o DIR] [--example NAME]
 examples
     List the shipped example scenes.
 
-An invalid scene exits with status 2, a message naming each offending field
-on standard error, and writes nothing.
+Plot files are named after the scene's ``name`` (made safe for a path) in
+every command.
+
+Exit status (see ``EXIT_STATUS``): 0 done; 1 a write that failed although its
+path was checked (disk full); 2 an invalid scene or option
+(a message naming each offending field or option on standard error; nothing
+is written, every output path is checked before anything is computed); 3
+``analyze`` whose sweep has no step that could be assembled (the result file
+is written, no plots); 141 standard output closed early (``| head``), quietly.
 """
 
 from __future__ import annotations
@@ -46,18 +57,107 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import os
 import sys
 from pathlib import Path
 
+import numpy as np
+
+from linkage_sym._version import __version__
 from linkage_sym.errors import BalanceError, SceneError
 
 DEMO_EXAMPLES = ("crank_rocker", "shaper")
+
+NO_STEP_ASSEMBLED = 3  # analyze: the result file is written, but no step could be assembled
+BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for `yes | head`
+
+EXIT_STATUS = f"""\
+exit status:
+  0    done
+  1    a file could not be written after all (e.g. disk full): the message says which
+  2    invalid scene or option: a message names each field or option; nothing is written
+       (every output path is checked before anything is computed)
+  {NO_STEP_ASSEMBLED}    analyze: no step of the sweep could be assembled; the result file is still
+       written (-o), no plots
+  {BROKEN_PIPE}  standard output closed early (e.g. | head): stops quietly
+"""
+
+
+class OptionError(Exception):
+    """Command-line options the command cannot use; each problem starts with the option's name."""
+
+    def __init__(self, problems):
+        self.problems = [problems] if isinstance(problems, str) else list(problems)
+        super().__init__("; ".join(self.problems))
 
 
 def _load(path):
     from linkage_sym.scene import load_scene
 
     return load_scene(path)
+
+
+# ------------------------------------------------------------------ output paths
+
+
+def _first_existing(path: Path) -> Path:
+    """``path`` or its nearest ancestor that exists (what a ``mkdir -p`` would start from)."""
+    p = path.absolute()
+    while not p.exists() and p != p.parent:
+        p = p.parent
+    return p
+
+
+def _creatable(option: str, given: str, folder: Path) -> str | None:
+    """Why ``folder`` cannot be created or written into, or None."""
+    base = _first_existing(folder)
+    if not base.is_dir():
+        return f"{option}: {given!r}: {str(base)!r} is a file, not a folder"
+    if not os.access(base, os.W_OK | os.X_OK):
+        return f"{option}: {given!r}: cannot write in {str(base)!r}"
+    return None
+
+
+def _check_outputs(files=(), folders=()) -> None:
+    """Refuse, before anything is computed or written, output paths that cannot be written.
+
+    ``files``: ``(option, path)`` of files (``None`` = not asked; ``"-"`` = standard
+    output); ``folders``: ``(option, path)`` of folders, created if needed.
+    Raises :class:`OptionError` naming each option.
+    """
+    problems, seen = [], {}
+    for option, given in files:
+        if given is None or given == "-":
+            continue
+        p = Path(given)
+        if p.is_dir():
+            problems.append(f"{option}: {given!r} is a folder; a file name is expected")
+            continue
+        if p.exists() and not os.access(p, os.W_OK):
+            problems.append(f"{option}: {given!r} is not writable")
+            continue
+        why = _creatable(option, given, p.parent)
+        if why:
+            problems.append(why)
+            continue
+        key = os.path.normcase(os.path.abspath(p))
+        if key in seen:
+            problems.append(f"{option}: {given!r} is also the file of {seen[key]}")
+        seen.setdefault(key, option)
+    for option, given in folders:
+        if given is None:
+            continue
+        p = Path(given)
+        if p.exists() and not p.is_dir():
+            problems.append(f"{option}: {given!r} is a file; a folder is expected")
+        elif p.is_dir() and not os.access(p, os.W_OK | os.X_OK):
+            problems.append(f"{option}: cannot write in {given!r}")
+        elif not p.exists():
+            why = _creatable(option, given, p)
+            if why:
+                problems.append(why)
+    if problems:
+        raise OptionError(problems)
 
 
 def _write(path, text: str) -> None:
@@ -67,9 +167,79 @@ def _write(path, text: str) -> None:
     path.write_text(text)
 
 
+def _stem(scene) -> str:
+    """The scene's name made safe for a file name: the stem of every plot file."""
+    from linkage_sym.plotting.style import file_stem
+
+    return file_stem(scene, None)
+
+
+# ------------------------------------------------------------------ analyze
+
+
+def _at(scene, analysis, i: int) -> str:
+    """``step i (A = 57°, ...)``: a step with its driver values."""
+    vals = []
+    for name, d in analysis.drivers.items():
+        q = float(d["q"][i])
+        kind = scene.joint(name).type
+        vals.append(f"{name} = {np.degrees(q):.4g}°" if kind == "R" else f"{name} = {q:.4g} m")
+    return f"step {i} ({', '.join(vals)})" if vals else f"step {i}"
+
+
+def _peak(values):
+    """``(index, value)`` of the largest finite ``|values|`` (signed value), or None."""
+    v = np.abs(np.asarray(values, dtype=float))
+    if not np.isfinite(v).any():
+        return None
+    i = int(np.nanargmax(np.where(np.isfinite(v), v, np.nan)))
+    return i, float(np.asarray(values, dtype=float)[i])
+
+
+def summary(scene, analysis) -> list[str]:
+    """The console summary of a sweep: statuses counted, peak efforts and loads, warnings."""
+    status = [str(s) for s in analysis.status]
+    counts = {s: status.count(s) for s in dict.fromkeys(["ok", *status])}
+    lines = [f"{scene.name}: {len(status)} steps: "
+             + ", ".join(f"{n} {s}" for s, n in counts.items())
+             + f" (stages {', '.join(analysis.stages)})"]
+    forces = analysis.forces
+    if forces is not None:
+        if "driving" in analysis.outputs:
+            for name, values in forces.driving.items():
+                peak = _peak(values)
+                if peak is None:
+                    continue
+                i, v = peak
+                what, unit = ("torque", "N·m") if scene.joint(name).type == "R" else ("force", "N")
+                lines.append(f"peak driving {what} at {name}: {v:.4g} {unit} at {_at(scene, analysis, i)}")
+        if "reactions" in analysis.outputs and forces.reactions:
+            best = None
+            for name, r in forces.reactions.items():
+                peak = _peak(np.hypot(r[:, 0], r[:, 1]))
+                if peak is not None and (best is None or peak[1] > best[2]):
+                    best = (name, peak[0], peak[1])
+            if best is not None:
+                name, i, v = best
+                lines.append(f"largest reaction: {v:.4g} N at joint {name}, {_at(scene, analysis, i)}")
+        if "frame" in analysis.outputs:
+            shaking = (scene.effects.inertia and scene.effects.gravity is None
+                       and (not scene.effects.loads or not scene.loads))
+            word = "shaking" if shaking else "frame"
+            f = forces.frame_force
+            for label, values, unit in ((f"{word} force", np.hypot(f[:, 0], f[:, 1]), "N"),
+                                        (f"{word} moment", forces.frame_moment, "N·m")):
+                peak = _peak(values)
+                if peak is not None:
+                    lines.append(f"peak {label}: {peak[1]:.4g} {unit} at {_at(scene, analysis, peak[0])}")
+    lines += [f"warning: {w}" for w in analysis.warnings]
+    return lines
+
+
 def cmd_analyze(args) -> int:
     from linkage_sym.numeric.plan import compile_plan
 
+    _check_outputs(files=[("-o/--output", args.output)], folders=[("--plots", args.plots)])
     scene = _load(args.scene)
     if args.method == "symbolic":
         from linkage_sym.codegen.compile import compile_mechanism
@@ -78,35 +248,48 @@ def cmd_analyze(args) -> int:
             print("note: --disconnection ignored by the symbolic method", file=sys.stderr)
         analysis = compile_mechanism(scene).run()
     else:
-        plan = compile_plan(scene, args.disconnection)
+        try:
+            plan = compile_plan(scene, args.disconnection)
+        except SceneError as err:
+            if args.disconnection is not None and all(
+                    p.startswith("disconnection:") for p in err.problems):
+                raise OptionError([f"--{p}" for p in err.problems]) from err
+            raise
         if args.disconnection is not None and not any(
             g.kind not in ("input", "dyad") for g in plan.decomposition.groups
         ):
             print("note: --disconnection ignored: the mechanism has no complex group", file=sys.stderr)
         analysis = plan.run(method=args.method)
     result = analysis.to_dict()
-    for w in result.get("warnings", []):
-        print(f"warning: {w}", file=sys.stderr)
-    text = json.dumps(result, indent=1 if args.pretty else None)
-    if args.output in (None, "-"):
-        print(text)
+    if args.output == "-":  # the JSON for a pipe; what a person reads goes to standard error
+        sys.stdout.write(json.dumps(result, indent=1 if args.pretty else None) + "\n")
+        for w in analysis.warnings:
+            print(f"warning: {w}", file=sys.stderr)
+        notes = sys.stderr
     else:
-        _write(args.output, text + "\n")
-        n_bad = sum(s["status"] != "ok" for s in result["steps"])
-        print(
-            f"wrote {args.output}: {len(result['steps'])} steps, stages {', '.join(result['stages'])}"
-            + (f", {n_bad} steps not ok (see their 'message')" if n_bad else "")
-        )
+        if args.output:
+            _write(args.output, json.dumps(result, indent=1 if args.pretty else None) + "\n")
+            print(f"wrote {args.output}")
+        print("\n".join(summary(scene, analysis)))
+        if not args.output:
+            print("(the result JSON: -o FILE, or -o - for standard output)")
+        notes = sys.stdout
+    if not (analysis.status != "unassemblable").any():
+        first = f" (step 0: {analysis.messages[0]})" if analysis.n_steps else ""
+        print(f"linkage-sym: no step of the sweep could be assembled{first}"
+              + ("; no plots written" if args.plots else ""), file=sys.stderr)
+        return NO_STEP_ASSEMBLED
     if args.plots:
         from linkage_sym.plotting import plot_all
 
         written = plot_all(scene, analysis, args.plots)
-        # the JSON may be on standard output: the list of pictures goes beside it
-        to = sys.stderr if args.output in (None, "-") else sys.stdout
-        print(f"wrote {len(written)} plots into {args.plots}:", file=to)
+        print(f"wrote {len(written)} plots into {args.plots}:", file=notes)
         for path in written:
-            print(f"  {path}", file=to)
+            print(f"  {path}", file=notes)
     return 0
+
+
+# ------------------------------------------------------------------ derive
 
 
 def _plain_text(eqs) -> str:
@@ -137,6 +320,7 @@ def _plain_text(eqs) -> str:
 def cmd_derive(args) -> int:
     from linkage_sym.symbolic import derive
 
+    _check_outputs(files=[("-o/--output", args.output)])
     scene = _load(args.scene)
     eqs = derive(scene, symbolic=not args.numeric, forces=True)
     if args.latex:
@@ -153,17 +337,28 @@ def cmd_derive(args) -> int:
     return 0
 
 
+# ------------------------------------------------------------------ balance
+
+
 def _optimize_options(scene, args) -> tuple:
     """``(weights, links)`` of ``--optimize``, checked before anything is computed or written."""
+    if not args.optimize:
+        given = [o for o, v in (("--weights", args.weights), ("--max-mass", args.max_mass),
+                                ("--links", args.links)) if v is not None]
+        if given:
+            raise OptionError([f"{o}: used only with --optimize FILE" for o in given])
+        return (), None
+    text = "1,1,1" if args.weights is None else args.weights
     try:
-        weights = tuple(float(w) for w in args.weights.split(","))
+        weights = tuple(float(w) for w in text.split(","))
     except ValueError:
         weights = ()
     problems = []
-    if len(weights) != 3 or not all(w >= 0 for w in weights) or not any(w > 0 for w in weights):
-        problems.append(f"--weights: three numbers F,M,T >= 0, not all 0, expected; got {args.weights!r}")
+    if (len(weights) != 3 or not all(0 <= w < float("inf") for w in weights)
+            or not any(w > 0 for w in weights)):
+        problems.append(f"--weights: three numbers F,M,T >= 0, not all 0, expected; got {text!r}")
     links = None
-    if args.links:
+    if args.links is not None:
         links = [n.strip() for n in args.links.split(",")]
         bad = [n for n in links if n not in scene.link_names]
         if bad:
@@ -174,12 +369,13 @@ def _optimize_options(scene, args) -> tuple:
     if args.max_mass is not None and not args.max_mass >= 0:
         problems.append(f"--max-mass: a mass >= 0 expected, got {args.max_mass!r}")
     if problems:
-        raise SceneError(problems)
+        raise OptionError(problems)
     return weights, links
 
 
 def _optimize(scene, args, weights, links) -> tuple:
-    """Run ``--optimize``: the JSON section, and the optimised scene's shaking series (solver)."""
+    """Run ``--optimize``: the JSON section, the optimised scene's shaking series (solver)
+    and the optimised scene's JSON text (written later, with the other files)."""
     from linkage_sym.balancing.optimize import optimize_counterweights
     from linkage_sym.balancing.series import solver_series
 
@@ -187,43 +383,35 @@ def _optimize(scene, args, weights, links) -> tuple:
         res = optimize_counterweights(scene, links=links, weights=weights, max_mass=args.max_mass)
     except ValueError as err:  # what the optimiser refuses (e.g. no ok step): a clear exit 2
         raise BalanceError(f"--optimize: {err}") from err
-    _write(args.optimize, json.dumps(res.scene, indent=2) + "\n")
-    after = solver_series(_load_dict(res.scene), label="optimised")
+    after = solver_series(_load(res.scene), label="optimised")
     section = {
         "weights": list(weights), "links": list(links or scene.link_names),
         "objective_start": res.objective_start, "objective": res.objective,
         "rms_start": res.rms_start, "rms_final": res.rms_final, "message": res.message,
         "counterweights": [{"link": c.link, "mass": c.mass, "at": list(c.at)} for c in res.counterweights],
     }
-    return section, after
+    return section, after, json.dumps(res.scene, indent=2) + "\n"
 
 
-def _load_dict(d):
-    from linkage_sym.scene import load_scene
-
-    return load_scene(d)
-
-
-def _balance_sliding(scene, args) -> int:
+def _balance_sliding(scene, args, options, sliding) -> int:
     """``balance --optimize`` for a scene with prismatic joints: no module, optimisation only."""
     from linkage_sym.balancing.model import require_hinged
     from linkage_sym.balancing.series import solver_series
 
     for flag, given in (("--latex", args.latex), ("--balanced-scene", args.balanced_scene)):
         if given:
-            print(f"linkage-sym: {flag} needs the derived balance conditions, which cover hinged "
-                  "(R-joint) linkages only; with prismatic joints only --optimize (and --plots) "
-                  "run", file=sys.stderr)
-            return 2
+            raise OptionError(
+                f"{flag}: needs the derived balance conditions, which cover hinged (R-joint) "
+                f"linkages only; with prismatic joints ({', '.join(sliding)}) only --optimize "
+                "(and --plots) run")
     try:
-        require_hinged(scene, "the mass/acceleration-parameter module (seed 002)")
+        require_hinged(scene, "the mass/acceleration-parameter module (Song and Wang 1992)")
     except SceneError as err:
         why = "; ".join(err.problems)
     else:  # not reached: called for scenes with a P joint
         raise AssertionError("_balance_sliding called for a hinged scene")
-    options = _optimize_options(scene, args)
     before = solver_series(scene, label="as given")
-    section, after = _optimize(scene, args, *options)
+    section, after, optimized = _optimize(scene, args, *options)
     report = {
         "scene": scene.name,
         "conditions_derived": False,
@@ -233,16 +421,21 @@ def _balance_sliding(scene, args) -> int:
         "series_optimized": after.to_dict(),
         "series_source": "numeric force solver, inertia only (no module: prismatic joints)",
     }
-    return _write_balance(scene, args, report, [before, after], [args.optimize])
+    return _write_balance(scene, args, report, [before, after], [(args.optimize, optimized)])
 
 
-def _write_balance(scene, args, report, series, written) -> int:
+def _write_balance(scene, args, report, series, files) -> int:
+    """Write everything ``balance`` computed: the scene files, the plots, the report."""
+    written = []
+    for path, text in files:
+        _write(path, text)
+        written.append(path)
     if args.plots:
         from linkage_sym.plotting.balance import shaking_force_polar, shaking_moment_curve
 
         out = Path(args.plots)
         out.mkdir(parents=True, exist_ok=True)
-        stem = Path(args.scene).stem
+        stem = _stem(scene)
         kind = scene.joint(scene.drivers[0].joint).type
         written.append(str(shaking_force_polar(series, out / f"{stem}_shaking_force_polar.png",
                                                title=scene.name, driver_kind=kind)))
@@ -260,26 +453,38 @@ def _write_balance(scene, args, report, series, written) -> int:
 
 
 def cmd_balance(args) -> int:
+    _check_outputs(
+        files=[("-o/--output", args.output), ("--balanced-scene", args.balanced_scene),
+               ("--optimize", args.optimize)],
+        folders=[("--plots", args.plots)],
+    )
+    scene = _load(args.scene)
+    options = _optimize_options(scene, args)
+    sliding = [j.name for j in scene.joints if j.type != "R"]
+    if sliding and not args.optimize:
+        raise OptionError(
+            f"the derived balancing conditions cover hinged (R-joint only) linkages; "
+            f"{scene.name!r} has prismatic joint(s) {', '.join(sliding)}: use --optimize FILE "
+            "for counterweights optimised on the force solver's shaking force and moment")
+    if sliding:
+        return _balance_sliding(scene, args, options, sliding)
     from linkage_sym.balancing.report import balance_report
 
-    scene = _load(args.scene)
-    if args.optimize and any(j.type == "P" for j in scene.joints):
-        return _balance_sliding(scene, args)
-    options = _optimize_options(scene, args) if args.optimize else None
     report, series = balance_report(scene, latex=args.latex)
-    written = []
+    files = []
     if args.balanced_scene:
         if "balanced_scene" not in report:
-            print(f"linkage-sym: {report['counterweights']['error']}", file=sys.stderr)
-            return 2
-        _write(args.balanced_scene, json.dumps(report["balanced_scene"], indent=2) + "\n")
-        written.append(args.balanced_scene)
+            raise BalanceError(report["counterweights"]["error"])
+        files.append((args.balanced_scene, json.dumps(report["balanced_scene"], indent=2) + "\n"))
     if args.optimize:
-        report["optimized"], after = _optimize(scene, args, *options)
+        report["optimized"], after, optimized = _optimize(scene, args, *options)
         report["series_optimized"] = after.to_dict()
         series = [*series, after]
-        written.append(args.optimize)
-    return _write_balance(scene, args, report, series, written)
+        files.append((args.optimize, optimized))
+    return _write_balance(scene, args, report, series, files)
+
+
+# ------------------------------------------------------------------ the others
 
 
 def cmd_structure(args) -> int:
@@ -299,19 +504,27 @@ def cmd_examples(args) -> int:
 
 
 def cmd_demo(args) -> int:
-    from linkage_sym.examples import example_path
+    from linkage_sym.examples import example_names, example_path
+
+    names = args.example or list(DEMO_EXAMPLES)
+    unknown = [n for n in names if n not in example_names()]
+    if unknown:
+        raise OptionError(f"--example: unknown {', '.join(map(repr, unknown))}; known examples: "
+                          f"{', '.join(example_names())}")
+    _check_outputs(folders=[("-o/--output", args.output)])
     from linkage_sym.model import Effects
     from linkage_sym.numeric.plan import compile_plan
     from linkage_sym.plotting import frame_loads, plot_all
 
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
-    names = args.example or list(DEMO_EXAMPLES)
     for name in names:
         scene = _load(example_path(name))
+        stem = _stem(scene)
         analysis = compile_plan(scene).run()
-        (out / f"{name}_result.json").write_text(json.dumps(analysis.to_dict()) + "\n")
-        files = plot_all(scene, analysis, out, prefix=name)
+        result = out / f"{stem}_result.json"
+        result.write_text(json.dumps(analysis.to_dict()) + "\n")
+        files = plot_all(scene, analysis, out)
         # the shaking force and moment: the same motion with inertia as the only effect
         shaking_scene = dataclasses.replace(
             scene,
@@ -319,14 +532,14 @@ def cmd_demo(args) -> int:
             outputs=("frame",),
         )
         shaking = compile_plan(shaking_scene).run()
-        files.append(frame_loads(shaking_scene, shaking, out / f"{name}_shaking.png"))
+        files.append(frame_loads(shaking_scene, shaking, out / f"{stem}_shaking.png"))
         n_ok = int(analysis.ok.sum())
         print(f"{name}: {n_ok}/{analysis.n_steps} steps solved; wrote")
-        print(f"  {out / (name + '_result.json')}")
+        print(f"  {result}")
         for f in files:
             print(f"  {f}")
         if all(j.type == "R" for j in scene.joints):
-            files = _demo_balance(scene, name, out)
+            files = _demo_balance(scene, stem, out)
             print(f"{name}: balancing conditions and force-balancing counterweights; wrote")
             for f in files:
                 print(f"  {f}")
@@ -334,30 +547,44 @@ def cmd_demo(args) -> int:
     return 0
 
 
-def _demo_balance(scene, name, out) -> list:
-    """Seed 002's balancing of a hinged example: JSON and before/after plots."""
+def _demo_balance(scene, stem, out) -> list:
+    """Song and Wang's (1992) balancing of a hinged example: JSON and before/after plots."""
     from linkage_sym.balancing.report import balance_report
     from linkage_sym.plotting.balance import shaking_force_polar, shaking_moment_curve
 
     report, series = balance_report(scene)
-    path = out / f"{name}_balance.json"
+    path = out / f"{stem}_balance.json"
     path.write_text(json.dumps(report) + "\n")
     return [
         path,
-        shaking_force_polar(series, out / f"{name}_balance_force_polar.png", title=scene.name),
-        shaking_moment_curve(series, out / f"{name}_balance_moment.png", title=scene.name),
+        shaking_force_polar(series, out / f"{stem}_balance_force_polar.png", title=scene.name),
+        shaking_moment_curve(series, out / f"{stem}_balance_moment.png", title=scene.name),
     ]
+
+
+# ------------------------------------------------------------------ parser and main
 
 
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="linkage-sym",
         description="Symbolic-numeric analysis of planar linkages.",
+        epilog=EXIT_STATUS,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
+    p.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = p.add_subparsers(dest="command", required=True)
-    a = sub.add_parser("analyze", help="solve a scene's sweep and write the result JSON")
+    a = sub.add_parser(
+        "analyze", help="solve a scene's sweep and write the result JSON",
+        description="Solve a scene's sweep; write the result JSON (-o FILE, or -o - for "
+        "standard output) and print a summary: statuses counted, peak driving efforts, the "
+        "largest reaction, frame (shaking) force and moment peaks, warnings.",
+        epilog=EXIT_STATUS, formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     a.add_argument("scene", help="scene JSON file")
-    a.add_argument("-o", "--output", help="result JSON file (default: standard output)")
+    a.add_argument("-o", "--output", metavar="FILE",
+                   help="result JSON file; '-' writes it to standard output (and the summary "
+                   "is left out); default: the summary only")
     a.add_argument("--pretty", action="store_true", help="indent the JSON")
     a.add_argument(
         "--method",
@@ -370,42 +597,51 @@ def build_parser() -> argparse.ArgumentParser:
         "--disconnection",
         type=int,
         metavar="K",
-        help="seed-000 disconnection to use for complex groups (index in the list "
+        help="disconnection (Dang and Zhang's method) to use for complex groups (index in the list "
         "`linkage-sym structure` prints, from 0; default: the best-suited one)",
     )
     a.add_argument(
         "--plots",
         metavar="DIR",
         help="also write the sweep's pictures into DIR (motion diagrams, paths and coupler "
-        "curves; driving effort, reaction hodographs and frame loads when forces ran)",
+        "curves; driving effort, reaction hodographs and frame loads when forces ran); none "
+        f"when no step could be assembled (exit {NO_STEP_ASSEMBLED})",
     )
     a.set_defaults(func=cmd_analyze)
     v = sub.add_parser("derive", help="derive the scene's equations with SymPy (text or LaTeX)")
     v.add_argument("scene", help="scene JSON file")
-    v.add_argument("--latex", action="store_true", help="write a LaTeX fragment (seed 003 notation)")
+    v.add_argument("--latex", action="store_true", help="write a LaTeX fragment (notation of the textbook chapter 'Kinematic analysis of planar mechanisms')")
     v.add_argument("--numeric", action="store_true", help="the scene's numbers instead of parameter symbols")
     v.add_argument("-o", "--output", help="output file (default: standard output)")
     v.set_defaults(func=cmd_derive)
-    b = sub.add_parser("balance", help="derive balancing conditions of a hinged linkage (seed 002)")
-    b.add_argument("scene", help="scene JSON file (R joints only)")
+    b = sub.add_parser(
+        "balance", help="derive balancing conditions of a hinged linkage (Song and Wang 1992)",
+        description="Derive the shaking force and moment balance conditions of a hinged "
+        "(R-joint only) linkage; with prismatic joints only --optimize (and --plots) run.")
+    b.add_argument("scene", help="scene JSON file (R joints only, unless --optimize)")
     b.add_argument("-o", "--output", help="balance JSON file (default: standard output)")
     b.add_argument("--pretty", action="store_true", help="indent the JSON")
     b.add_argument("--latex", action="store_true", help="add the expressions as LaTeX")
     b.add_argument("--plots", metavar="DIR", help="write the shaking force polar plot and moment curve, before and after")
     b.add_argument("--balanced-scene", metavar="FILE", help="write the scene with force-balancing counterweights")
-    b.add_argument("--optimize", metavar="FILE", help="write the scene with optimised counterweights")
-    b.add_argument("--weights", default="1,1,1", help="weights of RMS shaking force, moment, driving effort (default 1,1,1)")
-    b.add_argument("--max-mass", type=float, default=None, help="bound on each counterweight's mass (kg)")
+    b.add_argument("--optimize", metavar="FILE",
+                   help="write the scene with optimised counterweights (also for linkages with sliders)")
+    b.add_argument("--weights", default=None, metavar="F,M,T",
+                   help="with --optimize: weights of RMS shaking force, moment, driving effort (default 1,1,1)")
+    b.add_argument("--max-mass", type=float, default=None, metavar="KG",
+                   help="with --optimize: bound on each counterweight's mass (kg)")
     b.add_argument("--links", default=None, metavar="L1,L2",
-                   help="links that get a counterweight in --optimize (default: every moving link)")
+                   help="with --optimize: links that get a counterweight (default: every moving link)")
     b.set_defaults(func=cmd_balance)
     s = sub.add_parser("structure", help="print drivers and Assur groups in solving order")
     s.add_argument("scene", help="scene JSON file")
     s.set_defaults(func=cmd_structure)
     d = sub.add_parser("demo", help="analyse shipped examples and write plots")
-    d.add_argument("-o", "--output", default="demo_out", help="output folder (default demo_out)")
+    d.add_argument("-o", "--output", default="demo_out", metavar="DIR", help="output folder (default demo_out)")
     d.add_argument(
-        "--example", action="append", help=f"example to run (repeatable; default {', '.join(DEMO_EXAMPLES)})"
+        "--example", action="append", metavar="NAME",
+        help=f"example to run (repeatable; default {', '.join(DEMO_EXAMPLES)}; "
+        "`linkage-sym examples` lists them)",
     )
     d.set_defaults(func=cmd_demo)
     e = sub.add_parser("examples", help="list the shipped example scenes")
@@ -413,13 +649,46 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def main(argv=None) -> int:
+def _run(argv) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
+    except OptionError as err:
+        for problem in err.problems:
+            print(f"linkage-sym {args.command}: {problem}", file=sys.stderr)
+        return 2
     except (SceneError, BalanceError) as err:
         print(f"linkage-sym: {err}", file=sys.stderr)
         return 2
+    except BrokenPipeError:
+        raise
+    except OSError as err:  # a write that failed although its path was checked (disk full ...)
+        print(f"linkage-sym {args.command}: {err}", file=sys.stderr)
+        return 1
+
+
+def _stdout_to_devnull() -> None:
+    """Point file descriptor 1 at /dev/null so that the interpreter's last flush cannot fail."""
+    try:
+        fd = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):  # a replaced stdout (tests): nothing to do
+        return
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, fd)
+    os.close(devnull)
+
+
+def main(argv=None) -> int:
+    """Run the command line; returns the exit status (see ``EXIT_STATUS``)."""
+    try:
+        code = _run(argv)
+        sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
+        return code
+    except BrokenPipeError:  # `| head`: the reader has all it wants; stop as Unix tools do
+        _stdout_to_devnull()
+        return BROKEN_PIPE
+    except KeyboardInterrupt:
+        return 130
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -42,15 +42,16 @@ def test_output_folders_are_created(tmp_path):
 
 
 def test_analyze_plots(tmp_path, capsys):
-    """``--plots DIR`` writes the sweep's pictures; with the JSON on standard output the
-    list of pictures goes to standard error, so standard output stays one JSON document."""
+    """``--plots DIR`` writes the sweep's pictures; with the JSON on standard output
+    (``-o -``) the list of pictures goes to standard error, so standard output stays one
+    JSON document."""
     d = example_dict("crank_rocker")
     d["drivers"][0]["steps"] = 37
     d["outputs"] = ["kinematics", "driving"]
     scene = tmp_path / "s.json"
     scene.write_text(json.dumps(d))
     pics = tmp_path / "pics"
-    assert main(["analyze", str(scene), "--plots", str(pics)]) == 0
+    assert main(["analyze", str(scene), "-o", "-", "--plots", str(pics)]) == 0
     out, err = capsys.readouterr()
     assert json.loads(out)["scene"] == "crank-rocker"
     names = sorted(p.name for p in pics.iterdir())
@@ -137,8 +138,11 @@ def test_structure_command(capsys):
 
 
 def test_demo_writes_pngs(tmp_path):
+    """Files are named after the scene's name (``crank-rocker``), as in every command."""
     assert main(["demo", "-o", str(tmp_path), "--example", "crank_rocker"]) == 0
     for suffix in ("positions", "velocities", "accelerations", "paths", "driving", "reactions",
                    "frame", "shaking", "balance_force_polar", "balance_moment"):
-        f = tmp_path / f"crank_rocker_{suffix}.png"
+        f = tmp_path / f"crank-rocker_{suffix}.png"
         assert f.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    for suffix in ("result", "balance"):
+        assert json.loads((tmp_path / f"crank-rocker_{suffix}.json").read_text())

@@ -1,0 +1,332 @@
+"""The command line never ends in a traceback: bad options and output paths are refused
+before anything is computed or written (exit 2, the option named), a closed pipe stops it
+quietly, a sweep that never assembles says so (exit 3, no plots), and plot files are
+named after the scene in every command."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+import linkage_sym
+from linkage_sym.cli import BROKEN_PIPE, NO_STEP_ASSEMBLED, main
+from linkage_sym.examples import example_dict, example_names, example_path
+
+CRANK_ROCKER = str(example_path("crank_rocker"))
+SLIDER_CRANK = str(example_path("slider_crank_offset"))
+
+
+def run(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "linkage_sym", *args], capture_output=True,
+                          text=True, cwd=cwd)
+
+
+def files_under(path):
+    return sorted(p.relative_to(path).as_posix() for p in path.rglob("*")) if path.exists() else []
+
+
+def small_scene(tmp_path, name="crank-rocker", steps=13, outputs=None):
+    """The crank-rocker with a short sweep (and another name, if asked) as a file."""
+    d = example_dict("crank_rocker")
+    d["name"] = name
+    d["drivers"][0]["steps"] = steps
+    if outputs is not None:
+        d["outputs"] = outputs
+    path = tmp_path / "scene_file.json"
+    path.write_text(json.dumps(d))
+    return str(path)
+
+
+def never_assembles(tmp_path):
+    """A slider-crank whose rod cannot reach the slide at any step of its sweep (crank 0.5,
+    rod 1.0, offset 0.8: unreachable while sin(q) < -0.4; the sweep is 250..290 deg)."""
+    x = 0.5 + (1.0 - 0.64) ** 0.5
+    d = {
+        "name": "never assembles",
+        "links": [{"name": "crank", "mass": 1.0, "com": [0.2, 0.0], "inertia": 0.01},
+                  {"name": "rod", "mass": 1.0, "com": [0.6, 0.4], "inertia": 0.01},
+                  {"name": "slider", "mass": 1.0, "com": [x, 0.8], "inertia": 0.01}],
+        "joints": [
+            {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
+            {"name": "B", "type": "R", "links": ["crank", "rod"], "at": [0.5, 0.0]},
+            {"name": "C", "type": "R", "links": ["rod", "slider"], "at": [x, 0.8]},
+            {"name": "G", "type": "P", "links": ["ground", "slider"], "at": [x, 0.8],
+             "axis_deg": 0.0},
+        ],
+        "drivers": [{"joint": "A", "toward": "B", "start_deg": 250, "stop_deg": 290,
+                     "steps": 5, "speed": 2.0}],
+        "effects": {"inertia": True, "gravity": [0.0, -9.81], "loads": True},
+        "outputs": ["kinematics", "reactions", "driving", "frame"],
+    }
+    path = tmp_path / "never.json"
+    path.write_text(json.dumps(d))
+    return str(path)
+
+
+def no_traceback(text):
+    assert "Traceback" not in text, text
+
+
+# -- 1. demo --example with an unknown name ------------------------------------------
+
+
+def test_demo_unknown_example_names_the_option_and_lists_examples(tmp_path):
+    out = tmp_path / "d"
+    p = run("demo", "-o", str(out), "--example", "nosuch")
+    assert p.returncode == 2
+    no_traceback(p.stderr)
+    assert "--example" in p.stderr and "'nosuch'" in p.stderr
+    for name in example_names():
+        assert name in p.stderr
+    assert not out.exists()
+
+
+# -- 2. output paths checked before anything is computed or written ---------------------
+
+
+@pytest.mark.parametrize("command, option, extra", [
+    ("analyze", "-o", []),
+    ("analyze", "-o", ["--plots", "PICS"]),
+    ("derive", "-o", []),
+    ("balance", "-o", []),
+    ("balance", "--balanced-scene", ["-o", "OUT"]),
+    ("balance", "--optimize", ["-o", "OUT"]),
+])
+def test_an_output_file_that_is_a_folder_is_refused(tmp_path, command, option, extra):
+    folder = tmp_path / "existing"
+    folder.mkdir()
+    extra = [str(tmp_path / "pics") if a == "PICS" else str(tmp_path / "out.json")
+             if a == "OUT" else a for a in extra]
+    p = run(command, CRANK_ROCKER, option, str(folder), *extra)
+    assert p.returncode == 2, p.stderr
+    no_traceback(p.stderr)
+    assert f"{option}" in p.stderr and "is a folder" in p.stderr
+    assert files_under(tmp_path) == ["existing"]
+
+
+@pytest.mark.parametrize("command, option, where, extra", [
+    ("analyze", "--plots", "folder", ["-o", "OUT"]),
+    ("analyze", "--plots", "under", ["-o", "OUT"]),
+    ("analyze", "-o", "under", ["--plots", "PICS"]),
+    ("derive", "-o", "under", []),
+    ("balance", "--plots", "folder", ["-o", "OUT"]),
+    ("balance", "--optimize", "under", ["-o", "OUT", "--plots", "PICS"]),
+    ("balance", "--balanced-scene", "under", ["-o", "OUT"]),
+    ("demo", "-o", "folder", ["--example", "crank_rocker"]),
+    ("demo", "-o", "under", ["--example", "crank_rocker"]),
+])
+def test_a_path_through_a_regular_file_is_refused(tmp_path, command, option, where, extra):
+    """A folder option naming a regular file, or any path under a regular file (its folder
+    cannot be created): exit 2, the option named, nothing written."""
+    blocker = tmp_path / "plain_file"
+    blocker.write_text("keep me\n")
+    bad = blocker if where == "folder" else blocker / "sub" / "x.json"
+    extra = [str(tmp_path / "pics") if a == "PICS" else str(tmp_path / "out.json")
+             if a == "OUT" else a for a in extra]
+    args = [command] + ([] if command == "demo" else [CRANK_ROCKER]) + [option, str(bad), *extra]
+    p = run(*args)
+    assert p.returncode == 2, p.stderr
+    no_traceback(p.stderr)
+    assert f"{option}" in p.stderr and "plain_file" in p.stderr
+    assert files_under(tmp_path) == ["plain_file"]
+    assert blocker.read_text() == "keep me\n"
+
+
+def test_two_options_naming_one_file_are_refused(tmp_path):
+    out = tmp_path / "same.json"
+    p = run("balance", CRANK_ROCKER, "-o", str(out), "--optimize", str(out))
+    assert p.returncode == 2 and "--optimize" in p.stderr and "-o/--output" in p.stderr
+    assert not out.exists()
+
+
+def test_missing_output_folders_are_still_created(tmp_path):
+    out = tmp_path / "a" / "b" / "r.json"
+    pics = tmp_path / "c" / "pics"
+    scene = small_scene(tmp_path, outputs=["kinematics"])
+    assert main(["analyze", scene, "-o", str(out), "--plots", str(pics)]) == 0
+    assert out.exists() and any(pics.iterdir())
+
+
+# -- 3. a closed pipe ------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("args", [
+    ["analyze", CRANK_ROCKER, "-o", "-"],
+    ["analyze", CRANK_ROCKER],
+    ["structure", CRANK_ROCKER],
+    ["examples"],
+])
+def test_a_pipe_closed_before_the_output_stops_quietly(args):
+    """The reader is gone before the first byte is written: no traceback, status 141."""
+    p = subprocess.Popen([sys.executable, "-m", "linkage_sym", *args], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE)
+    p.stdout.close()
+    err = p.stderr.read().decode()
+    p.stderr.close()
+    assert p.wait() == BROKEN_PIPE, err
+    no_traceback(err)
+    assert "BrokenPipe" not in err and "Exception ignored" not in err
+
+
+def test_a_pipe_closed_after_some_bytes_stops_quietly():
+    """``analyze -o - | head -c 50``: no traceback whether or not the writer saw the close."""
+    p = subprocess.Popen([sys.executable, "-m", "linkage_sym", "analyze", CRANK_ROCKER, "-o", "-"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    head = p.stdout.read(50)
+    p.stdout.close()
+    err = p.stderr.read().decode()
+    p.stderr.close()
+    assert p.wait() in (0, BROKEN_PIPE), err
+    assert head.startswith(b'{"scene": "crank-rocker"')
+    no_traceback(err)
+
+
+# -- 4. balance: prismatic joints and bad options -----------------------------------------
+
+
+def test_balance_of_a_slider_crank_points_to_optimize(tmp_path):
+    out = tmp_path / "b.json"
+    p = run("balance", SLIDER_CRANK, "-o", str(out))
+    assert p.returncode == 2
+    no_traceback(p.stderr)
+    assert "invalid scene" not in p.stderr
+    assert "hinged" in p.stderr and "prismatic" in p.stderr and "--optimize" in p.stderr
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("args, option", [
+    (["--weights", "1,x"], "--weights"),
+    (["--weights", "1,inf,1"], "--weights"),
+    (["--max-mass", "-0.5"], "--max-mass"),
+    (["--max-mass", "nan"], "--max-mass"),
+    (["--links", "crank,nosuch"], "--links"),
+])
+@pytest.mark.parametrize("scene", [CRANK_ROCKER, SLIDER_CRANK])
+def test_balance_bad_optimize_options_are_option_errors(tmp_path, args, option, scene):
+    out, opt = tmp_path / "b.json", tmp_path / "opt.json"
+    p = run("balance", scene, "-o", str(out), "--optimize", str(opt), *args)
+    assert p.returncode == 2
+    no_traceback(p.stderr)
+    assert option in p.stderr and "invalid scene" not in p.stderr
+    assert files_under(tmp_path) == []
+
+
+def test_balance_optimize_options_without_optimize_are_refused(tmp_path):
+    out = tmp_path / "b.json"
+    p = run("balance", CRANK_ROCKER, "-o", str(out), "--weights", "1,0,0")
+    assert p.returncode == 2 and "--weights" in p.stderr and "--optimize" in p.stderr
+    assert not out.exists()
+
+
+def test_analyze_unknown_disconnection_is_an_option_error(tmp_path):
+    out = tmp_path / "r.json"
+    p = run("analyze", str(example_path("sixbar_class3")), "--disconnection", "99", "-o", str(out))
+    assert p.returncode == 2 and "--disconnection" in p.stderr
+    assert "invalid scene" not in p.stderr
+    assert not out.exists()
+
+
+# -- 5. a sweep in which no step assembles ---------------------------------------------
+
+
+def test_a_sweep_that_never_assembles_writes_the_result_but_no_plots(tmp_path):
+    scene = never_assembles(tmp_path)
+    out, pics = tmp_path / "r.json", tmp_path / "pics"
+    p = run("analyze", scene, "-o", str(out), "--plots", str(pics))
+    assert p.returncode == NO_STEP_ASSEMBLED == 3
+    no_traceback(p.stderr)
+    assert p.stderr.count("no step of the sweep could be assembled") == 1
+    assert "step 0: dyad RRP (rod, slider)" in p.stderr and "no plots" in p.stderr
+    assert not pics.exists()
+    steps = json.loads(out.read_text())["steps"]
+    assert [s["status"] for s in steps] == ["unassemblable"] * 5
+    assert "5 unassemblable" in p.stdout and "0 ok" in p.stdout
+
+
+def test_the_exit_status_is_in_the_help():
+    p = run("analyze", "--help")
+    assert p.returncode == 0 and "exit status" in p.stdout
+    assert f"{NO_STEP_ASSEMBLED}    analyze: no step of the sweep could be assembled" in p.stdout
+
+
+# -- 6. --version ---------------------------------------------------------------------
+
+
+def test_version():
+    p = run("--version")
+    assert p.returncode == 0 and p.stdout.strip() == f"linkage-sym {linkage_sym.__version__}"
+
+
+# -- 7. plot files are named after the scene ---------------------------------------------
+
+
+def test_plot_files_are_named_after_the_scene_in_every_command(tmp_path):
+    """The scene's ``name`` made file-name safe, not the scene file's name or the example's."""
+    scene = small_scene(tmp_path, name="my rig: v2/3", outputs=["kinematics", "driving"])
+    stem = "my_rig_v2_3"
+    a, b = tmp_path / "a", tmp_path / "b"
+    assert main(["analyze", scene, "-o", str(tmp_path / "r.json"), "--plots", str(a)]) == 0
+    assert main(["balance", scene, "-o", str(tmp_path / "b.json"), "--plots", str(b)]) == 0
+    for folder in (a, b):
+        names = [p.name for p in folder.iterdir()]
+        assert names and all(n.startswith(stem + "_") for n in names), names
+    assert main(["demo", "-o", str(tmp_path / "d"), "--example", "shaper"]) == 0
+    names = [p.name for p in (tmp_path / "d").iterdir()]
+    assert names and all(n.startswith("shaper_") for n in names), names
+
+
+# -- 8. the console summary --------------------------------------------------------------
+
+
+def test_analyze_to_a_file_prints_a_summary(tmp_path, capsys):
+    out = tmp_path / "r.json"
+    assert main(["analyze", CRANK_ROCKER, "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    r = json.loads(out.read_text())
+    lines = text.splitlines()
+    assert lines[0] == f"wrote {out}"
+    assert lines[1].startswith("crank-rocker: 361 steps: 361 ok")
+    # the peak driving torque and where it occurs, from the result file
+    torques = [s["driving"]["A"] for s in r["steps"]]
+    k = max(range(len(torques)), key=lambda i: abs(torques[i]))
+    q = r["steps"][k]["drivers"]["A"]["q"]
+    assert f"peak driving torque at A: {torques[k]:.4g} N·m at step {k} (A = " in text
+    assert f"{__import__('math').degrees(q):.4g}°" in text
+    # the largest reaction, its joint and step
+    mags = [(sum(c * c for c in rec["reaction"]) ** 0.5, name, i) for i, s in enumerate(r["steps"])
+            for name, rec in s["joints"].items() if "reaction" in rec]
+    m, joint, i = max(mags)
+    assert f"largest reaction: {m:.4g} N at joint {joint}, step {i} " in text
+    assert "peak frame force:" in text and "peak frame moment:" in text
+    assert "warning" not in text
+
+
+def test_analyze_without_output_prints_the_summary_not_the_json(tmp_path, capsys):
+    assert main(["analyze", CRANK_ROCKER]) == 0
+    text = capsys.readouterr().out
+    assert text.startswith("crank-rocker: 361 steps: 361 ok")
+    assert '"steps"' not in text and "-o -" in text
+    assert files_under(tmp_path) == []
+
+
+def test_analyze_dash_writes_the_json_to_stdout(capsys):
+    assert main(["analyze", CRANK_ROCKER, "-o", "-"]) == 0
+    out, err = capsys.readouterr()
+    assert json.loads(out)["scene"] == "crank-rocker"
+    assert "peak" not in out + err
+
+
+def test_summary_names_shaking_loads_and_warnings(tmp_path):
+    """Inertia only: the frame loads are the shaking force and moment; warnings are listed."""
+    from linkage_sym.cli import summary
+
+    d = example_dict("crank_rocker")
+    d["effects"] = {"inertia": True, "gravity": None, "loads": False}
+    d["drivers"][0]["steps"] = 25
+    scene = linkage_sym.load_scene(d)
+    res = linkage_sym.analyze(scene)
+    res.warnings = ["made-up warning for the test"]
+    text = "\n".join(summary(scene, res))
+    assert "peak shaking force:" in text and "peak shaking moment:" in text
+    assert "warning: made-up warning for the test" in text
