@@ -462,6 +462,101 @@ def test_refusal(base, mutate, path, reason):
     assert error.problems[0].startswith(f"{path}: ")
 
 
+# -- numbers the solver cannot carry ---------------------------------------------------
+
+
+def _scaled(factor):
+    """Every joint and every point fixed on a link scaled by ``factor`` (about the origin)."""
+
+    def mutate(s):
+        for entry in [*s["joints"], *s.get("points", []), *s["links"], *s.get("loads", [])]:
+            for key in ("at", "com"):
+                if key in entry:
+                    entry[key] = [c * factor for c in entry[key]]
+
+    return mutate
+
+
+MAGNITUDE = "must be within +-1e+30 (SI units): the solver multiplies up to ten such quantities"
+NUMERIC_REFUSALS = [
+    pytest.param(lambda s: s["joints"][1].update(at=[1e308, 0.0]),
+        "joints[1].at[0]", MAGNITUDE, id="coordinate-1e308"),
+    pytest.param(lambda s: s["links"][1].update(com=[0.045, -1e31]),
+        "links[1].com[1]", MAGNITUDE, id="com-1e31"),
+    pytest.param(lambda s: s["links"][0].update(mass=1e308),
+        "links[0].mass", MAGNITUDE, id="mass-1e308"),
+    pytest.param(lambda s: s["links"][0].update(inertia=1e300),
+        "links[0].inertia", MAGNITUDE, id="inertia-1e300"),
+    pytest.param(lambda s: s["loads"][0].update(torque=-1e308),
+        "loads[0].torque", MAGNITUDE, id="torque-1e308"),
+    pytest.param(lambda s: s["loads"][1].update(force=[0.0, 1e308]),
+        "loads[1].force[1]", MAGNITUDE, id="force-1e308"),
+    pytest.param(lambda s: s["loads"][1].update(at=[1e308, 0.03]),
+        "loads[1].at[0]", MAGNITUDE, id="load-point-1e308"),
+    pytest.param(lambda s: s["effects"].update(gravity=[0.0, -1e308]),
+        "effects.gravity[1]", MAGNITUDE, id="gravity-1e308"),
+    pytest.param(lambda s: s["drivers"][0].update(speed=1e308),
+        "drivers[0].speed", MAGNITUDE, id="speed-1e308"),
+    pytest.param(lambda s: s["drivers"][0].update(acceleration=-1e308),
+        "drivers[0].acceleration", MAGNITUDE, id="acceleration-1e308"),
+    pytest.param(lambda s: s["drivers"][0].update(stop_deg=1e308),
+        "drivers[0].stop_deg", "an angle must be within +-1e+06 degrees", id="angle-1e308"),
+    pytest.param(lambda s: s["drivers"][0].update(stop_deg=360_001),
+        "drivers[0].stop_deg",
+        "the sweep from start_deg 0 to stop_deg 360001 covers 1000 turns; at most 1000",
+        id="sweep-over-1000-turns"),
+    pytest.param(_scaled(1e-300),
+        "joints", "the mechanism's size (the largest distance between two joints) is 8.1e-302 m, "
+        "below 1e-30 m", id="lengths-1e-300"),
+    pytest.param(lambda s: s["links"][1].update(com=[0.045, 1e8]),
+        "links[1].com", "is 1e+08 m from the origin, more than 1e+09 times the mechanism's size "
+        "(0.081 m", id="point-far-from-a-small-mechanism"),
+    pytest.param(lambda s: [j.update(at=[0.5, 0.5]) for j in s["joints"]],
+        "joints", "all 4 joints are at the same point [0.5, 0.5]: the mechanism has no size",
+        id="joints-all-at-one-point"),
+]
+
+
+@pytest.mark.parametrize(("mutate", "path", "reason"), NUMERIC_REFUSALS)
+def test_numbers_beyond_what_the_solver_carries_are_refused(mutate, path, reason):
+    data = copy.deepcopy(CRANK_ROCKER)
+    mutate(data)
+    error = refused(data)
+    assert len(error.problems) == 1, error.problems
+    assert error.problems[0].startswith(f"{path}: {reason}"), error.problems
+
+
+def test_a_slide_beyond_a_thousand_sizes_is_refused():
+    data = copy.deepcopy(SLIDER_CRANK)
+    data["drivers"][0]["stop"] = 1e3  # the mechanism is 0.08 m
+    error = refused(data)
+    assert error.problems == [
+        "drivers[0].stop: must be within +-80 m, 1000 times the mechanism's size (0.08 m): "
+        "the solver follows a slide in increments of 2% of the size, got 1000"
+    ]
+
+
+@pytest.mark.parametrize("factor", [1e-25, 1e25])
+def test_tiny_and_huge_but_representable_mechanisms_are_accepted(factor):
+    data = copy.deepcopy(CRANK_ROCKER)
+    _scaled(factor)(data)
+    scene = parse_scene(data)
+    assert scene.joints[1].at == (0.024 * factor, 0.0)
+
+
+def test_a_single_joint_needs_no_size():
+    data = {
+        "name": "slider",
+        "links": [{"name": "block", "mass": 1, "com": [0, 0]}],
+        "joints": [{"name": "S", "type": "P", "links": ["ground", "block"], "at": [3, 4],
+                    "axis_deg": 90}],
+        "drivers": [{"joint": "S", "start": 0, "stop": 0.1, "steps": 11, "speed": 1}],
+    }
+    assert parse_scene(data).joints[0].at == (3.0, 4.0)
+    data["drivers"][0]["stop"] = 1001.0  # a slide is measured against 1 m when there is no size
+    assert refused(data).problems[0].startswith("drivers[0].stop: must be within +-1e+03 m")
+
+
 def test_top_level_must_be_an_object():
     error = refused(["not", "a", "scene"])
     assert error.problems == ["scene: must be an object, got an array"]
@@ -552,10 +647,13 @@ def test_dump_of_a_scene_without_gravity_or_loads_reloads():
 
 
 angles = st.floats(min_value=-1e6, max_value=1e6, allow_nan=False, allow_infinity=False)
+sweeps = st.floats(min_value=-359_999, max_value=359_999, allow_nan=False, allow_infinity=False)
 
 
-@given(start=angles, stop=angles, axis=angles)
-def test_round_trip_is_exact_for_any_angle(start, stop, axis):
+@given(start=angles, sweep=sweeps, axis=angles)
+def test_round_trip_is_exact_for_any_angle(start, sweep, axis):
+    # every angle the validator accepts: within 1e6 degrees, a sweep of at most 1000 turns
+    stop = min(max(start + sweep, -1e6), 1e6)
     data = copy.deepcopy(SLIDER_CRANK)
     data["joints"][3]["axis_deg"] = axis
     data["drivers"] = [{"joint": "A", "toward": "B", "start_deg": start, "stop_deg": stop,

@@ -50,6 +50,63 @@ JOINT_TYPES = ("R", "P")
 COINCIDENCE_TOLERANCE = 1e-9
 """Two joint points closer than this fraction of the mechanism's size coincide."""
 
+MAX_MAGNITUDE = 1e30
+"""Largest magnitude of any number of a scene, in SI units.
+
+A coordinate (m), a mass, an inertia, a force, a torque, a driver's speed or
+acceleration, a gravity component: the solver multiplies such quantities.  It
+squares lengths in its closed forms, and its largest products -- the moment
+about the origin of a d'Alembert force, a coordinate times a mass times a speed
+squared times a length, divided by a determinant of two lengths -- have fewer
+than ten factors.  With every factor within 1e30 (and lengths no smaller than
+:data:`MIN_SIZE`), every product stays within 1e300, inside the range of a
+float64 (1.8e308): no overflow, no ``inf`` or ``NaN`` in a result.
+"""
+
+MIN_SIZE = 1e-30
+"""Smallest size (largest distance between two joints, m) of a mechanism.
+
+Products of up to ten lengths of that size stay above float64's smallest normal
+number (2.2e-308) instead of underflowing to 0.
+"""
+
+MAX_SPREAD = 1e9
+"""Farthest a point may lie from the origin, in sizes of the mechanism.
+
+A float64 keeps 16 significant digits of a coordinate: a point 1e9 sizes away
+keeps 7 digits of the mechanism's geometry, and beyond it fewer.
+"""
+
+MAX_ANGLE_DEG = 1e6
+"""Largest magnitude of an angle in degrees (float64 resolves it to 1e-10 degree)."""
+
+MAX_SWEEP_DEG = 360_000.0
+"""Largest range ``|stop_deg - start_deg|`` of an R driver: 1000 turns.
+
+The solver follows the mechanism in increments of at most 2 degrees, so such a
+sweep is already 180 000 solving points.
+"""
+
+MAX_SLIDE = 1000.0
+"""Largest ``|start|``, ``|stop|`` of a P driver, in sizes of the mechanism.
+
+The solver follows a slide in increments of 2 % of the size (of 1 m when a single
+joint gives no size), so such a sweep is already 150 000 solving points.
+"""
+
+_MAGNITUDE_WHY = (
+    f"must be within +-{MAX_MAGNITUDE:.0e} (SI units): the solver multiplies up to ten such "
+    "quantities (e.g. a coordinate x a mass x a speed^2 x a length) and every product must stay "
+    "within the float64 range 1.8e308"
+)
+_ANGLE_WHY = (
+    f"an angle must be within +-{MAX_ANGLE_DEG:.0e} degrees (float64 resolves such an angle "
+    "to 1e-10 degree; beyond, the direction it gives is lost)"
+)
+
+_ANGLE = {"limit": MAX_ANGLE_DEG, "limit_why": _ANGLE_WHY}
+"""Keyword arguments of :meth:`_SceneReader.number` for an angle in degrees."""
+
 _REQUIRED = object()
 """Default marking a key that must be present."""
 
@@ -131,6 +188,9 @@ class _SceneReader:
         self.joints: dict[str, _JointInfo] | None = None
         self.joints_ok = False
         self.drivers_ok = False
+        self.positions: list[tuple[str, Point]] = []  # every valid point fixed on a link
+        self.slides: list[tuple[str, float]] = []  # every valid start/stop of a P driver
+        self.joint_points: list[Point | None] = []  # every joint's `at`, None if invalid
 
     def add(self, path: str, reason: str) -> None:
         self.problems.append(f"{path}: {reason}")
@@ -149,6 +209,7 @@ class _SceneReader:
         effects = self.read_effects(data)
         outputs = self.read_outputs(data)
         points = self.read_points(data)
+        self.check_size()
         if self.links_ok and self.joints_ok and self.check_connected() and self.drivers_ok:
             self.check_mobility(len(data["drivers"]))
         if self.problems:
@@ -180,7 +241,7 @@ class _SceneReader:
                 self.link_index[name] = i
             names_ok = names_ok and name is not None and self.link_index.get(name) == i
             mass = self.number(entry, "mass", path, default=0.0, minimum=0.0)
-            com = self.point(entry, "com", path, default=None)
+            com = self.point(entry, "com", path, default=None, position=True)
             if mass is not None and mass > 0 and "com" not in entry:
                 self.missing(f"{path}.com", "a link with mass > 0 must give its centre of mass")
             inertia = self.number(entry, "inertia", path, default=0.0, minimum=0.0)
@@ -210,11 +271,12 @@ class _SceneReader:
                 structure_ok = False
             jtype = self.joint_type(entry, path)
             pair = self.joint_links(entry, path)
-            at = self.point(entry, "at", path)
+            at = self.point(entry, "at", path, position=True)
+            self.joint_points.append(at)
             axis = None
             if jtype == "P":
                 why = "a P joint gives its slide direction"
-                axis = _radians(self.number(entry, "axis_deg", path, why=why))
+                axis = _radians(self.number(entry, "axis_deg", path, why=why, **_ANGLE))
             elif jtype == "R" and "axis_deg" in entry:
                 self.add(f"{path}.axis_deg", "not allowed on an R joint (only a P joint has an axis)")
             if name is not None and name not in self.joints:
@@ -284,8 +346,16 @@ class _SceneReader:
             why = f"a driver of R joint '{joint}' needs it"
             assert info is not None
             toward = self.toward(entry, path, joint, info)
-            start = self.number(entry, "start_deg", path, why=why)
-            stop = self.number(entry, "stop_deg", path, why=why)
+            start = self.number(entry, "start_deg", path, why=why, **_ANGLE)
+            stop = self.number(entry, "stop_deg", path, why=why, **_ANGLE)
+            if start is not None and stop is not None and abs(stop - start) > MAX_SWEEP_DEG:
+                self.add(
+                    f"{path}.stop_deg",
+                    f"the sweep from start_deg {start:g} to stop_deg {stop:g} covers "
+                    f"{abs(stop - start) / 360:.0f} turns; at most {MAX_SWEEP_DEG / 360:.0f} "
+                    f"({MAX_SWEEP_DEG:.0f} degrees) are allowed: the solver follows the mechanism "
+                    "in increments of at most 2 degrees",
+                )
             return _radians(start), _radians(stop), toward
         if kind == "P":
             where = f"on a driver of P joint '{joint}'"
@@ -294,6 +364,9 @@ class _SceneReader:
             why = f"a driver of P joint '{joint}' needs it"
             start = self.number(entry, "start", path, why=why)
             stop = self.number(entry, "stop", path, why=why)
+            for key, value in (("start", start), ("stop", stop)):
+                if value is not None:
+                    self.slides.append((f"{path}.{key}", value))
             return start, stop, None
         # The kind is unknown (a problem already reported): check only what is given.
         if "toward" in entry:
@@ -321,7 +394,7 @@ class _SceneReader:
             elif link is not None and self.link_index is not None and link not in self.link_index:
                 self.add(f"{path}.link", f"unknown link '{link}'{_suggest(link, self.link_index)}")
             force = self.point(entry, "force", path, default=None)
-            at = self.point(entry, "at", path, default=None)
+            at = self.point(entry, "at", path, default=None, position=True)
             torque = self.number(entry, "torque", path, default=0.0)
             if "force" in entry and "at" not in entry:
                 self.missing(f"{path}.at", "a force needs the point where it acts")
@@ -361,7 +434,7 @@ class _SceneReader:
                 self.add(f"{path}.link", f"a point on '{GROUND}' does not move; points trace moving links")
             elif link is not None and self.link_index is not None and link not in self.link_index:
                 self.add(f"{path}.link", f"unknown link '{link}'{_suggest(link, self.link_index)}")
-            at = self.point(entry, "at", path)
+            at = self.point(entry, "at", path, position=True)
             if len(self.problems) == before:
                 points.append(TracedPoint(name, link, at))
         return tuple(points)
@@ -440,7 +513,57 @@ class _SceneReader:
         assert self.joints is not None
         points = [j.at for j in self.joints.values() if j.at is not None]
         size = max((math.dist(p, q) for p in points for q in points), default=0.0)
-        return math.dist(a, b) <= COINCIDENCE_TOLERANCE * size
+        # joints all at one point are reported once, by check_size
+        return size > 0 and math.dist(a, b) <= COINCIDENCE_TOLERANCE * size
+
+    def check_size(self) -> None:
+        """The mechanism's size, and every point and slide against it.
+
+        The size is the largest distance between two joints (the length the
+        solver divides lengths by); it is checked only when every joint's
+        point is valid.
+        """
+        if not self.joint_points or None in self.joint_points:
+            return
+        points = self.joint_points
+        size = max(math.dist(p, q) for p in points for q in points)
+        if len(points) >= 2 and size == 0:
+            x, y = points[0]
+            self.add(
+                "joints",
+                f"all {len(points)} joints are at the same point [{x:g}, {y:g}]: the mechanism "
+                "has no size (the largest distance between two joints, by which the solver makes "
+                "lengths dimensionless, is 0)",
+            )
+            return
+        if 0 < size < MIN_SIZE:
+            self.add(
+                "joints",
+                f"the mechanism's size (the largest distance between two joints) is {size:.3g} m, "
+                f"below {MIN_SIZE:.0e} m: the solver squares and multiplies lengths, and such "
+                "products would underflow float64 (smallest normal number 2.2e-308)",
+            )
+            return
+        if size > 0:
+            for field, point in self.positions:
+                distance = math.hypot(*point)
+                if distance > MAX_SPREAD * size:
+                    self.add(
+                        field,
+                        f"is {distance:.3g} m from the origin, more than {MAX_SPREAD:.0e} times "
+                        f"the mechanism's size ({size:.3g} m, the largest distance between two "
+                        "joints): float64 keeps 16 digits of a coordinate, so fewer than 7 of the "
+                        "mechanism's geometry would be left",
+                    )
+        scale = size if size > 0 else 1.0
+        for field, value in self.slides:
+            if abs(value) > MAX_SLIDE * scale:
+                self.add(
+                    field,
+                    f"must be within +-{MAX_SLIDE * scale:.3g} m, {MAX_SLIDE:.0f} times the "
+                    f"mechanism's size ({scale:.3g} m): the solver follows a slide in increments "
+                    f"of 2% of the size, got {value:g}",
+                )
 
     def check_connected(self) -> bool:
         """Report links in no joint or not connected to the ground; ``True`` if none."""
@@ -537,6 +660,8 @@ class _SceneReader:
         default: Any = _REQUIRED,
         minimum: float | None = None,
         why: str = "",
+        limit: float = MAX_MAGNITUDE,
+        limit_why: str = _MAGNITUDE_WHY,
     ) -> float | None:
         if not self.present(obj, key, path, default, why):
             return None if default is _REQUIRED else default
@@ -545,6 +670,9 @@ class _SceneReader:
         if number is None or (minimum is not None and number < minimum):
             bound = "" if minimum is None else f" >= {minimum:g}"
             self.add(_join(path, key), f"must be a finite number{bound}, got {_show(value)}")
+            return None
+        if abs(number) > limit:
+            self.add(_join(path, key), f"{limit_why}, got {_show(value)}")
             return None
         return number
 
@@ -574,7 +702,9 @@ class _SceneReader:
         *,
         default: Any = _REQUIRED,
         expected: str = _POINT,
+        position: bool = False,
     ) -> Point | None:
+        """A point ``[x, y]``; ``position``: a point fixed on a link (checked against the size)."""
         if not self.present(obj, key, path, default, ""):
             return None if default is _REQUIRED else default
         value = obj[key]
@@ -586,7 +716,14 @@ class _SceneReader:
         for i, (given, number) in enumerate(zip(value, (x, y))):
             if number is None:
                 self.add(f"{field}[{i}]", f"must be a finite number, got {_show(given)}")
-        return None if x is None or y is None else (x, y)
+            elif abs(number) > MAX_MAGNITUDE:
+                self.add(f"{field}[{i}]", f"{_MAGNITUDE_WHY}, got {_show(given)}")
+                x = y = None
+        if x is None or y is None:
+            return None
+        if position:
+            self.positions.append((field, (x, y)))
+        return (x, y)
 
     def joint_type(self, entry: Mapping[str, Any], path: str) -> str | None:
         if not self.present(entry, "type", path, _REQUIRED, ""):
