@@ -55,7 +55,7 @@ def decompose(scene):
 def compile_plan(scene, disconnection=None):
     """Analyse a scene once into a solving plan that runs over every step.
 
-    ``disconnection`` picks the seed-000 disconnection of complex groups (an
+    ``disconnection`` picks the disconnection (Dang and Zhang's method) of complex groups (an
     index into the list ``linkage-sym structure`` prints, or a dict
     ``{group index: choice}``); default: the best-suited one.
     """

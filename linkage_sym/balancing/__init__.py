@@ -1,4 +1,4 @@
-"""Balancing of hinged linkages (seed 002 and its reference [1]).
+"""Balancing of hinged linkages (Song and Wang 1992 and its reference [1]).
 
 Modules
 -------

@@ -1,4 +1,5 @@
-"""The shaking moment of a hinged linkage, assembled from link modules (seed 002, eqs. 9-12, 17-18).
+"""The shaking moment of a hinged linkage, assembled from link modules
+(Song and Wang 1992, eqs. 9-12, 17-18).
 
 :func:`shaking_moment` fills one module (:mod:`~linkage_sym.balancing.module`)
 per moving link with the link's symbols and its pins (eq. 9), drops the
@@ -9,7 +10,7 @@ whose ``v`` is ``P`` are both ``x_P y_P'' - y_P x_P''``).  What is left is the
 total shaking moment about the origin in mass and acceleration parameters
 (eq. 12).
 
-It also gives the regrouped form that seed 002 reaches in eqs. 17-18 for its
+It also gives the regrouped form that Song and Wang reach in eqs. 17-18 for its
 six-bar, here for any hinged linkage (an identity, checked by the tests):
 
     M_0 = -[ sum_P C_P D_P + sum_j X_j phi''_j + sum_j (m_j q_j / a_j) D_3j ]
@@ -41,7 +42,7 @@ from linkage_sym.model import Scene
 
 
 def pair(u: str, v: str) -> str:
-    """Seed 002's subscript for a link between pins ``u`` and ``v`` (``AB``, or ``C2_E``)."""
+    """Song and Wang's subscript for a link between pins ``u`` and ``v`` (``AB``, or ``C2_E``)."""
     u, v = tag(u), tag(v)
     return u + v if len(u) == 1 and len(v) == 1 else f"{u}_{v}"
 
@@ -103,10 +104,10 @@ class ShakingMoment:
         out = {}
         for name in self.mass_parameters:
             link, i = self._mass_owner[name]
-            out[name] = f"mass parameter M_{i} of link {link} (seed 002, eq. 6)"
+            out[name] = f"mass parameter M_{i} of link {link} (Song and Wang 1992, eq. 6)"
         for _, D in self.terms:
             link, i, _ = D.members[0]
-            out[D.name] = f"acceleration parameter D_{i} of link {link} (seed 002, eq. 7)"
+            out[D.name] = f"acceleration parameter D_{i} of link {link} (Song and Wang 1992, eq. 7)"
         return out
 
     @property

@@ -1,16 +1,16 @@
 """Shaking-moment balance: what is left once the force is balanced, and the conditions that cancel it.
 
-Seed 002's reasoning (eqs. 12-18), carried out for any hinged linkage:
+Song and Wang's (1992) reasoning (eqs. 12-18), carried out for any hinged linkage:
 
 1. *Normal offsets.*  A link whose ``D_3`` does not vanish (both its pins
    move, or one is a fixed pivot away from the origin) contributes
-   ``(m q / a) D_3``; seed 002 cancels it with ``q = 0`` (its eq. 13 for the
+   ``(m q / a) D_3``; Song and Wang cancel it with ``q = 0`` (its eq. 13 for the
    couplers 2 and 4).
 2. *Force balance.*  The force conditions (:mod:`~.force`) are solved for
    the centre of mass ``(p, q)`` of every independent link.
 3. *Remaining moment.*  With 1 and 2 substituted, the regrouped moment
    (:mod:`~.assembly`) becomes ``-sum_j X_j phi''_j - sum_P C_P D_P``;
-   when every pin share ``C_P`` cancels (as in the four-bar and seed 002's
+   when every pin share ``C_P`` cancels (as in the four-bar and Song and Wang's
    six-bar) this is eq. 18, ``M_0 = -sum_j m_j (p_j^2 + k_j^2 - a_j p_j) phi''_j``.
 4. *Moment conditions.*  ``q_j = 0`` from step 1; ``C_P = 0`` for every pin
    share that force balance does not cancel; and ``X_j = 0`` for every link
@@ -18,7 +18,7 @@ Seed 002's reasoning (eqs. 12-18), carried out for any hinged linkage:
    driver at constant speed needs none.
 
 The acceleration parameters are not independent functions of time, so these
-conditions are *sufficient*: seed 002's design 2 cancels the moment with
+conditions are *sufficient*: Song and Wang's design 2 cancels the moment with
 ``X_4 = X_5`` instead, because there ``phi''_4 = -phi''_5``.
 
 Examples
@@ -155,8 +155,8 @@ def derive_balance(scene: Scene) -> Balance:
         MomentCondition(
             f"q_{tag(link)}", model.link_symbols(link)[3],
             f"cancels (m q/a) D_3 of link {link}, whose pins are not a fixed pivot at the origin"
-            + (" (implied by force balance once the other q vanish: seed 002, eq. 15)"
-               if link in implied else " (seed 002, eq. 13)"))
+            + (" (implied by force balance once the other q vanish: Song and Wang 1992, eq. 15)"
+               if link in implied else " (Song and Wang 1992, eq. 13)"))
         for link in normal
     ]
     conditions += [
@@ -169,6 +169,6 @@ def derive_balance(scene: Scene) -> Balance:
         X = sp.factor(sm.X[link].xreplace(zero_q))
         conditions.append(MomentCondition(
             f"X_{tag(link)}", X,
-            f"cancels m (p^2 + q^2 + k^2 - a p) phi'' of link {link} (seed 002, eq. 18)"))
+            f"cancels m (p^2 + q^2 + k^2 - a p) phi'' of link {link} (Song and Wang 1992, eq. 18)"))
     seconds["moment_conditions"] = time.perf_counter() - t0
     return Balance(model, sm, fb, normal, solution, residuals, remaining, steady, conditions, seconds)

@@ -10,7 +10,7 @@ first, as Berkof and Lowen eliminate the coupler); the remaining vectors are
 linearly independent functions of time for a mechanism of general
 dimensions, so the mass centre is stationary -- the shaking force vanishes --
 exactly when each of their coefficients is zero: a real and an imaginary
-condition per independent link (seed 002's ref. [1]; Berkof & Lowen 1969).
+condition per independent link (Song and Wang 1992's ref. [1]; Berkof & Lowen 1969).
 
 For special dimensions (a parallelogram, where two vectors stay parallel)
 the conditions remain sufficient but are no longer necessary.
@@ -114,7 +114,7 @@ def re_im(expr: sp.Expr) -> tuple:
 
 def _tidy(expr: sp.Expr) -> sp.Expr:
     """A condition ``expr = 0`` in a readable form: expanded over monomial
-    denominators (seed 002's ``m_1 q_1/a_1 - m_2 q_2/a_2``), else multiplied
+    denominators (Song and Wang's ``m_1 q_1/a_1 - m_2 q_2/a_2``), else multiplied
     by the positive non-monomial part of the denominator."""
     n, d = sp.fraction(sp.together(sp.expand(expr)))
     _, factors = sp.factor_list(d)

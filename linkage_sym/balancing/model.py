@@ -1,6 +1,6 @@
 """A hinged linkage as the balancing derivations see it: pins, link frames, symbols.
 
-Names (the issue's and seed 002's notation, ``<link>`` the link's name):
+Names (the issue's and Song and Wang's (1992) notation, ``<link>`` the link's name):
 
 =========================  ==================================================
 ``m_<link>``               mass
@@ -18,7 +18,7 @@ Names (the issue's and seed 002's notation, ``<link>`` the link's name):
 Frames are those of :func:`linkage_sym.structure.parameters.link_frames`:
 ``u`` is the link's first joint in scene order, ``v`` its second (the first
 one at a different point).  A *pin* is a point shared by links: the joints
-that sit at one point of a common link (seed 002's pin C of links 2, 3 and 4,
+that sit at one point of a common link (Song and Wang's pin C of links 2, 3 and 4,
 written as two joints) are one pin, named after the first of them.
 
 Examples
@@ -89,7 +89,7 @@ class BalanceModel:
     """
 
     def __init__(self, scene: Scene):
-        require_hinged(scene, "the mass/acceleration-parameter method (seed 002)")
+        require_hinged(scene, "the mass/acceleration-parameter method (Song and Wang 1992)")
         self.scene = scene
         self.frames = link_frames(scene)
         bad = [

@@ -1,4 +1,4 @@
-"""The mass/acceleration-parameter module of one link (seed 002, eqs. 1-8).
+"""The mass/acceleration-parameter module of one link (Song and Wang 1992, eqs. 1-8).
 
 A link between joints ``u`` and ``v`` (length ``a``), with mass ``m``, centre
 of mass at ``(p, q)`` in the link frame (origin ``u``, x-axis toward ``v``)
@@ -7,7 +7,7 @@ origin the inertia moment (eq. 1)
 
     M_0 = -dH_0/dt = -m (x_s y_s'' - y_s x_s'' + k^2 phi'').
 
-Seed 002 writes it as ``M_0 = -sum_i M_i D_i`` (eq. 5): four *mass
+Song and Wang write it as ``M_0 = -sum_i M_i D_i`` (eq. 5): four *mass
 parameters* ``M_i`` (geometry and mass only) times four *acceleration
 parameters* ``D_i`` (joint coordinates and accelerations only, eq. 7).
 :func:`link_module` derives ``M_0`` from eqs. 1-4 with SymPy and reads the
@@ -71,7 +71,7 @@ class LinkModule:
 
 
 def acceleration_parameters(u, v) -> tuple:
-    """Seed 002's eq. 7 for joints ``u = (x, y, x'', y'')`` and ``v``."""
+    """Song and Wang's eq. 7 for joints ``u = (x, y, x'', y'')`` and ``v``."""
     xu, yu, axu, ayu = u
     xv, yv, axv, ayv = v
     return (
@@ -87,7 +87,7 @@ def _symbols(prefix: str):
 
 
 def link_module(m=None, a=None, p=None, q=None, k=None, u=None, v=None) -> LinkModule:
-    """Derive the module of one link (seed 002, eqs. 1-8).
+    """Derive the module of one link (Song and Wang 1992, eqs. 1-8).
 
     Any argument left out is a fresh symbol (``m, a, p, q, k``; joint
     symbols ``x_u, y_u, xdd_u, ydd_u`` and the same for ``v``); arguments
@@ -167,7 +167,7 @@ def check_identity(mod: LinkModule) -> bool:
 
 
 def regrouped(mod: LinkModule) -> tuple:
-    """The module as seed 002's eqs. 17-18 regroup it.
+    """The module as Song and Wang's eqs. 17-18 regroup it.
 
     Returns ``(c_u, c_v, X, c_3)`` with
 

@@ -1,6 +1,6 @@
 """The global matrix method: every link's equilibrium in one sparse linear system.
 
-This is the method seed 000 contrasts with: write the three equilibrium
+This is the method Dang and Zhang contrast theirs with: write the three equilibrium
 equations of every moving link, with every joint reaction and driver effort
 as unknowns, and solve them all at once.  Here the systems of all the steps
 of a sweep form one block-diagonal sparse matrix, factorised once by

@@ -8,7 +8,7 @@ Methods
 ``"dyad"`` (default)
     From the last group back to the drivers, each group's reactions from
     its own equilibrium: closed forms for input links and dyads
-    (:mod:`~linkage_sym.numeric.statics`), seed 000's disconnection and
+    (:mod:`~linkage_sym.numeric.statics`), Dang and Zhang's disconnection and
     superposition for class-III and other complex groups
     (:mod:`~linkage_sym.numeric.superposition`); the reactions of a solved
     group are then loads on the links it hangs from.

@@ -5,10 +5,16 @@ whose ``status`` is not ``"ok"`` are NaN in these arrays and are *left out*
 of :meth:`Analysis.to_dict` (the contract's JSON), so no NaN is ever passed
 off as a result.  A ``"singular"`` step keeps its positions (the velocity
 problem has no unique solution there, the position problem does).
+
+The JSON is strict: any other value that is not finite (a NaN or an infinity
+that a solver let through) is left out as well, and a ``warnings`` entry says
+which; :meth:`Analysis.to_json` writes with ``allow_nan=False``.
 """
 
 from __future__ import annotations
 
+import json
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -84,7 +90,7 @@ class GroupForces:
         The group's links.
     method : str
         ``"input"``, ``"dyad RRR"`` ... for closed forms; ``"disconnection"``
-        for a class-III (or driven, or larger) group solved by seed 000's
+        for a class-III (or driven, or larger) group solved by Dang and Zhang's
         superposition; ``"dense"`` when a group's own equilibrium equations
         were solved as one linear system (no disconnection applies);
         ``"global"`` under the global method.
@@ -122,7 +128,7 @@ class Forces:
     Attributes
     ----------
     method : str
-        ``"dyad"`` (closed-form group routines, seed 000 superposition for
+        ``"dyad"`` (closed-form group routines, Dang and Zhang's superposition for
         complex groups) or ``"global"`` (one sparse linear system).
     reactions : dict of str to ndarray (N, 2)
     reaction_moments : dict of str to ndarray (N,)
@@ -231,6 +237,7 @@ class Analysis:
                 rec["acceleration"] = _vec(k.acceleration[i])
             return rec
 
+        dropped: list[str] = []  # fields left out because they are not finite
         for i in range(self.n_steps):
             st = str(self.status[i])
             step: dict = {"status": st}
@@ -276,7 +283,7 @@ class Analysis:
                         "force": _vec(forces.frame_force[i]),
                         "moment": float(forces.frame_moment[i]),
                     }
-            steps.append(step)
+            steps.append(_finite_only(step, f"steps[{i}]", dropped))
         out = {"scene": self.scene, "stages": list(self.stages), "steps": steps}
         if forces is not None:
             out["force_method"] = forces.method
@@ -299,10 +306,58 @@ class Analysis:
                 }
                 for g in forces.groups
             ]
-        if self.warnings:
-            out["warnings"] = list(self.warnings)
+        warnings = list(self.warnings)
+        if dropped:
+            shown = ", ".join(dropped[:3]) + (f" and {len(dropped) - 3} more" if len(dropped) > 3 else "")
+            warnings.append(
+                f"{len(dropped)} computed value{'s are' if len(dropped) != 1 else ' is'} not finite "
+                f"(NaN or infinite) and left out of the result: {shown}"
+            )
+        if warnings:
+            out["warnings"] = warnings
         return out
+
+    def to_json(self, **kwargs) -> str:
+        """:meth:`to_dict` as strict JSON text (never ``NaN`` nor ``Infinity``).
+
+        ``kwargs`` go to :func:`json.dumps` (e.g. ``indent``); ``allow_nan`` is
+        always ``False``, so a non-finite number is an error, never written.
+        """
+        return json.dumps(self.to_dict(), **{**kwargs, "allow_nan": False})
 
 
 def _vec(v) -> list:
     return [float(v[0]), float(v[1])]
+
+
+_LEFT_OUT = object()
+"""What :func:`_finite_only` returns for a value that is left out."""
+
+
+def _finite_only(value, path: str, dropped: list):
+    """``value`` (a step record) without its non-finite numbers; their paths go to ``dropped``.
+
+    A vector ``[x, y]`` with a non-finite component is left out whole; a record
+    keeps its other fields.
+    """
+    if isinstance(value, float):
+        if math.isfinite(value):
+            return value
+        dropped.append(path)
+        return _LEFT_OUT
+    if isinstance(value, dict):
+        out = {}
+        for key, item in value.items():
+            kept = _finite_only(item, f"{path}.{key}", dropped)
+            if kept is not _LEFT_OUT:
+                out[key] = kept
+        return out
+    if isinstance(value, list):
+        if all(isinstance(x, float) and math.isfinite(x) for x in value):
+            return value
+        if all(isinstance(x, (float, int)) for x in value):  # a vector: whole or not at all
+            dropped.append(path)
+            return _LEFT_OUT
+        return [x for x in (_finite_only(x, f"{path}[{k}]", dropped) for k, x in enumerate(value))
+                if x is not _LEFT_OUT]
+    return value

@@ -112,7 +112,7 @@ class InputForces:
     """A link turning about (R) or sliding along (P) a joint to a known link.
 
     For a real input link the joint carries a driver and the routine returns
-    its effort; for a *hypothetical* input link (seed 000) the same number is
+    its effort; for a *hypothetical* input link (Dang and Zhang) the same number is
     the equilibrium residual that the superposition drives to zero.
     """
 

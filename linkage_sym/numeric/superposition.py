@@ -1,4 +1,5 @@
-"""Complex Assur groups by disconnection and superposition (seed 000).
+"""Complex Assur groups by disconnection and superposition (Dang and Zhang, "A simplified
+method for the force analysis of complex planar multi-bar mechanisms").
 
 Dang Zuqi and Zhang Qixian solve a class-III (or higher) group with dyad
 routines only.  A :class:`~linkage_sym.structure.Disconnection` removes one
@@ -55,7 +56,7 @@ class _Choice:
         self.inputs = [InputForces(scene, link, joint) for link, joint in d.inputs]
         self.dyads = [DyadForces(scene, g) for g in d.dyads]
         self.n = d.unknowns
-        # the classic split of seed 000 eq. 1: one removed link with two revolutes
+        # the classic split of Dang and Zhang's eq. 1: one removed link with two revolutes
         self.rr = None
         if len(d.removed_links) == 1:
             (b,) = d.removed_links
@@ -207,7 +208,7 @@ def _size(parts, L):
 
 
 class SuperpositionForces:
-    """A complex group solved by seed 000's method, with a fallback disconnection per step."""
+    """A complex group solved by Dang and Zhang's method, with a fallback disconnection per step."""
 
     def __init__(self, scene: Scene, group: Group, choices: list[Disconnection], preferred=None):
         self.group = group

@@ -1,4 +1,5 @@
-"""Disconnection choices for class-III (and higher) Assur groups (seed 000).
+"""Disconnection choices for class-III (and higher) Assur groups (Dang and Zhang,
+"A simplified method for the force analysis of complex planar multi-bar mechanisms").
 
 Dang Zuqi and Zhang Qixian turn a complex group into a *virtual pure-dyad
 mechanism*: remove one binary link (one degree of freedom gained) or one
@@ -37,7 +38,7 @@ class Disconnection:
     sliding : tuple of bool
         For each input, whether it slides (its joint is prismatic): the
         unknown is then found from a force balance along the guide
-        (seed 000 eqs. 8-9) instead of a moment balance (eqs. 4-6).
+        (Dang and Zhang eqs. 8-9) instead of a moment balance (eqs. 4-6).
     """
 
     removed_links: tuple[str, ...]
@@ -76,7 +77,7 @@ def disconnections(scene: Scene, group: Group) -> list[Disconnection]:
     """Every disconnection of ``group`` that leaves a pure-dyad mechanism.
 
     Removing one binary link or one internal joint is tried first; pairs of
-    binary links only when neither works (seed 000, Fig. 2).
+    binary links only when neither works (Dang and Zhang, Fig. 2).
 
     Examples
     --------
@@ -150,7 +151,7 @@ def usable_disconnections(scene: Scene, group: Group) -> list[Disconnection]:
     """The disconnections of ``group`` the force solver can use.
 
     A driven joint inside the group must be cut (its effort is then one of
-    the cut joint's unknowns, as seed 000 does with an actuator).
+    the cut joint's unknowns, as Dang and Zhang do with an actuator).
     """
     out = []
     for d in disconnections(scene, group):
@@ -163,7 +164,7 @@ def default_choice(choices: list[Disconnection]) -> int:
     """Index of the disconnection used by default.
 
     Fewest unknowns first (one run less), then hypothetical inputs that
-    turn rather than slide (seed 000 advises binary, turning inputs), then
+    turn rather than slide (Dang and Zhang advise binary, turning inputs), then
     the structure's listing order.
     """
     keys = [(d.unknowns, sum(d.sliding), i) for i, d in enumerate(choices)]

@@ -20,7 +20,8 @@ the same topology through the same recipes, without SymPy.
 ``T_<i>``           torque of load ``i``
 ==================  ===================================================
 
-Link frames (seed 002's, in seed 003's notation): a moving link's frame has
+Link frames (as Song and Wang 1992 define them, in the notation of the
+kinematics textbook chapter): a moving link's frame has
 its origin at the link's first joint ``u`` in scene order and its x-axis
 toward its second joint ``v`` (the first one at a different point); a link
 whose joints all sit at one point keeps the global x direction of the

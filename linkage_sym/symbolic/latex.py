@@ -1,4 +1,5 @@
-"""LaTeX rendering of a mechanism's derived equations, in seed 003's notation.
+"""LaTeX rendering of a mechanism's derived equations, in the notation of the
+textbook chapter "Kinematic analysis of planar mechanisms".
 
 :func:`latex_document` writes a document *fragment* (no preamble; ``\\input``
 it in a document that loads ``amsmath``) with the symbols, loop equations
@@ -219,7 +220,7 @@ class _Doc:
 
 
 def latex_document(eqs: MechanismEquations) -> str:
-    r"""A LaTeX fragment with a mechanism's equations in seed 003's notation.
+    r"""A LaTeX fragment with a mechanism's equations in the kinematics chapter's notation.
 
     Sections: the symbols and their meanings; every closed vector loop in
     complex form (eq. 3-8) and its projections (eq. 3-9); the explicit
@@ -298,7 +299,8 @@ def latex_document(eqs: MechanismEquations) -> str:
     if eqs.loops:
         doc.text(
             "Each joint that closes a loop gives a closed vector loop "
-            "(seed 003, eq.~3-8) and its projections on the axes (eq.~3-9):"
+            r"(\emph{Kinematic analysis of planar mechanisms}, eq.~3-8) and its projections on the "
+            "axes (eq.~3-9):"
         )
     else:
         doc.text("The mechanism has no closed loop: every link is placed along a tree.")
@@ -334,7 +336,8 @@ def latex_document(eqs: MechanismEquations) -> str:
     doc.text(r"\paragraph{Velocities.}")
     doc.text(
         r"Differentiating the position equations $\Phi$ with respect to time gives "
-        r"$\mathbf{A}\,\dot{\mathbf{x}} = \mathbf{B}\,\dot{\mathbf{q}}$ (seed 003, eq.~3-28), "
+        r"$\mathbf{A}\,\dot{\mathbf{x}} = \mathbf{B}\,\dot{\mathbf{q}}$ "
+        r"(\emph{Kinematic analysis of planar mechanisms}, eq.~3-28), "
         r"$\mathbf{A} = \partial\Phi/\partial\mathbf{x}$, "
         r"$\mathbf{B} = -\partial\Phi/\partial\mathbf{q}$:"
     )
@@ -356,7 +359,7 @@ def latex_document(eqs: MechanismEquations) -> str:
     # (e) accelerations
     doc.text(r"\paragraph{Accelerations.}")
     doc.text(
-        r"Differentiating once more (seed 003, eq.~3-29), "
+        r"Differentiating once more (\emph{Kinematic analysis of planar mechanisms}, eq.~3-29), "
         r"$\mathbf{A}\,\ddot{\mathbf{x}} = -\dot{\mathbf{A}}\,\dot{\mathbf{x}} + "
         r"\dot{\mathbf{B}}\,\dot{\mathbf{q}} + \mathbf{B}\,\ddot{\mathbf{q}}$, with the same "
         r"$\mathbf{A}$; the right-hand side is printed as one column $\mathbf{r}$:"

@@ -7,7 +7,7 @@ after the scene, or as numbers) into :class:`MechanismEquations`:
   x-axis (its joint ``u`` toward ``v``, see
   :mod:`linkage_sym.structure.parameters`) and the slide ``s_<J>`` of every
   ``P`` joint (0 in the assembly configuration); drivers ``q_<J>``;
-* **loop equations** (seed 003, eq. 3-8): one closed vector loop per joint
+* **loop equations** (kinematics textbook chapter, eq. 3-8): one closed vector loop per joint
   that closes a loop, in complex form, and their projections on the axes
   (eq. 3-9); ``P`` joints add ``theta_b - theta_a = const`` and drivers their
   own equations.  Every link is placed from the ground along a spanning

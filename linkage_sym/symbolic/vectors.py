@@ -1,4 +1,5 @@
-"""Plane vectors as sums of link vectors, in seed 003's complex notation.
+"""Plane vectors as sums of link vectors, in the complex notation of the textbook
+chapter "Kinematic analysis of planar mechanisms".
 
 A :class:`Vec` is a sum of *polar* terms ``l e^{i theta}`` (a link vector:
 length times the unit vector of an angle) and *Cartesian* terms ``x + i y``
@@ -55,7 +56,7 @@ class Vec:
         return sp.Add(*(l * sp.sin(t) for l, t in self.polar), *(y for _, y in self.cart))
 
     def complex(self):
-        """Seed 003's complex form ``sum l e^{i theta} + (x + i y)``."""
+        """The kinematics chapter's complex form ``sum l e^{i theta} + (x + i y)``."""
         terms = [l * sp.exp(sp.I * t) for l, t in self.polar]
         terms += [x + sp.I * y for x, y in self.cart]
         return sp.Add(*terms)
