@@ -557,6 +557,62 @@ def test_a_single_joint_needs_no_size():
     assert refused(data).problems[0].startswith("drivers[0].stop: must be within +-1e+03 m")
 
 
+# -- over-constrained in one part, under-constrained in another -------------------------
+
+
+def test_over_and_under_constrained_parts_are_both_named():
+    """Gruebler's count matches (M = 3*3 - 2*4 = 1, one driver), the mechanism does not.
+
+    Link 'beam' is pinned to the ground twice (4 equations for 3 unknowns); the
+    two-link arm 'upper', 'fore' has one driver for its two degrees of freedom.
+    """
+    import linkage_sym
+
+    data = {
+        "name": "over-and-under",
+        "links": [{"name": "beam"}, {"name": "upper"}, {"name": "fore"}],
+        "joints": [
+            {"name": "A", "type": "R", "links": ["ground", "beam"], "at": [0.0, 0.0]},
+            {"name": "B", "type": "R", "links": ["beam", "ground"], "at": [0.1, 0.0]},
+            {"name": "C", "type": "R", "links": ["ground", "upper"], "at": [0.3, 0.0]},
+            {"name": "D", "type": "R", "links": ["upper", "fore"], "at": [0.4, 0.0]},
+        ],
+        "drivers": [{"joint": "C", "toward": "D", "start_deg": 0, "stop_deg": 90, "steps": 3,
+                     "speed": 1.0}],
+    }
+    scene = parse_scene(data)  # the count alone cannot tell
+    with pytest.raises(SceneError) as info:
+        linkage_sym.analyze(scene)
+    assert info.value.problems == [
+        "structure: link beam is over-constrained (4 constraint equations for 3 unknowns)",
+        "structure: link fore is under-constrained (2 constraint equations for 3 unknowns): the "
+        "drivers do not determine their positions (the mechanism is over-constrained in one part "
+        "and under-constrained in another, which the Gruebler-Kutzbach count cannot see)",
+    ]
+
+
+def test_a_rigid_triangle_and_a_free_chain_are_both_named():
+    import linkage_sym
+
+    data = copy.deepcopy(CRANK_ROCKER)
+    # the rocker also pinned to the crank: coupler and rocker form a rigid triangle with it
+    data["joints"].append({"name": "E", "type": "R", "links": ["crank", "rocker"],
+                           "at": [0.05, -0.02]})
+    # and a free two-link arm on the ground (mobility 2, no driver): Gruebler still says 1
+    data["links"] += [{"name": "upper"}, {"name": "fore"}]
+    data["joints"] += [
+        {"name": "F", "type": "R", "links": ["ground", "upper"], "at": [0.3, 0.0]},
+        {"name": "G", "type": "R", "links": ["upper", "fore"], "at": [0.4, 0.0]},
+    ]
+    data["loads"] = []
+    with pytest.raises(SceneError) as info:
+        linkage_sym.analyze(parse_scene(data))
+    over, under = info.value.problems
+    assert over.startswith("structure: links coupler, rocker are over-constrained (")
+    assert under.startswith("structure: links upper, fore are under-constrained (4 constraint "
+                            "equations for 6 unknowns)")
+
+
 def test_top_level_must_be_an_object():
     error = refused(["not", "a", "scene"])
     assert error.problems == ["scene: must be an object, got an array"]

@@ -132,11 +132,16 @@ def mobility(scene: Scene) -> int:
 
 
 def _search(scene: Scene, items: list[_Item], known: set[str], order: list[str]):
-    """Generator of (links, items) groups in solving order; raises on failure."""
+    """Generator of (links, items) groups in solving order; raises on failure.
+
+    On failure (a sub-chain with more equations than unknowns, or none that
+    closes) the :class:`SceneError` names every over-constrained and every
+    under-constrained part of the links still unknown (see :func:`_parts`).
+    """
     remaining = [n for n in order if n not in known]
     pending = list(items)
     while remaining:
-        found = None
+        found = over = None
         for size in range(1, min(len(remaining), MAX_GROUP_SIZE) + 1):
             for subset in combinations(remaining, size):
                 s = set(subset)
@@ -147,32 +152,137 @@ def _search(scene: Scene, items: list[_Item], known: set[str], order: list[str])
                 ]
                 neq = sum(it.equations for it in mine)
                 if neq > 3 * size:
-                    raise SceneError(
-                        [
-                            f"structure: links {', '.join(subset)} are over-constrained "
-                            f"({neq} constraint equations for {3 * size} unknowns)"
-                        ]
-                    )
+                    over = subset
+                    break
                 if neq == 3 * size:
                     found = (subset, mine)
                     break
-            if found:
+            if found or over:
                 break
         if found is None:
-            raise SceneError(
-                [
-                    "structure: links "
-                    + ", ".join(remaining)
-                    + " cannot be determined from the drivers (no sub-chain of up to "
-                    f"{MAX_GROUP_SIZE} links closes: the mechanism is under-constrained "
-                    "in one part and over-constrained in another)"
-                ]
-            )
+            raise SceneError(_refusal(remaining, pending, known, over))
         subset, mine = found
         yield subset, mine
         known |= set(subset)
         remaining = [n for n in remaining if n not in known]
         pending = [it for it in pending if it not in mine]
+
+
+def _refusal(remaining: list[str], pending: list[_Item], known: set[str], over) -> list[str]:
+    """The problems of links ``remaining`` that no group determines.
+
+    ``over`` is the over-constrained sub-chain the search met, if any.  Both
+    kinds of part are named: when Gruebler's count matches, a part with too
+    many equations goes with another with too few.
+    """
+    over_links, under_links = _parts(remaining, pending)
+    if not over_links and over is not None:
+        over_links = list(over)
+
+    def count(links, touching):
+        s = set(links)
+        mine = [
+            it for it in pending
+            if set(it.links) & s and (touching or set(it.links) <= s | known)
+        ]
+        return sum(it.equations for it in mine), 3 * len(links)
+
+    problems = []
+    if over_links:
+        neq, unknowns = count(over_links, touching=False)
+        problems.append(
+            f"structure: {_links(over_links)} over-constrained "
+            f"({neq} constraint equations for {unknowns} unknowns)"
+        )
+    if under_links:
+        neq, unknowns = count(under_links, touching=True)
+        both = (
+            " (the mechanism is over-constrained in one part and under-constrained in another, "
+            "which the Gruebler-Kutzbach count cannot see)"
+            if over_links
+            else ""
+        )
+        problems.append(
+            f"structure: {_links(under_links)} under-constrained "
+            f"({neq} constraint equations for {unknowns} unknowns): the drivers do not "
+            f"determine their positions{both}"
+        )
+    if not problems:  # no part stands out: a group larger than the search
+        problems.append(
+            "structure: links "
+            + ", ".join(remaining)
+            + " cannot be determined from the drivers (no sub-chain of up to "
+            f"{MAX_GROUP_SIZE} links closes)"
+        )
+    return problems
+
+
+def _links(names: list[str]) -> str:
+    """``link a is`` or ``links a, b are``, for messages."""
+    return f"link {names[0]} is" if len(names) == 1 else f"links {', '.join(names)} are"
+
+
+def _parts(remaining: list[str], pending: list[_Item]) -> tuple[list[str], list[str]]:
+    """Links of the over- and of the under-constrained part among ``remaining``.
+
+    The coarse Dulmage-Mendelsohn decomposition of the structural incidence of
+    the pending equations (2 per joint, 1 per driver) on the unknowns (3 per
+    link, each equation involving every unknown of its links): with a maximum
+    matching of equations to unknowns, the over-constrained part is what
+    alternating paths reach from the unmatched equations, the under-constrained
+    part what they reach from the unmatched unknowns.  Both are independent of
+    the matching chosen.
+    """
+    cols = [(n, k) for n in remaining for k in range(3)]
+    col_of = {c: i for i, c in enumerate(cols)}
+    rows: list[list[int]] = []
+    for it in pending:
+        adj = [col_of[n, k] for n in it.links if n in remaining for k in range(3)]
+        if adj:
+            rows.extend([adj] * it.equations)
+    row_adj: list[list[int]] = [[] for _ in cols]  # rows of each column
+    for r, adj in enumerate(rows):
+        for c in adj:
+            row_adj[c].append(r)
+    match_col: list[int | None] = [None] * len(cols)  # the row matched to each column
+    match_row: list[int | None] = [None] * len(rows)
+
+    def augment(r, seen):
+        for c in rows[r]:
+            if c not in seen:
+                seen.add(c)
+                if match_col[c] is None or augment(match_col[c], seen):
+                    match_col[c], match_row[r] = r, c
+                    return True
+        return False
+
+    for r in range(len(rows)):
+        augment(r, set())
+    over_cols: set[int] = set()
+    stack = [r for r in range(len(rows)) if match_row[r] is None]
+    seen_rows = set(stack)
+    while stack:
+        for c in rows[stack.pop()]:
+            if c not in over_cols:
+                over_cols.add(c)
+                r = match_col[c]
+                if r is not None and r not in seen_rows:
+                    seen_rows.add(r)
+                    stack.append(r)
+    under_cols = {c for c in range(len(cols)) if match_col[c] is None}
+    stack = list(under_cols)
+    while stack:
+        for r in row_adj[stack.pop()]:
+            c = match_row[r]
+            if c is not None and c not in under_cols:
+                under_cols.add(c)
+                stack.append(c)
+
+    def links(found):
+        names = {cols[c][0] for c in found}
+        return [n for n in remaining if n in names]
+
+    return links(over_cols), links(under_cols)
 
 
 def _classify(scene: Scene, links: tuple[str, ...], mine: list[_Item]) -> Group:
