@@ -386,7 +386,7 @@ def test_cli_balance_optimises_a_slider_crank(tmp_path):
     assert peak(got - before) <= 1e-9 * peak(before)
     assert d["optimized"]["objective"] <= d["optimized"]["objective_start"]
     assert sorted(p.name for p in pics.iterdir()) == [
-        "slider_crank_offset_shaking_force_polar.png", "slider_crank_offset_shaking_moment.png"]
+        "slider-crank-offset_shaking_force_polar.png", "slider-crank-offset_shaking_moment.png"]
 
 
 def test_cli_balance_refuses_latex_for_a_slider_crank(tmp_path):
