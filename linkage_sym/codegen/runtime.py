@@ -24,6 +24,7 @@ import numpy as np
 
 from linkage_sym.codegen import cache
 from linkage_sym.errors import SceneError
+from linkage_sym.numeric import continuation
 from linkage_sym.model import Scene
 from linkage_sym.numeric.result import (
     OK,
@@ -41,12 +42,58 @@ from linkage_sym.structure.parameters import driver_q0, evaluate, ident, link_fr
 SCREEN = 1e-3
 """A group block whose Hadamard ratio (by rows or by columns) is below this gets the
 exact condition number."""
-NEWTON_TOL = 1e-13
-"""Newton stops when the (dimensionless) correction is below this."""
-NEWTON_ITER = 30
-SUBSTEPS = 16
 ASSEMBLY_MATCH = 1e-6
 """Closed forms must reproduce the assembly configuration to this (rad, or fraction of size)."""
+
+
+class _GroupProblem:
+    """A group without a closed form in the derived coordinates (angles, slides), for
+    :func:`continuation.solve_path`: unknowns over the scale (slides over ``L``),
+    residual rows over their scale (loop projections over ``L``)."""
+
+    def __init__(self, cm, step, group, X, Qpath, failed):
+        self.f = cm.functions[step["function"]]
+        self.params = cm.params
+        self.cols = step["x"]
+        self.n = len(self.cols)
+        self.m = cm.m
+        self.X = X
+        self.Q = Qpath
+        self.failed = failed
+        self.known = [c for c in range(cm.m) if X[c] is not None]
+        self.scale = np.where(cm.is_angle[self.cols], 1.0, cm.L)
+        self.angles = cm.is_angle[self.cols]
+        r0, r1 = group["rows"]
+        self.row_scale = np.where(np.array(cm.art["rows_length"][r0:r1], bool), 1.0 / cm.L, 1.0)
+
+    def at(self, i):
+        if self.failed[i] >= 0:
+            return None
+        return self.Q[:, i], np.array([self.X[c][i] for c in self.known])
+
+    def blend(self, a, b, t):
+        return (1 - t) * a[0] + t * b[0], (1 - t) * a[1] + t * b[1]
+
+    def evaluate(self, u, ctx):
+        r, J = self.evaluate_many(u[None, :], ctx)
+        return r[0], J[0]
+
+    def evaluate_many(self, U, ctx):
+        q, xk = ctx
+        k = len(U)
+        Xs = [None] * self.m
+        for c, v in zip(self.known, xk):
+            Xs[c] = v
+        for c, v in zip(self.cols, (U * self.scale).T):
+            Xs[c] = v
+        out = self.f(Xs, None, None, list(q), None, None, None, self.params)
+        n = self.n
+        vals = np.empty((len(out), k))
+        for i, v in enumerate(out):
+            vals[i] = v
+        R = vals[:n].T * self.row_scale
+        J = vals[n:].T.reshape(k, n, n) * self.row_scale[:, None] * self.scale[None, :]
+        return R, J
 
 
 def _namespace() -> dict:
@@ -193,6 +240,7 @@ class CompiledMechanism:
         K = Qpath.shape[1]
         X = [None] * self.m
         failed = np.full(K, -1)
+        self.newton_messages, self.newton_notes = {}, []
         gidx = {c: g["index"] for g in art["groups"] for c in g["cols"]}
         Q = list(Qpath)
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -208,65 +256,30 @@ class CompiledMechanism:
         return np.array(X), failed
 
     def _newton(self, step, X, Qpath, failed):
-        """Newton on one group's loop equations at every path point, in order."""
-        f = self.functions[step["function"]]
-        cols = step["x"]
-        n, K = len(cols), Qpath.shape[1]
-        scale = np.where(self.is_angle[cols], 1.0, self.L)
-        sol = np.full((n, K), np.nan)
+        """One group without a closed form at every path point: the continuation policy
+        both runtimes share (:mod:`linkage_sym.numeric.continuation`)."""
         g = step["group"]
-        known = [c for c in range(self.m) if X[c] is not None]
+        group = next(gr for gr in self.art["groups"] if gr["index"] == g)
+        problem = _GroupProblem(self, step, group, X, Qpath, failed)
+        sol = continuation.solve_path(problem, Qpath.shape[1], self.x0[step["x"]] / problem.scale)
+        x = (sol.u * problem.scale).T
+        for k, c in enumerate(step["x"]):
+            X[c] = x[k]
+        kinds = {n: self.scene.joint(n).type for n in self.art["q"]}
+        qpath = dict(zip(self.art["q"], Qpath))
 
-        def solve(xi, qi, xk):
-            Xs = [None] * self.m
-            for c in known:
-                Xs[c] = xk[c]
-            for _ in range(NEWTON_ITER):
-                for c, v in zip(cols, xi):
-                    Xs[c] = v
-                out = f(Xs, None, None, list(qi), None, None, None, self.params)
-                r = np.array(out[:n], float)
-                J = np.array(out[n:], float).reshape(n, n)
-                try:
-                    dx = np.linalg.solve(J, -r)
-                except np.linalg.LinAlgError:
-                    return None, 0.0
-                xi = xi + dx
-                if not np.all(np.isfinite(xi)):
-                    return None, 0.0
-                if np.max(np.abs(dx) / scale) <= NEWTON_TOL * max(1.0, np.max(np.abs(xi) / scale)):
-                    return xi, np.linalg.det(J)
-            return None, 0.0
+        def where(i):
+            return lambda t: continuation.driver_values_text(qpath, kinds, i, t)
 
-        seed = self.x0[cols].copy()
-        sign0 = None
-        last_q, last_xk = Qpath[:, 0], {c: X[c][0] for c in known}
-        for i in range(K):
-            if failed[i] >= 0:
-                continue
-            xk = {c: X[c][i] for c in known}
-            xi, det = solve(seed, Qpath[:, i], xk)
-            ok = xi is not None and (sign0 is None or np.sign(det) == sign0)
-            if not ok:  # continuation in sub-steps from the last solved point
-                trial = seed
-                for s in range(1, SUBSTEPS + 1):
-                    t = s / SUBSTEPS
-                    qs = last_q + t * (Qpath[:, i] - last_q)
-                    xs = {c: last_xk[c] + t * (xk[c] - last_xk[c]) for c in known}
-                    trial, det = solve(trial, qs, xs)
-                    if trial is None or (sign0 is not None and np.sign(det) != sign0):
-                        break
-                xi = trial
-                ok = xi is not None and (sign0 is None or np.sign(det) == sign0)
-            if not ok:
-                failed[i] = g
-                continue
-            if sign0 is None:
-                sign0 = np.sign(det)
-            sol[:, i] = xi
-            seed, last_q, last_xk = xi, Qpath[:, i], xk
-        for k, c in enumerate(cols):
-            X[c] = sol[k]
+        for i, f in sol.failures.items():
+            failed[i] = g
+            self.newton_messages[i] = continuation.failure_message(
+                group["label"], group["links"], f, where(i))
+        self.newton_notes += [
+            (n[0], lambda step_text, n=n: continuation.note_message(
+                group["label"], group["links"], n, step_text, where(n[0])))
+            for n in sol.notes
+        ]
 
     # -- the run ---------------------------------------------------------------------
     def sweep(self):
@@ -365,10 +378,11 @@ class CompiledMechanism:
         groups = {g["index"]: g for g in art["groups"]}
         for i in np.flatnonzero(failed >= 0):
             g = groups[int(failed[i])]
-            how = "its closed form has no real solution" if g["closed"] else (
-                "Newton on its loop equations finds no root on the assembly mode"
-            )
-            messages[i] = f"{g['label']} ({', '.join(g['links'])}) cannot be assembled: {how}"
+            if g["closed"]:
+                messages[i] = (f"{g['label']} ({', '.join(g['links'])}) cannot be assembled: "
+                               "its closed form has no real solution")
+            else:
+                messages[i] = self.newton_messages[int(out[i])]
         pos_ok = failed < 0
         idx = np.flatnonzero(pos_ok)
         Xk = X[:, idx]
@@ -437,7 +451,9 @@ class CompiledMechanism:
         forces = None
         if "forces" in stages:
             forces = self._forces(pts, Xk, CS, rate_ok, idx, N)
-        return self._analysis(X, XD, XDD, pts, idx, status, messages, condition, forces, q, qd, qdd)
+        res = self._analysis(X, XD, XDD, pts, idx, status, messages, condition, forces, q, qd, qdd)
+        res.warnings[:0] = continuation.step_warnings(self.newton_notes, out)
+        return res
 
     def _get(self, pts, key):
         a, b = self.art["layout"][key]

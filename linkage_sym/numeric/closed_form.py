@@ -81,6 +81,9 @@ class InputSolver:
     keyed by driven joint) over the steps being solved.
     """
 
+    notes = ()
+    """Jumps worth a warning: none (a closed form keeps its assembly mode by its sign)."""
+
     def __init__(self, scene: Scene, group: Group, phi0):
         (self.link,) = group.links
         (dname,) = group.drivers
@@ -145,6 +148,9 @@ class DyadSolver:
     solved on a longer path (assembly configuration to first step, refined
     steps) than the steps whose rates are wanted.
     """
+
+    notes = ()
+    """Jumps worth a warning: none (a closed form keeps its assembly mode by its sign)."""
 
     def __init__(self, scene: Scene, group: Group):
         self.group = group

@@ -1,14 +1,10 @@
 """Newton solver of a group's own loop equations (class-III and other groups).
 
-Positions: Newton–Raphson on the group's constraint equations, step after
-step along the path from the assembly configuration, each step seeded by a
-linear predictor from the two previous solutions; damped by step halving when
-the residual grows.  Near a fold one step (or the predictor) can overshoot into
-the other assembly mode: such a step is retried as a continuation in
-sub-steps from the previous solution before it is given up.  A converged solution whose Jacobian determinant has the
-other sign than in the assembly configuration is *not* accepted (that would
-be a silent jump of assembly mode): the step is reported unassemblable with
-the reason, and the next step is seeded from the last accepted one.
+Positions: the group's constraint equations in pose coordinates, solved along
+the path from the assembly configuration by the continuation policy both
+runtimes share (:mod:`linkage_sym.numeric.continuation`: predictor, damped
+Newton, the assembly mode's determinant sign, bisected sub-steps, limits
+located, re-entry after a gap by deflation, ambiguous modes reported).
 
 Velocities and accelerations: the group's linear systems ``J v = r``, solved
 for all steps at once (``numpy.linalg.solve`` on stacked matrices).
@@ -19,16 +15,10 @@ from __future__ import annotations
 import numpy as np
 
 from linkage_sym.errors import SceneError
+from linkage_sym.numeric import continuation
 from linkage_sym.numeric.constraints import jacobian, stack_rows
 from linkage_sym.numeric.state import LinkState
 
-TOL = 1e-13
-"""Convergence: scaled residual norm (lengths over the mechanism size)."""
-MAX_ITER = 40
-STALL_ITER = 6
-"""Give up when the residual has not halved over this many iterations."""
-SUBSTEPS = 16
-"""Sub-steps of the continuation retried when a step lands in the other mode or diverges."""
 SINGULAR_IND = 1e-14
 """Indicator (reciprocal condition of the group block) below which no rate is solved."""
 
@@ -61,135 +51,38 @@ class NewtonSolver:
                 ]
             )
         self.det_sign = float(np.sign(np.linalg.det(J)))
-
-    # -- helpers -------------------------------------------------------------
-    def _scaled_residual(self, S, q):
-        r = np.atleast_2d(stack_rows([v for c in self.cons for v in c.residual(S, q)]))
-        return r * np.where(self.length_rows, 1.0 / self.L, 1.0)
-
-    def _set(self, S, z):
-        for k, n in enumerate(self.links):
-            S[n].set_pose(z[3 * k + 2], z[3 * k], z[3 * k + 1])
+        self.driver_kinds = {d.joint: scene.joint(d.joint).type for d in scene.drivers}
+        self.notes = []
 
     # -- positions -----------------------------------------------------------
     def position(self, S, q):
+        """Poses of the group's links at every path point (continuation policy:
+        :mod:`linkage_sym.numeric.continuation`); returns the indicator."""
         n_steps = len(next(iter(q.values())))
-        known = {
-            n: st for n, st in S.items() if n not in self.links and any(c.involves(n) for c in self.cons)
+        problem = _PoseProblem(self, S, q)
+        sol = continuation.solve_path(problem, n_steps, np.zeros(self.nvar))
+        out = sol.u * problem.scale
+        kinds = {k: self.driver_kinds.get(k, "R") for k in q}
+        where = lambda i: lambda t: continuation.driver_values_text(q, kinds, i, t)  # noqa: E731
+        self.messages = {
+            i: continuation.failure_message(self.group.label, self.links, f, where(i))
+            for i, f in sol.failures.items()
         }
-        out = np.full((n_steps, self.nvar), np.nan)
-        ind = np.full(n_steps, np.nan)
-        self.messages = {}
-        z_prev = np.zeros(self.nvar)  # the assembly configuration
-        z_prev2 = None
-        scale = np.tile([self.L, self.L, 1.0], len(self.links))
-        local = {n: LinkState() for n in self.links}
-        for i in range(n_steps):
-            Si = {n: st.take(i) for n, st in known.items()}
-            Si.update(local)
-            qi = {k: v[i] for k, v in q.items()}
-            if any(not np.isfinite(st.dx) for n, st in Si.items() if n in known):
-                z_prev2 = None
-                continue  # an upstream group failed here; reported there
-            z = z_prev if z_prev2 is None else 2 * z_prev - z_prev2
-            z, res, J = self._newton(Si, qi, z.copy(), scale)
-            if (res > TOL or np.sign(np.linalg.det(J)) != self.det_sign) and i > 0 and (
-                np.isfinite(out[i - 1, 0])
-            ):
-                # near a fold the predictor (or one long step) can overshoot into the
-                # other mode: continue from the last solution in small sub-steps instead
-                z, res, J = self._substeps(known, local, q, i, z_prev, scale)
-            if res > TOL:
-                self.messages[i] = (
-                    f"{self.group.label} ({', '.join(self.links)}): Newton on the group's loop "
-                    f"equations did not converge (scaled residual {res:.2e}): the group cannot be "
-                    "assembled here"
-                )
-                z_prev2 = None
-                continue
-            if np.sign(np.linalg.det(J)) != self.det_sign:
-                self.messages[i] = (
-                    f"{self.group.label} ({', '.join(self.links)}): the only solution found near the "
-                    "previous step is in the other assembly mode (the group passed through a "
-                    "singular position); not accepted"
-                )
-                z_prev2 = None
-                continue
-            sv = np.linalg.svd(J, compute_uv=False)
-            ind[i] = sv[-1] / sv[0]
-            out[i] = z
-            z_prev2 = z_prev if (i > 0 and np.isfinite(out[i - 1, 0])) else None
-            z_prev = z
+        self.notes = [
+            (i, lambda step, n=n, i=i: continuation.note_message(
+                self.group.label, self.links, n, step, where(i)))
+            for n in sol.notes
+            for i in [n[0]]
+        ]
         for k, n in enumerate(self.links):
             S[n].set_pose(out[:, 3 * k + 2], out[:, 3 * k], out[:, 3 * k + 1])
-        return ind
-
-    def _substeps(self, known, local, q, i, z, scale, n_sub=SUBSTEPS):
-        """Continuation from step ``i - 1`` (solution ``z``) to step ``i`` in ``n_sub`` sub-steps.
-
-        The known links' poses and the drivers are interpolated linearly between
-        the two steps: intermediate targets only need to be close to each other
-        (a homotopy), the last one is step ``i`` exactly.  Every intermediate
-        solution must stay in the assembly mode.
-        """
-        ends = {n: (st.take(i - 1), st.take(i)) for n, st in known.items()}
-        for m in range(1, n_sub + 1):
-            t = m / n_sub
-            Si = dict(local)
-            for n, (a, b) in ends.items():
-                Si[n] = LinkState(
-                    (1 - t) * a.th + t * b.th, (1 - t) * a.dx + t * b.dx, (1 - t) * a.dy + t * b.dy
-                )
-            qi = {k: (1 - t) * v[i - 1] + t * v[i] for k, v in q.items()}
-            z, res, J = self._newton(Si, qi, z.copy(), scale)
-            if res > TOL or np.sign(np.linalg.det(J)) != self.det_sign:
-                break
-        if m < n_sub:  # failed on the way: report what the direct attempt would
-            Si = {n: b for n, (_, b) in ends.items()}
-            Si.update(local)
-            z, res, J = self._newton(Si, {k: v[i] for k, v in q.items()}, z.copy(), scale)
-        return z, res, J
-
-    def _newton(self, S, q, z, scale):
-        self._set(S, z)
-        r = self._scaled_residual(S, q)[0]
-        res = np.linalg.norm(r)
-        J = jacobian(self.cons, S, self.links, 1, self.L)[0]
-        polished = False
-        history = []
-        for it in range(MAX_ITER):
-            history.append(res)
-            # no solution here: the residual stalls at the least-squares minimum
-            if it >= STALL_ITER and res > TOL and res > 0.5 * history[-STALL_ITER]:
-                break
-            if res <= TOL:
-                if polished:
-                    break
-                polished = True  # one more step: quadratic convergence to ~1e-16
-            try:
-                dz = np.linalg.solve(J, -r) * scale
-            except np.linalg.LinAlgError:
-                return z, np.inf, J
-            step = 1.0
-            while True:
-                zn = z + step * dz
-                self._set(S, zn)
-                rn = self._scaled_residual(S, q)[0]
-                resn = np.linalg.norm(rn)
-                if resn < res or res <= TOL or step < 1e-4:
-                    break
-                step *= 0.5
-            if res <= TOL and resn > res:
-                self._set(S, z)
-                break
-            z, r, res = zn, rn, resn
-            J = jacobian(self.cons, S, self.links, 1, self.L)[0]
-        return z, res, J
+        return sol.indicator
 
     def failure(self, S, i) -> str:
         return self.messages.get(
             i, f"{self.group.label} ({', '.join(self.links)}): cannot be assembled"
         )
+
 
     # -- rates ---------------------------------------------------------------
     def _solve_rates(self, S, rows_fn, attrs):
@@ -203,9 +96,12 @@ class NewtonSolver:
         x = np.full((n_steps, self.nvar), np.nan)
         good = np.isfinite(J).all(axis=(1, 2)) & np.isfinite(rhs).all(axis=1)
         if good.any():
-            Jg = J[good]
-            # steps whose group block is (numerically) singular get no rates
-            sv = np.linalg.svd(Jg, compute_uv=False)
+            # steps whose group block is (numerically) singular get no rates; judged on
+            # the dimensionless block (rows over L, translation columns times L), so a
+            # mechanism's size does not decide it
+            row = np.where(self.length_rows, 1.0 / self.L, 1.0)
+            col = np.tile([self.L, self.L, 1.0], len(self.links))
+            sv = np.linalg.svd(J[good] * row[:, None] * col[None, :], compute_uv=False)
             ok = sv[:, -1] > SINGULAR_IND * sv[:, 0]
             idx = np.flatnonzero(good)[ok]
             x[idx] = np.linalg.solve(J[idx], rhs[idx][..., None])[..., 0]
@@ -218,3 +114,55 @@ class NewtonSolver:
 
     def acceleration(self, S, q, qd, qdd):
         self._solve_rates(S, lambda c: c.accel(S, qdd), ("al", "ax", "ay"))
+
+
+class _PoseProblem:
+    """A Newton group in pose coordinates, for :func:`continuation.solve_path`.
+
+    Unknowns ``u``: each link's ``(dx / L, dy / L, theta)``; inputs at a path
+    point: the poses of the links the group is attached to and the drivers.
+    """
+
+    def __init__(self, solver: NewtonSolver, S, q):
+        self.sv = solver
+        self.q = q
+        self.known = {
+            n: st for n, st in S.items()
+            if n not in solver.links and any(c.involves(n) for c in solver.cons)
+        }
+        self.local = {n: LinkState() for n in solver.links}
+        self.scale = np.tile([solver.L, solver.L, 1.0], len(solver.links))
+        self.angles = np.tile([False, False, True], len(solver.links))
+        self.row_scale = np.where(solver.length_rows, 1.0 / solver.L, 1.0)
+
+    def at(self, i):
+        Si = {n: st.take(i) for n, st in self.known.items()}
+        if any(not np.isfinite(st.dx) for st in Si.values()):
+            return None
+        return Si, {k: v[i] for k, v in self.q.items()}
+
+    def blend(self, a, b, t):
+        Sa, qa = a
+        Sb, qb = b
+        S = {
+            n: LinkState((1 - t) * x.th + t * Sb[n].th, (1 - t) * x.dx + t * Sb[n].dx,
+                         (1 - t) * x.dy + t * Sb[n].dy)
+            for n, x in Sa.items()
+        }
+        return S, {k: (1 - t) * v + t * qb[k] for k, v in qa.items()}
+
+    def evaluate(self, u, ctx):
+        r, J = self.evaluate_many(u[None, :], ctx)
+        return r[0], J[0]
+
+    def evaluate_many(self, U, ctx):
+        Sk, qk = ctx
+        S = dict(Sk)
+        S.update(self.local)
+        Z = U * self.scale
+        for k, n in enumerate(self.sv.links):
+            S[n].set_pose(Z[:, 3 * k + 2], Z[:, 3 * k], Z[:, 3 * k + 1])
+        R = stack_rows([v for c in self.sv.cons for v in c.residual(S, qk)])
+        R = np.broadcast_to(R, (len(U), R.shape[-1])) * self.row_scale
+        J = jacobian(self.sv.cons, S, self.sv.links, len(U), self.sv.L)
+        return R, J

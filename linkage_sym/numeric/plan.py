@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkage_sym.model import GROUND, Scene
+from linkage_sym.numeric import continuation
 from linkage_sym.numeric.closed_form import DyadSolver, InputSolver
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
 from linkage_sym.numeric.kinetostatics import ForcePlan, check_method
@@ -368,6 +369,8 @@ class Plan:
         if self.force_plan is not None:
             forces = self.force_plan.run(S, status == OK, method)
         res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
+        res.warnings.extend(continuation.step_warnings(
+            [n for sv in self.solvers for n in sv.notes], path_index))
         res.warnings.extend(run_warnings(res))
         return res
 

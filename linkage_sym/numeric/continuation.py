@@ -1,0 +1,440 @@
+"""The one continuation policy of groups solved by Newton's method (NumPy only).
+
+Class-III triads, driven (actuator) groups and every other group without a
+closed form are solved by Newton's method on their own loop equations, step
+after step along the solving path.  Both runtimes -- the numeric plan
+(:mod:`linkage_sym.numeric.newton`, pose coordinates) and the compiled
+symbolic mechanism (:mod:`linkage_sym.codegen.runtime`, the derived angles
+and slides) -- hand this module a :class:`Problem` and get the same policy:
+
+* **Continuity.**  A path point is reached from the previous solved one by
+  natural-parameter continuation: a predictor (linear from the two previous
+  points, when they are consecutive), damped Newton to a scaled residual of
+  :data:`TOL`, and the solution is *accepted* only if it keeps the assembly
+  configuration's Jacobian-determinant sign and lies within
+  :data:`MAX_CORRECTION` (dimensionless: radians, lengths over the
+  mechanism's size) of the predictor.  Otherwise the interval is bisected
+  (adaptive sub-steps, down to :data:`MIN_FRACTION` of it).  A solution is
+  therefore the one reached continuously from the assembly configuration,
+  whatever the number of steps of the sweep: a step's result does not depend
+  on its neighbours.
+* **Limits.**  When the continuation cannot go on (the group reaches a fold:
+  a limit position beyond which it cannot be assembled, or a singular
+  position where it would change assembly mode), the point is reported with
+  the fraction of the interval where that happens, so the caller can name the
+  driver value.
+* **Re-entry after a gap.**  After points that could not be solved there is
+  no continuous path.  The roots of the group are searched from seeds around
+  the last solved configuration (that configuration, the one where the
+  continuation stopped, the assembly configuration, and the last solved one
+  with its angles turned by fixed offsets, each with its lengths fitted to
+  its angles): plain Newton from each.  The roots with the assembly
+  configuration's determinant sign are kept, and the one whose angles are
+  nearest to the last solved configuration is taken (angles shifted by whole
+  turns to the nearest value, as the scene format asks of rotations across a
+  gap).  More than one such root is reported as an ambiguous assembly mode.
+  The same happens where the continuation stops at a limit: if a root of the
+  assembly sign exists past it, the group goes on there (the assembly mode is
+  the determinant sign, as for a closed-form dyad) and the jump is reported.
+
+Everything is dimensionless: a :class:`Problem` evaluates the scaled
+residual (length rows over the mechanism size ``L``) and its Jacobian with
+respect to the scaled unknowns ``u`` (lengths over ``L``, angles as they
+are).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+import numpy as np
+
+TOL = 1e-13
+"""Convergence: scaled residual norm (lengths over the mechanism size)."""
+MAX_ITER = 40
+STALL_ITER = 6
+"""Give up when the residual has not halved over this many iterations."""
+MAX_CORRECTION = 0.1
+"""Largest accepted distance (max-norm, dimensionless) between a predictor and its root.
+
+A root farther than this from the predictor is not taken as the continuation
+of the previous point (it may be another solution of the same sign): the
+interval is bisected instead.  The solving path moves a driver by at most 2
+degrees (or 2 % of the size) between points, so a solution on the branch is
+normally within a few thousandths of its predictor; near a limit position it
+moves faster and the bisection follows it."""
+MIN_FRACTION = 1.0 / 4096
+"""Smallest sub-step, as a fraction of the interval between two path points."""
+SAME_ROOT = 1e-7
+"""Two roots closer than this (max-norm, dimensionless) are one."""
+TURNED_SEEDS = 16
+"""Seeds with turned angles tried at a re-entry."""
+SEARCH_ITER = 30
+"""Iterations of plain Newton from one seed of a re-entry search."""
+
+
+class Problem(Protocol):
+    """What a runtime gives the continuation for one group.
+
+    ``ctx`` objects are opaque to this module: the known inputs of the group
+    (driver values, poses of the links solved before it) at a path point, or
+    blended between two path points.
+    """
+
+    angles: np.ndarray
+    """(n,) bool: which unknowns are angles (shifted by whole turns at a re-entry)."""
+
+    def at(self, i: int) -> Any:
+        """Inputs at path point ``i``, or ``None`` if an upstream group failed there."""
+
+    def blend(self, a: Any, b: Any, t: float) -> Any:
+        """Inputs a fraction ``t`` of the way from ``a`` to ``b`` (linear)."""
+
+    def evaluate(self, u: np.ndarray, ctx: Any) -> tuple[np.ndarray, np.ndarray]:
+        """Scaled residual (n,) and Jacobian (n, n) with respect to ``u``."""
+
+    def evaluate_many(self, U: np.ndarray, ctx: Any) -> tuple[np.ndarray, np.ndarray]:
+        """The same for the rows of ``U`` (k, n) at once: (k, n) and (k, n, n)."""
+
+
+@dataclass
+class Solution:
+    """Result of :func:`solve_path`."""
+
+    u: np.ndarray
+    """(K, n) scaled unknowns at each path point; NaN where not solved."""
+    indicator: np.ndarray
+    """(K,) reciprocal condition number of the group Jacobian; NaN where not solved."""
+    failures: dict = field(default_factory=dict)
+    """path point -> (reason, detail): ``"limit"`` with the interval fraction reached,
+    ``"no_root"``, ``"other_mode"`` (only roots of the other determinant sign)."""
+    notes: list = field(default_factory=list)
+    """(path point, number of roots with the assembly sign) of ambiguous re-entries."""
+
+
+def _det_sign(J) -> float:
+    return float(np.sign(np.linalg.det(J)))
+
+
+def newton(problem: Problem, u: np.ndarray, ctx):
+    """Damped Newton from ``u`` (the step halved while it does not decrease the residual).
+
+    Returns ``(u, residual norm, J)``.
+    """
+    r, J = problem.evaluate(u, ctx)
+    res = float(np.linalg.norm(r))
+    history = []
+    polished = False
+    for it in range(MAX_ITER):
+        history.append(res)
+        if it >= STALL_ITER and res > TOL and res > 0.5 * history[-STALL_ITER]:
+            break  # no root here: the residual stalls at a least-squares minimum
+        if res <= TOL:
+            if polished:
+                break
+            polished = True  # one more step: quadratic convergence to ~1e-16
+        try:
+            d = np.linalg.solve(J, r)
+        except np.linalg.LinAlgError:
+            return u, math.inf, J
+        if not np.all(np.isfinite(d)):
+            return u, math.inf, J
+        step = 1.0
+        while True:
+            un = u - step * d
+            rn, Jn = problem.evaluate(un, ctx)
+            resn = float(np.linalg.norm(rn))
+            if resn < res or res <= TOL or step < 1e-4:
+                break
+            step *= 0.5
+        if res <= TOL and not resn <= res:
+            break  # polishing made it worse: keep the converged point
+        u, r, J, res = un, rn, Jn, resn
+    return u, res, J
+
+
+def _newton_search(problem: Problem, U: np.ndarray, ctx):
+    """Plain (undamped) Newton from every row of ``U`` at once, for a re-entry search.
+
+    Damped Newton from a seed far from every root stalls at least-squares
+    minima of the residual; full steps reach a root from many more seeds
+    (the search keeps only roots, and checks their sign, so where it lands
+    is all that matters).  Returns the ``(u, J)`` of each seed that reached a
+    root, polished by :func:`newton`.
+    """
+    U = np.array(U, dtype=float)
+    active = np.ones(len(U), bool)
+    done = np.zeros(len(U), bool)
+    res0 = None
+    for _ in range(SEARCH_ITER):
+        idx = np.flatnonzero(active)
+        if not len(idx):
+            break
+        R, J = problem.evaluate_many(U[idx], ctx)
+        with np.errstate(invalid="ignore", over="ignore"):
+            res = np.linalg.norm(R, axis=1)
+        if res0 is None:
+            res0 = np.maximum(res, 1.0)
+        conv = res <= TOL
+        done[idx[conv]] = True
+        # diverging, or not finite: dropped
+        drop = ~np.isfinite(res) | (res > 1e6 * res0[idx]) | ~np.isfinite(J).all(axis=(1, 2))
+        keep = ~conv & ~drop
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            det = np.linalg.det(J)
+        keep &= np.isfinite(det) & (det != 0.0)
+        active[idx[~keep]] = False
+        k = idx[keep]
+        if len(k):
+            U[k] -= np.linalg.solve(J[keep], R[keep][..., None])[..., 0]
+    out = []
+    for u in U[done]:
+        v, res, Jv = newton(problem, u, ctx)  # polish
+        if res <= TOL:
+            out.append((v, Jv))
+    return out
+
+
+def _accept(res, J, sign, u, seed) -> bool:
+    return (
+        res <= TOL
+        and _det_sign(J) == sign
+        and float(np.max(np.abs(u - seed))) <= MAX_CORRECTION
+    )
+
+
+def continue_to(problem: Problem, u0, a, b, sign, u_before=None):
+    """Continue the root ``u0`` at inputs ``a`` to inputs ``b``.
+
+    A direct step from the predictor first (``u0 + (u0 - u_before)`` when the
+    previous path point ``u_before`` is given), then bisected sub-steps.
+
+    Returns ``(u, J, None)`` on success, or ``(u_reached, None, t_reached)``:
+    the last root reached and the fraction of the interval where the
+    continuation stopped.
+    """
+    seed = u0 if u_before is None else 2 * u0 - u_before
+    u, res, J = newton(problem, seed.copy(), b)
+    if _accept(res, J, sign, u, seed):
+        return u, J, None
+    t, dt, u, slope = 0.0, 0.5, u0, None
+    while t < 1.0:
+        t1 = min(1.0, t + dt)
+        seed = u if slope is None else u + slope * (t1 - t)
+        ctx = b if t1 == 1.0 else problem.blend(a, b, t1)
+        v, res, J = newton(problem, seed.copy(), ctx)
+        if _accept(res, J, sign, v, seed):
+            slope = (v - u) / (t1 - t)
+            u, t = v, t1
+            dt = min(2 * dt, 0.5)
+            continue
+        dt *= 0.5
+        if dt < MIN_FRACTION:
+            return u, None, t
+    return u, J, None
+
+
+def _nearest_turns(u, ref, angles):
+    """``u`` with its angles shifted by whole turns to the values nearest ``ref``."""
+    out = u.copy()
+    out[angles] -= 2 * math.pi * np.round((u[angles] - ref[angles]) / (2 * math.pi))
+    return out
+
+
+def _turned_seeds(u, angles, count=TURNED_SEEDS):
+    """``u`` with its angles turned by fixed offsets spread over the circle.
+
+    The offsets are the same at every path point (a golden-ratio sequence, one
+    per angle), so what a re-entry finds does not depend on the sweep.
+    """
+    k = int(np.count_nonzero(angles))
+    phi = (np.sqrt(5.0) - 1) / 2
+    out = []
+    for m in range(1, count + 1):
+        v = u.copy()
+        v[angles] += 2 * math.pi * (((m * phi * (1 + np.arange(k)) + 0.5 * np.arange(k)) % 1.0) - 0.5)
+        out.append(v)
+    return out
+
+
+def _project(problem: Problem, u, ctx):
+    """``u`` with its lengths (translations, slides) fitted to its angles.
+
+    The loop equations of a planar group are linear in its lengths once its
+    angles are given, so one least-squares step puts a seed on the best
+    configuration of those angles: a seed with turned angles then starts as
+    close to a root as the angles allow.
+    """
+    lin = ~problem.angles
+    if not lin.any():
+        return u
+    r, J = problem.evaluate(u, ctx)
+    d = np.linalg.lstsq(J[:, lin], -r, rcond=None)[0]
+    if not np.all(np.isfinite(d)):
+        return u
+    v = u.copy()
+    v[lin] += d
+    return v
+
+
+def _angle_distance(u, v, angles):
+    return float(np.max(np.abs(u[angles] - v[angles]), initial=0.0))
+
+
+def roots_near(problem: Problem, ctx, ref, others, sign):
+    """Roots of the group at ``ctx`` found from seeds around ``ref``: ``(same_sign, other_sign)``.
+
+    Seeds: ``ref``, the configurations ``others``, and ``ref`` with its
+    angles turned by fixed offsets (:func:`_turned_seeds`), each with its
+    lengths fitted to its angles (:func:`_project`); plain Newton from each
+    (:func:`_newton_search`).  Every root is shifted by whole turns to the
+    angles nearest ``ref``; duplicates are dropped.  Each list holds
+    ``(u, J)`` pairs sorted by the distance of their angles from ``ref``
+    (then of all unknowns), so both runtimes choose alike.
+    """
+    found = []
+    seeds = [_project(problem, v, ctx) for v in [ref, *others, *_turned_seeds(ref, problem.angles)]]
+    for u, J in _newton_search(problem, np.array(seeds), ctx):
+        u = _nearest_turns(u, ref, problem.angles)
+        if not any(float(np.max(np.abs(u - z))) <= SAME_ROOT for z, _ in found):
+            found.append((u, J))
+    found.sort(key=lambda p: (round(_angle_distance(p[0], ref, problem.angles), 9),
+                              float(np.max(np.abs(p[0] - ref)))))
+    same = [(u, J) for u, J in found if _det_sign(J) == sign]
+    other = [(u, J) for u, J in found if _det_sign(J) != sign]
+    return same, other
+
+
+def solve_path(problem: Problem, n_points: int, u_assembly: np.ndarray) -> Solution:
+    """Solve the group at every path point (point 0 is the assembly configuration's inputs).
+
+    Raises nothing for points without a solution: they are listed in
+    ``Solution.failures``; jumps after a limit or a gap are listed in
+    ``Solution.notes``; the caller words the messages.
+    """
+    n = len(u_assembly)
+    U = np.full((n_points, n), np.nan)
+    ind = np.full(n_points, np.nan)
+    sol = Solution(U, ind)
+    _, J = problem.evaluate(u_assembly, problem.at(0))
+    sign = _det_sign(J)
+    last = None  # (point index, u, inputs) of the last solved point
+    before = None  # u at the point before ``last`` when consecutive with it
+    stop = None  # the configuration where the continuation stopped (a limit)
+    for i in range(n_points):
+        ctx = problem.at(i)
+        if ctx is None:  # an upstream group failed here; reported there
+            continue
+        limit = None
+        ok = False
+        if i == 0:
+            u, res, J = newton(problem, u_assembly.copy(), ctx)
+            ok = res <= TOL and _det_sign(J) == sign
+        elif last is not None and last[0] == i - 1:
+            u, J, limit = continue_to(problem, last[1], last[2], ctx, sign, before)
+            ok = limit is None
+            stop = None if ok else u
+        if not ok:
+            # no continuous path from the last solved point (a gap, or a limit or
+            # singular position passed in this interval): every root near the known
+            # configurations, in the assembly mode's determinant sign
+            # the configuration where the branch ended (resolution-independent up to
+            # the bisection), else the last solved one
+            ref = stop if stop is not None else (last[1] if last is not None else u_assembly)
+            others = ([last[1]] if last is not None else []) + [u_assembly]
+            same, other = roots_near(problem, ctx, ref, others, sign)
+            if same:
+                u, J = same[0]
+                ok = True
+                sol.notes.append((i, limit, len(same)))
+            elif limit is not None:
+                sol.failures[i] = ("limit", limit)
+            else:
+                sol.failures[i] = ("other_mode", len(other)) if other else ("no_root", None)
+        if not ok:
+            before = None
+            continue
+        sv = np.linalg.svd(J, compute_uv=False)
+        ind[i] = sv[-1] / sv[0]
+        U[i] = u
+        # the predictor extrapolates only along a continuous stretch
+        continued = i > 0 and last is not None and last[0] == i - 1 and not (
+            sol.notes and sol.notes[-1][0] == i
+        )
+        before = last[1] if continued else None
+        last = (i, u, ctx)
+    return sol
+
+
+def failure_message(label: str, links, failure, where) -> str:
+    """The message of a path point the continuation could not solve (both runtimes).
+
+    ``where(t)`` words the driver values a fraction ``t`` of the way from the
+    previous path point to this one (e.g. ``"A = 123.45 deg"``).
+    """
+    head = f"{label} ({', '.join(links)})"
+    kind, detail = failure
+    if kind == "limit":
+        return (
+            f"{head}: reaches a limit or singular position at {where(detail)} and no solution "
+            "in the assembly mode exists past it: the group cannot be assembled here"
+        )
+    if kind == "other_mode":
+        return (
+            f"{head}: the only solution(s) found ({detail}) are in the other assembly mode "
+            "(determinant sign of the group's Jacobian); not accepted"
+        )
+    return f"{head}: Newton on the group's loop equations finds no solution: the group cannot be assembled here"
+
+
+def note_message(label: str, links, note, step_text: str, where) -> str:
+    """The warning of a point reached without a continuous path (both runtimes)."""
+    _, limit, n_same = note
+    head = f"{label} ({', '.join(links)})"
+    how = (
+        f"passes a limit or singular position at {where(limit)}"
+        if limit is not None
+        else "re-enters after steps that cannot be assembled"
+    )
+    text = (
+        f"{head} {how}; at {step_text} it continues in the assembly mode (determinant sign), "
+        "nearest to the last solved configuration"
+    )
+    if n_same > 1:
+        text += f": the assembly mode is ambiguous there ({n_same} solutions with that sign)"
+    return text
+
+
+def driver_values_text(q: dict, kinds: dict, i: int, t: float | None = None) -> str:
+    """Driver values at path point ``i`` (or a fraction ``t`` of the way from ``i - 1``), worded.
+
+    ``q`` maps each driven joint to its values along the path, ``kinds`` to
+    ``"R"`` (an angle, printed in degrees) or ``"P"`` (a slide, in metres).
+    """
+    parts = []
+    for name, v in q.items():
+        x = float(v[i]) if t is None or i == 0 else float(v[i - 1] + t * (v[i] - v[i - 1]))
+        parts.append(f"{name} = {math.degrees(x):.6g} deg" if kinds[name] == "R" else f"{name} = {x:.6g} m")
+    return ", ".join(parts)
+
+
+def step_warnings(notes, step_points) -> list[str]:
+    """Warnings of the Newton groups' jumps (a limit passed, a re-entry after a gap).
+
+    ``notes`` are ``(path point, text(step))`` pairs; ``step_points`` the path
+    point of every step, increasing.  A jump between two steps is reported at
+    the step after it.
+    """
+    out = []
+    step_points = np.asarray(step_points)
+    for p, text in notes:
+        k = int(np.searchsorted(step_points, p))
+        if k >= len(step_points):
+            continue  # on the way to the first step only: no step sees it
+        where = f"step {k}" if step_points[k] == p else f"step {k} (reached from step {k - 1})"
+        if k == 0 and step_points[0] != p:
+            where = "step 0 (reached from the assembly configuration)"
+        out.append(text(where))
+    return out
