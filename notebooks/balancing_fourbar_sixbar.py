@@ -12,17 +12,17 @@
 # ---
 
 # %% [markdown]
-# # Balancing the four-bar and seed 002's six-bar
+# # Balancing the four-bar and Song and Wang's (1992) six-bar
 #
 # Kept as text (jupytext py:percent); `tests/test_notebooks.py` executes it.
 #
-# Seed 002 (Song Liqun and Wang Bingle, 1992) writes the inertia moment of one
+# Song Liqun and Wang Bingle (1992; README, Sources [3]) write the inertia moment of one
 # link about the origin as $M_0 = -\sum_{i=1}^4 M_{uvi} D_{uvi}$: mass
 # parameters times acceleration parameters. linkage_sym derives that module,
 # assembles it over a hinged linkage, and derives the shaking-force balance
 # conditions by linearly independent vectors. Here we do it for a four-bar
-# (and recover Berkof and Lowen's conditions) and for the six-bar of seed
-# 002's Fig. 2 (and recover its eqs. 13-15 and 18).
+# (and recover Berkof and Lowen's conditions) and for the six-bar of their
+# Fig. 2 (and recover its eqs. 13-15 and 18).
 
 # %%
 import dataclasses
@@ -89,13 +89,13 @@ print("peak shaking force: %.4g N before, %.3g N after" % (np.abs(F0).max(), np.
 assert np.abs(F1).max() <= 1e-9 * np.abs(F0).max()
 
 # %% [markdown]
-# ## Seed 002's six-bar
+# ## Song and Wang's six-bar
 # Links 1 = AB (crank), 2 = BC, 3 = DC, 4 = CE, 5 = FE; the pin C of links 2,
 # 3 and 4 is two joints C and C2 at one point (the scene format's rule), which
 # linkage_sym merges into one pin.
 
 # %%
-six = linkage_sym.load_example("seed002_sixbar")
+six = linkage_sym.load_example("song_wang_sixbar")
 b6 = derive_balance(six)
 print("seconds:", b6.seconds)
 print("M_0 =", b6.moment.expression)
@@ -110,7 +110,7 @@ print("remaining moment (eq. 18):", b6.remaining)
 assert not b6.pin_residuals
 
 # %% [markdown]
-# The conditions are *sufficient*. Seed 002's three designs are simulated in
-# `paper_repro/seed002_designs.py` (and `tests/test_seed002_designs.py`): the
+# The conditions are *sufficient*. Song and Wang's three designs are simulated in
+# `paper_repro/song_wang_designs.py` (and `tests/test_song_wang_designs.py`): the
 # two designs built on parallelograms cancel the moment between their change
 # points, and the third leaves the residual the paper itself states.

@@ -18,7 +18,7 @@
 # Open it in Jupyter with `jupytext --to notebook kinematics_fourbar.py`.
 #
 # We solve the crank-rocker of the scene-format spec with linkage_sym's dyad
-# solver, then check the rocker's angular velocity against seed 003's
+# solver, then check the rocker's angular velocity against the kinematics textbook chapter's (README, Sources [4])
 # eq. 3-13, written out here by hand.
 
 # %%
@@ -58,7 +58,7 @@ flips = np.flatnonzero(np.sign(w[1:]) != np.sign(w[:-1]))
 print("rocker reverses near crank angles (deg):", np.round(np.degrees(th1[flips]), 1))
 
 # %% [markdown]
-# ## Stroke-time ratio K (seed 001)
+# ## Stroke-time ratio K (the four-bar design textbook section, Sources [2])
 #
 # The rocker's extreme positions are where crank and coupler are in line:
 # stretched, $|AC_1| = l_2 + l_1$, and folded, $|AC_2| = l_2 - l_1$.  The
@@ -86,7 +86,7 @@ print(f"extreme-position angle {theta:.4f} deg; K = {K_closed:.5f} (closed form)
 assert abs(K_sweep - K_closed) < 1e-3  # interpolation over 1-deg steps
 
 # %% [markdown]
-# ## The coupler point P (seed 003, eq. 3-18)
+# ## The coupler point P (kinematics chapter, eq. 3-18)
 #
 # The scene traces a coupler point `P` (its `points`).  With $(a, b)$ its
 # coordinates along and across $BC$, eq. 3-18 gives

@@ -16,8 +16,8 @@
 #
 # Kept as text (jupytext py:percent); `tests/test_notebooks.py` executes it.
 #
-# `linkage_sym.derive` writes each mechanism's closed vector loop in seed
-# 003's complex form (eq. 3-8), its projections (3-9), the explicit dyad
+# `linkage_sym.derive` writes each mechanism's closed vector loop in the
+# kinematics textbook chapter's complex form (README, Sources [4]) (eq. 3-8), its projections (3-9), the explicit dyad
 # positions and the velocity equation $A\,\omega = B\,\dot q$ (3-28).
 # `linkage_sym.compile_mechanism` lambdifies them; we check the generated
 # functions against the numeric dyad solver `linkage_sym.analyze`.

@@ -198,9 +198,9 @@ def test_fourbar_conditions_are_berkof_lowen():
     assert ours.shape[0] == 4 and _same_solution_set(ours, theirs)
 
 
-def test_seed002_sixbar_conditions_are_its_eq14():
+def test_song_wang_sixbar_conditions_are_its_eq14():
     """Seed 002, eq. 14 (from its ref. [1]), for the six-bar of its Fig. 2."""
-    fb = force_balance(load_example("seed002_sixbar"))
+    fb = force_balance(load_example("song_wang_sixbar"))
     m = {i: sp.Symbol(f"m_{i}", positive=True) for i in range(1, 6)}
     a = {i: sp.Symbol(f"a_{i}", positive=True) for i in range(1, 6)}
     p = {i: sp.Symbol(f"p_{i}", real=True) for i in range(1, 6)}
@@ -268,7 +268,7 @@ def test_fourbar_remaining_moment_is_eq18():
 
 
 def test_seed002_conditions_reproduce_eq13_15_18():
-    b = derive_balance(load_example("seed002_sixbar"))
+    b = derive_balance(load_example("song_wang_sixbar"))
     # eqs. 10-11: the vanishing and the merged acceleration parameters
     assert set(b.moment.vanishing) == {"D_AB_1", "D_AB_2", "D_AB_3", "D_DC_1", "D_FE_1"}
     assert dict(b.moment.merged) == {"D_AB_4": ("D_BC_1",), "D_BC_4": ("D_DC_4", "D_CE_1"),
@@ -312,7 +312,7 @@ def test_optimiser_matches_exact_counterweights():
 def test_cli_balance_json(tmp_path):
     out = tmp_path / "b.json"
     r = subprocess.run([sys.executable, "-m", "linkage_sym", "balance",
-                        str(linkage_sym.examples.example_path("seed002_sixbar")), "-o", str(out), "--latex"],
+                        str(linkage_sym.examples.example_path("song_wang_sixbar")), "-o", str(out), "--latex"],
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     d = json.loads(out.read_text())
@@ -327,7 +327,7 @@ def test_cli_balance_json(tmp_path):
                                                      d["shaking_moment"]["force_balanced"]])
     for e in exprs:
         assert isinstance(sp.sympify(e), sp.Expr)
-    scene = load_example("seed002_sixbar")
+    scene = load_example("song_wang_sixbar")
     _, M = frame_loads(scene)
     got = np.array([np.nan if v is None else v for v in d["series"]["shaking_moment"]])
     assert peak(got - M) <= 1e-9 * peak(M)

@@ -35,10 +35,10 @@ EXPECTED = [
     "guide_bar_quick_return",
     "hydraulic_boom",
     "printing_mechanism",
-    "seed002_sixbar",
     "shaper",
     "sixbar_class3",
     "slider_crank_offset",
+    "song_wang_sixbar",
     "stephenson_sixbar",
     "watt_sixbar",
 ]

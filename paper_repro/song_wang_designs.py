@@ -47,7 +47,7 @@ Designs, dimensions chosen here (the paper gives none), in m:
    inertia, 2.30e-4 kg m^2 (a 49.6 mm disc), is sized from m4 K4 = m5 K5 (K = p^2 + k^2 - a p).
    For 181..359 deg two kite branches exist: the continuation of the first half (a dart, D
    inside triangle CEF; the dyad CEF is regular at 180 deg) and the convex kite; both are run.
-3) generic lengths (those of linkage_sym/examples/seed002_sixbar.json): a1 = 0.03, a2 = 0.09,
+3) generic lengths (those of linkage_sym/examples/song_wang_sixbar.json): a1 = 0.03, a2 = 0.09,
    a3 = 0.07, a4 = 0.08, a5 = 0.065, D = (0.10, 0), F = (0.17, 0.075).  a2 = (p2^2 + k2^2)/p2
    and a4 = (p4^2 + k4^2)/p4 (K2 = K4 = 0, B and C, C and E conjugate points) by a disc of half
    the bar's mass 23.4 mm beyond C on link 2 and 20.7 mm beyond E on link 4.
@@ -82,7 +82,7 @@ Findings (peaks over each half-turn, balanced / unbalanced reference):
   configuration) but the moment comes back, 0.056 N m (23 % of the reference).  A real machine
   needs the usual remedies (a second, phase-shifted crank, a flywheel) to stay a parallelogram.
 
-Run:  python3 paper_repro/seed002_designs.py     (needs linkage_sym: run from the repository root)
+Run:  python3 paper_repro/song_wang_designs.py     (needs linkage_sym: run from the repository root)
 """
 
 from __future__ import annotations
@@ -289,7 +289,7 @@ def percussion_mass(bare: Body, a: float, w: float) -> Body:
 
 def design_3() -> Design:
     """a2 = (p2^2 + k2^2)/p2, a4 = (p4^2 + k4^2)/p4; generic lengths (those of the example
-    linkage_sym/examples/seed002_sixbar.json)."""
+    linkage_sym/examples/song_wang_sixbar.json)."""
     a = {"1": 0.03, "2": 0.09, "3": 0.07, "4": 0.08, "5": 0.065}
     ground = {"A": np.zeros(2), "D": np.array([0.10, 0.0]), "F": np.array([0.17, 0.075])}
     bare = {j: bar(a[j]) for j in a}
@@ -329,7 +329,7 @@ def scene_dict(design: Design, sweep: str = "first", *, balanced: bool = True, v
 
     tag = "balanced" if balanced else "reference"
     return {
-        "name": f"seed002-design{design.name}-{sweep}{'-' + variant if variant else ''}-{tag}",
+        "name": f"song-wang-design{design.name}-{sweep}{'-' + variant if variant else ''}-{tag}",
         "links": links,
         "joints": [joint("A", "ground", "1", "A"), joint("B", "1", "2", "B"), joint("D", "3", "ground", "D"),
                    joint("C", "2", "3", "C"), joint("C2", "2", "4", "C"), joint("F", "ground", "5", "F"),

@@ -1,8 +1,8 @@
-"""Seed 002's three shaking-moment designs of the hinged six-bar, checked by simulation.
+"""Song and Wang's (1992) three shaking-moment designs of the hinged six-bar, checked by simulation.
 
 The scenes, the balancing (eq. 14, q = 0 and each design's condition, written by hand in the
 script, independently of ``linkage_sym.balancing``) and the findings are in
-``paper_repro/seed002_designs.py``.  Every design is simulated over 1..179 deg and 181..359 deg
+``paper_repro/song_wang_designs.py``.  Every design is simulated over 1..179 deg and 181..359 deg
 of the crank, each half assembled in the intended branch: the parallelograms have change points
 at 0 and 180 deg and design 2's kite is indeterminate at 0 deg.  Design 2 has a second branch
 for 181..359 deg (the convex kite besides the continuation of the first half); both are run.
@@ -32,7 +32,7 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "paper_repro"))
-import seed002_designs as sd  # noqa: E402
+import song_wang_designs as sd  # noqa: E402
 
 EPS = float(np.finfo(float).eps)
 REL = 1e-9
