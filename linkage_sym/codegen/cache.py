@@ -8,9 +8,15 @@ dimensions, masses or loads, which are arguments of the generated functions.
 Every scene of one topology therefore shares one artifact, and loading it
 needs neither SymPy nor a derivation.
 
+The key also holds a hash of the sources that generate and run the code
+(:data:`GENERATOR_PACKAGES`) and SymPy's version, so an artifact written by
+other generators is never served: no hand-bumped format number to forget.
+
 The cache lives in memory (per process) and on disk in
-``$LINKAGE_SYM_CACHE``, else ``$XDG_CACHE_HOME/linkage_sym``, else
-``~/.cache/linkage_sym``.
+``$LINKAGE_SYM_CACHE``, else the platform's per-user cache folder
+(``$XDG_CACHE_HOME/linkage_sym`` or ``~/.cache/linkage_sym`` on Linux,
+``~/Library/Caches/linkage_sym`` on macOS, ``%LOCALAPPDATA%\\linkage_sym\\Cache``
+on Windows).
 """
 
 from __future__ import annotations
@@ -18,6 +24,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import sys
 import warnings
 from importlib import metadata
 from pathlib import Path
@@ -25,18 +32,40 @@ from pathlib import Path
 from linkage_sym.model import Scene
 from linkage_sym.structure.parameters import ParameterTable
 
-FORMAT = 1
-"""Version of the artifact layout; bump it when the generated code changes."""
+GENERATOR_PACKAGES = ("symbolic", "codegen", "structure", "model")
+"""Subpackages of linkage_sym whose sources shape or run the generated code."""
 
 _MEMORY: dict[str, dict] = {}
+_SOURCE_HASH: list[str] = []
+
+
+def generator_files() -> list[Path]:
+    """The source files hashed into every key, in a fixed order."""
+    root = Path(__file__).resolve().parent.parent
+    return sorted(f for pkg in GENERATOR_PACKAGES for f in (root / pkg).glob("*.py"))
+
+
+def source_hash() -> str:
+    """SHA-256 of the generator sources (:func:`generator_files`), computed once per process."""
+    if not _SOURCE_HASH:
+        h = hashlib.sha256()
+        for f in generator_files():
+            h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+        _SOURCE_HASH.append(h.hexdigest())
+    return _SOURCE_HASH[0]
 
 
 def cache_dir() -> Path:
+    """Where artifacts are kept on disk (see the module docstring)."""
     env = os.environ.get("LINKAGE_SYM_CACHE")
     if env:
         return Path(env)
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "linkage_sym"
+    home = Path(os.path.expanduser("~"))
+    if sys.platform == "win32":
+        return Path(os.environ.get("LOCALAPPDATA") or home / "AppData" / "Local") / "linkage_sym" / "Cache"
+    if sys.platform == "darwin":
+        return home / "Library" / "Caches" / "linkage_sym"
+    return Path(os.environ.get("XDG_CACHE_HOME") or home / ".cache") / "linkage_sym"
 
 
 def sympy_version() -> str | None:
@@ -61,7 +90,7 @@ def signature(scene: Scene) -> dict:
     ]
     eff = scene.effects
     return {
-        "format": FORMAT,
+        "generators": source_hash(),
         "linkage_sym": __version__,
         "sympy": sympy_version(),
         "links": [[k.name, k.com is not None, k.mass > 0, k.inertia > 0] for k in scene.links],

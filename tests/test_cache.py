@@ -1,0 +1,69 @@
+"""The compiled-mechanism cache cannot serve code from other generators.
+
+The key holds a hash of the generator sources (``cache.generator_files``) and
+SymPy's version: an artifact written before a generator changed is not found
+afterwards, with no format number to bump by hand.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from linkage_sym.codegen import cache
+from linkage_sym.codegen.compile import compile_mechanism
+from linkage_sym.examples import load_example
+
+
+@pytest.fixture
+def fresh_cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("LINKAGE_SYM_CACHE", str(tmp_path / "cache"))
+    monkeypatch.setattr(cache, "_SOURCE_HASH", [])
+    cache.clear_memory()
+    yield tmp_path
+    cache.clear_memory()
+
+
+def test_every_generator_source_is_hashed():
+    names = {f"{f.parent.name}/{f.name}" for f in cache.generator_files()}
+    assert {"codegen/compile.py", "codegen/runtime.py", "symbolic/mechanism.py",
+            "structure/parameters.py"} <= names
+
+
+def test_a_changed_generator_invalidates_the_entry(fresh_cache, monkeypatch):
+    scene = load_example("crank_rocker")
+    compile_mechanism(scene)  # derived and stored
+    key = cache.key_of(cache.signature(scene))
+    assert (fresh_cache / "cache" / f"{key}.json").exists()
+    cache.clear_memory()
+    assert cache.load(key) is not None  # found again while the sources are the same
+    # one generator source edited (a copy stands in for it)
+    files = cache.generator_files()
+    edited = fresh_cache / files[0].name
+    edited.write_bytes(files[0].read_bytes() + b"\n# changed\n")
+    monkeypatch.setattr(cache, "generator_files", lambda: [edited, *files[1:]])
+    monkeypatch.setattr(cache, "_SOURCE_HASH", [])
+    new_key = cache.key_of(cache.signature(scene))
+    assert new_key != key
+    assert cache.load(new_key) is None
+
+
+def test_another_sympy_version_invalidates_the_entry(fresh_cache, monkeypatch):
+    scene = load_example("crank_rocker")
+    key = cache.key_of(cache.signature(scene))
+    monkeypatch.setattr(cache, "sympy_version", lambda: "0.0.1")
+    assert cache.key_of(cache.signature(scene)) != key
+
+
+def test_the_cache_folder_follows_the_platform(monkeypatch, tmp_path):
+    monkeypatch.delenv("LINKAGE_SYM_CACHE", raising=False)
+    monkeypatch.setenv("HOME", str(tmp_path))
+    monkeypatch.delenv("XDG_CACHE_HOME", raising=False)
+    monkeypatch.setattr(cache.sys, "platform", "linux")
+    assert cache.cache_dir() == tmp_path / ".cache" / "linkage_sym"
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "x"))
+    assert cache.cache_dir() == tmp_path / "x" / "linkage_sym"
+    monkeypatch.setattr(cache.sys, "platform", "darwin")
+    assert cache.cache_dir() == tmp_path / "Library" / "Caches" / "linkage_sym"
+    monkeypatch.setattr(cache.sys, "platform", "win32")
+    monkeypatch.setenv("LOCALAPPDATA", str(tmp_path / "L"))
+    assert cache.cache_dir() == tmp_path / "L" / "linkage_sym" / "Cache"
