@@ -1,8 +1,9 @@
 """Compile a mechanism's derived equations into NumPy functions (uses SymPy).
 
 :func:`compile_mechanism` derives a scene's equations with every parameter
-kept symbolic, turns each stage's outputs into one function with
-``sympy.lambdify(..., cse=True)`` and stores the functions' source and
+kept symbolic, turns each stage's outputs into one function (SymPy's
+``cse`` and ``NumPyPrinter``, as ``lambdify(..., cse=True)`` would, printed
+directly) and stores the functions' source and
 layout in the cache (:mod:`linkage_sym.codegen.cache`), keyed on the
 topology.  The next scene of the same topology -- in this process or any
 later one -- loads the artifact instead of deriving again.
@@ -23,8 +24,8 @@ function reads only the arguments its expressions use; the others may be
 
 from __future__ import annotations
 
-import inspect
-import re
+import itertools
+import keyword
 
 import sympy as sp
 
@@ -41,35 +42,54 @@ def _names(symbols) -> list[str]:
     return [s.name for s in symbols]
 
 
-def generate(name: str, args: list, outputs: list, doc: str) -> str:
-    """Source of one generated function (``lambdify`` with ``cse=True``).
+def _printer():
+    from sympy.printing.numpy import NumPyPrinter
 
-    ``args`` are the symbol lists of :data:`ARGS`; the source is renamed to
-    ``name`` with those argument names (the trailing ``CX, SX`` optional)
-    and ``doc`` as docstring.
+    # the settings lambdify uses for modules="numpy": names from ``from numpy import *``
+    return NumPyPrinter({"fully_qualified_modules": False, "inline": True,
+                         "allow_unknown_functions": True, "user_functions": {}})
+
+
+def generate(name: str, args: list, outputs: list, doc: str) -> str:
+    """Source of one generated function: common subexpressions, then NumPy code.
+
+    Printed with SymPy's ``cse`` and ``NumPyPrinter`` directly (no editing of
+    ``lambdify``'s text): ``args`` are the symbol lists of :data:`ARGS`, each
+    unpacked only if the function reads one of its entries (the others may be
+    ``None``); a symbol whose name is not a Python identifier is bound to a
+    name of its own.  ``doc`` becomes the docstring.
     """
-    f = sp.lambdify(args, list(outputs), modules="numpy", cse=True, docstring_limit=0)
-    src = inspect.getsource(f)
-    head, body = src.split("\n", 1)
-    dummies = re.match(r"def _lambdifygenerated\((.*)\):", head).group(1).split(", ")
-    for d, a in zip(dummies, ARGS):
-        body = re.sub(rf"\b{re.escape(d)}\b", a, body)
-    # drop the unpacking of arguments the function does not read (they may be None)
-    lines = body.split("\n")
-    unpack = re.compile(r"^    \[(.*)\] = (" + "|".join(ARGS) + r")$")
-    kept = []
-    for i, line in enumerate(lines):
-        m = unpack.match(line)
-        if m:
-            rest = "\n".join(lines[i + 1 :])
-            used = [n for n in m.group(1).split(", ") if n and re.search(rf"\b{n}\b", rest)]
-            if not used:
-                continue
-        kept.append(line)
-    body = "\n".join(kept)
+    printer = _printer()
+    outputs = [sp.sympify(e) for e in outputs]
+    used = set().union(*(e.free_symbols for e in outputs)) if outputs else set()
+    taken = {str(s) for s in used} | set(ARGS)
+    rename = {}
+    lines = []
+    for arg, syms in zip(ARGS, args):
+        if not any(s in used for s in syms):
+            continue
+        names = []
+        for k, sym in enumerate(syms):
+            nm = sym.name
+            if not nm.isidentifier() or keyword.iskeyword(nm) or nm in ARGS:
+                nm = f"{arg}_{k}"
+                while nm in taken:
+                    nm += "_"
+                taken.add(nm)
+                rename[sym] = sp.Symbol(nm, **sym.assumptions0)
+            names.append(nm)
+        lines.append(f"    [{', '.join(names)}] = {arg}")
+    if rename:
+        outputs = [e.xreplace(rename) for e in outputs]
+    taken |= {str(s) for s in rename.values()}
+    cse_names = (sp.Symbol(n) for n in (f"x{i}" for i in itertools.count()) if n not in taken)
+    repl, reduced = sp.cse(outputs, symbols=cse_names)
+    for sym, e in repl:
+        lines.append(f"    {sym} = {printer.doprint(e)}")
+    lines.append(f"    return [{', '.join(printer.doprint(e) for e in reduced)}]")
     quoted = '    """' + doc.replace('"""', "'''").replace("\n", "\n    ") + '\n    """\n'
     sig = ", ".join(ARGS[:-2]) + ", CX=None, SX=None"
-    return f"def {name}({sig}):\n" + quoted + body
+    return f"def {name}({sig}):\n" + quoted + "\n".join(lines) + "\n"
 
 
 def _describe(kind: str, eqs: MechanismEquations, p_syms, outputs_desc: str) -> str:
