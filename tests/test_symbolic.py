@@ -373,6 +373,11 @@ def test_random_watt_sixbars(l1, l2, l3, e_len, e_ang, gx, gy, seed, sigma2):
 # =========================================================================== 3. substitution
 EXACT_TOL = mp.mpf("1e-25")
 B_TOL = 8 * EPS
+CLOSED_TOL = (mp.mpf("1e-25") if tuple(map(int, sp.__version__.split(".")[:2])) >= (1, 14)
+              else mp.mpf(8 * EPS))
+"""Closed forms of the two derivations: the same expression (1e-25 at 40 digits) with SymPy
+1.14 and later; older SymPy (1.12, 1.13) folds the scene's Float constants of the numeric
+derivation in double precision, which rounds them like the force right-hand sides (8 eps)."""
 SUBST = ["crank_rocker", "slider_crank_offset", "guide_bar_quick_return", "watt_sixbar"]
 
 
@@ -466,7 +471,7 @@ def test_symbolic_dimensions_substituted_equal_numeric_derivation(name):
                 if isinstance(a, mp.mpc) or isinstance(b, mp.mpc):  # other mode unassemblable
                     assert mp.almosteq(a, b, rel_eps=mp.mpf("1e-25"), abs_eps=mp.mpf("1e-25"))
                     continue
-                assert abs(a - b) <= mp.mpf("1e-25") * max(1, abs(b)), f"{name} closed form {s}"
+                assert abs(a - b) <= CLOSED_TOL * max(1, abs(b)), f"{name} closed form {s}"
     assert worst <= EXACT_TOL
 
 

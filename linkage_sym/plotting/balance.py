@@ -234,13 +234,6 @@ def _finish(fig, head: str, lines: list) -> None:
     fig.suptitle("\n".join([head] + lines), fontsize=11)
 
 
-def _save(fig, path) -> Path:
-    path = Path(path)
-    style.ensure_dir(path.parent)
-    fig.savefig(path, dpi=style.DPI)
-    return path
-
-
 # ------------------------------------------------------------- shaking force polar
 
 
@@ -462,7 +455,7 @@ def shaking_force_polar(series_list, path, title: str | None = None, *,
     pathlib.Path
         ``path``.
     """
-    return _save(shaking_force_polar_figure(series_list, title, driver_kind=driver_kind), path)
+    return style.save(shaking_force_polar_figure(series_list, title, driver_kind=driver_kind), path)
 
 
 # ------------------------------------------------------------ shaking moment curve
@@ -635,4 +628,4 @@ def shaking_moment_curve(series_list, path, title: str | None = None, *,
     pathlib.Path
         ``path``.
     """
-    return _save(shaking_moment_figure(series_list, title, driver_kind=driver_kind), path)
+    return style.save(shaking_moment_figure(series_list, title, driver_kind=driver_kind), path)

@@ -222,10 +222,7 @@ def driving_effort(scene: Scene, analysis: Analysis, path) -> Path:
     pathlib.Path
         ``path``.
     """
-    path = Path(path)
-    style.ensure_dir(path.parent)
-    driving_effort_figure(scene, analysis).savefig(path, dpi=style.DPI)
-    return path
+    return style.save(driving_effort_figure(scene, analysis), path)
 
 
 # --------------------------------------------------------------------- hodographs
@@ -414,10 +411,7 @@ def reaction_hodographs(scene: Scene, analysis: Analysis, path, joints=None) -> 
     pathlib.Path
         ``path``.
     """
-    path = Path(path)
-    style.ensure_dir(path.parent)
-    reaction_hodographs_figure(scene, analysis, joints).savefig(path, dpi=style.DPI)
-    return path
+    return style.save(reaction_hodographs_figure(scene, analysis, joints), path)
 
 
 # ---------------------------------------------------------------------- frame loads
@@ -515,7 +509,4 @@ def frame_loads(scene: Scene, analysis: Analysis, path) -> Path:
     pathlib.Path
         ``path``.
     """
-    path = Path(path)
-    style.ensure_dir(path.parent)
-    frame_loads_figure(scene, analysis).savefig(path, dpi=style.DPI)
-    return path
+    return style.save(frame_loads_figure(scene, analysis), path)

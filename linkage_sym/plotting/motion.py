@@ -311,6 +311,5 @@ def motion_diagrams(scene: Scene, analysis: Analysis, out_dir, prefix: str | Non
             continue
         fig = motion_figure(scene, analysis, quantity)
         path = Path(out) / f"{stem}_{_FILE_SUFFIX[quantity]}.png"
-        fig.savefig(path, dpi=style.DPI)
-        written.append(path)
+        written.append(style.save(fig, path))
     return written

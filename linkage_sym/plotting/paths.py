@@ -432,5 +432,4 @@ def coupler_curves(scene: Scene, analysis: Analysis, out_file) -> Path:
                  f"{scene.name}: assembly configuration (no solved step)", fontsize=11)
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8, frameon=False)
-    fig.savefig(out_file, dpi=style.DPI)
-    return out_file
+    return style.save(fig, out_file)

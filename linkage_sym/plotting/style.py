@@ -58,6 +58,17 @@ def new_figure(width: float, height: float) -> Figure:
     return Figure(figsize=(width, height), dpi=DPI, layout="constrained")
 
 
+def save(fig: Figure, path) -> Path:
+    """Write ``fig`` as a PNG at ``path`` (its folder created) and return the path.
+
+    The one place every plot is written, at :data:`DPI`.
+    """
+    path = Path(path)
+    ensure_dir(path.parent)
+    fig.savefig(path, dpi=DPI)
+    return path
+
+
 def link_colors(scene: Scene) -> dict:
     """Colour of every moving link, by name, in scene order."""
     return {name: PALETTE[i % len(PALETTE)] for i, name in enumerate(scene.link_names)}
