@@ -64,13 +64,27 @@ def compile_plan(scene, disconnection=None):
     return _compile(scene, disconnection)
 
 
-def analyze(scene, method="dyad", disconnection=None):
+def analyze(scene, method="dyad", disconnection=None, precision="double"):
     """Compile a scene's solving plan and run it over the scene's sweep.
 
     ``method``: ``"dyad"`` (numeric, forces group by group), ``"global"``
     (numeric, forces as one sparse system of all links) or ``"symbolic"``
     (the SymPy-derived equations, lambdified and cached per topology).
+    ``precision``: ``"double"`` (float64, the methods above) or a number of
+    significant digits (e.g. 50): the derived equations evaluated in mpmath,
+    the result rounded to float64 (:mod:`linkage_sym.codegen.precision`; about
+    10^3--10^4 times slower; ``method`` and ``disconnection`` must stay at their
+    defaults).
     """
+    if not (precision is None or precision == "double"):  # SymPy and mpmath only then
+        from linkage_sym.codegen.precision import analyze_precise, parse_precision
+
+        digits = parse_precision(precision)
+        if digits is not None:
+            if method != "dyad" or disconnection is not None:
+                raise ValueError("precision: an arbitrary-precision run evaluates the derived "
+                                 "equations; it takes no method or disconnection")
+            return analyze_precise(scene, digits)
     if method == "symbolic":
         return compile_mechanism(scene).run()
     return compile_plan(scene, disconnection).run(method=method)

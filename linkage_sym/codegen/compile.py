@@ -42,24 +42,35 @@ def _names(symbols) -> list[str]:
     return [s.name for s in symbols]
 
 
-def _printer():
+PRINTERS = ("numpy", "mpmath")
+"""What generated code evaluates with: NumPy arrays (the compiled runtime) or mpmath numbers
+(arbitrary precision, :mod:`linkage_sym.codegen.precision`)."""
+
+
+def _printer(kind="numpy"):
+    # the settings lambdify uses: names from ``from numpy import *`` / ``from mpmath import *``
+    settings = {"fully_qualified_modules": False, "inline": True,
+                "allow_unknown_functions": True, "user_functions": {}}
+    if kind == "mpmath":
+        from sympy.printing.pycode import MpmathPrinter
+
+        return MpmathPrinter(settings)
     from sympy.printing.numpy import NumPyPrinter
 
-    # the settings lambdify uses for modules="numpy": names from ``from numpy import *``
-    return NumPyPrinter({"fully_qualified_modules": False, "inline": True,
-                         "allow_unknown_functions": True, "user_functions": {}})
+    return NumPyPrinter(settings)
 
 
-def generate(name: str, args: list, outputs: list, doc: str) -> str:
+def generate(name: str, args: list, outputs: list, doc: str, printer: str = "numpy") -> str:
     """Source of one generated function: common subexpressions, then NumPy code.
 
     Printed with SymPy's ``cse`` and ``NumPyPrinter`` directly (no editing of
     ``lambdify``'s text): ``args`` are the symbol lists of :data:`ARGS`, each
     unpacked only if the function reads one of its entries (the others may be
     ``None``); a symbol whose name is not a Python identifier is bound to a
-    name of its own.  ``doc`` becomes the docstring.
+    name of its own.  ``doc`` becomes the docstring.  ``printer``: ``"numpy"`` or
+    ``"mpmath"`` (rationals as quotients of ``mpf``, so no digit is lost to a float).
     """
-    printer = _printer()
+    printer = _printer(printer)
     outputs = [sp.sympify(e) for e in outputs]
     used = set().union(*(e.free_symbols for e in outputs)) if outputs else set()
     taken = {str(s) for s in used} | set(ARGS)
@@ -121,8 +132,12 @@ def _pattern(M) -> list:
     return [(i, j) for i in range(M.rows) for j in range(M.cols) if M[i, j] != 0]
 
 
-def build_artifact(scene: Scene) -> dict:
-    """Derive ``scene`` with symbolic parameters and generate its functions."""
+def build_artifact(scene: Scene, printer: str = "numpy") -> dict:
+    """Derive ``scene`` with symbolic parameters and generate its functions.
+
+    ``printer="mpmath"`` prints the same functions for mpmath numbers (one step at a
+    time, any precision) instead of NumPy arrays.
+    """
     stages = needed_stages(scene)
     forces = "forces" in stages
     eqs = MechanismEquations(scene, symbolic=True, forces=forces)
@@ -152,7 +167,7 @@ def build_artifact(scene: Scene) -> dict:
     def add(name, outputs, what, share=False):
         if share:
             outputs = [shared_trig(sp.sympify(e)) for e in outputs]
-        funcs[name] = generate(name, args, outputs, _describe(name, eqs, p_syms, what))
+        funcs[name] = generate(name, args, outputs, _describe(name, eqs, p_syms, what), printer)
 
     # positions: closed-form segments between groups that need a numeric root
     segment: list = []

@@ -1,0 +1,535 @@
+"""Arbitrary precision: the derived equations evaluated in mpmath, rounded to float64.
+
+``linkage_sym.analyze(scene, precision=50)`` (``linkage-sym analyze --precision 50``)
+evaluates the mechanism's SymPy-derived equations (:mod:`linkage_sym.symbolic.mechanism`)
+with mpmath at the given number of significant decimal digits, one step at a time:
+
+1. **parameters** (lengths, angles, coordinates, masses, loads) from the scene's numbers
+   by the same recipes as :func:`linkage_sym.structure.parameters.evaluate`, in mpmath:
+   the binary64 numbers of the scene are the mechanism, converted exactly;
+2. **positions**: the nested closed forms of input links and dyads (the assembly-mode
+   signs chosen as the compiled mechanism chooses them); a group without a closed form
+   by Newton's method on its loop equations in mpmath, from the float64 solution of the
+   same path (quadratic convergence: 50 digits in three or four iterations), so the
+   root is the one the continuation policy reached;
+3. **rates**: ``A xd = B qd`` and ``A xdd = rhs`` by mpmath LU solves, group block by
+   group block; joints, links' origins, centres of mass by the derived point equations;
+4. **forces**: each group's equilibrium block ``A_g F_g = b_g - C_g F_later`` by mpmath
+   LU solves from the last group back, then the frame force and moment.
+
+The statuses (unassemblable, singular), messages and warnings come from the float64
+run of the same compiled mechanism; at its ``ok`` steps every value is then the
+mpmath value rounded once to float64 (traced points and link origins are computed in
+mpmath from the link's rotation too).  The result is the same
+:class:`~linkage_sym.numeric.result.Analysis` as every other method's, with
+``forces.method == "mpmath"``; :class:`PreciseResult` keeps the unrounded values.
+
+The functions are the ones :func:`linkage_sym.codegen.compile.build_artifact` generates
+for NumPy, printed for mpmath instead (rationals as quotients of ``mpf``), built once
+per topology in a process.  Cost: mpmath in pure Python, about 10^3--10^4 times the
+float64 solver per position (see ``benchmarks/bench_accuracy.py``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import mpmath as mp
+import numpy as np
+
+from linkage_sym.codegen import cache
+from linkage_sym.codegen.compile import build_artifact, compile_mechanism
+from linkage_sym.codegen.runtime import CompiledMechanism
+from linkage_sym.model import GROUND, Scene
+from linkage_sym.numeric.result import OK, SINGULAR, UNASSEMBLABLE, GroupForces
+from linkage_sym.structure.parameters import ident
+
+DOUBLE = "double"
+MIN_DIGITS, MAX_DIGITS = 10, 1000
+NEWTON_ITER = 30
+
+_ARTIFACTS: dict[str, dict] = {}
+
+
+def parse_precision(value) -> int | None:
+    """``None`` for float64 (``"double"`` or ``None``), else the number of digits.
+
+    Raises ``ValueError`` naming the option for anything else.
+    """
+    if value is None or (isinstance(value, str) and value.strip().lower() == DOUBLE):
+        return None
+    if isinstance(value, bool):
+        raise ValueError(f"precision: expected 'double' or a number of digits, got {value!r}")
+    try:
+        digits = int(str(value).strip()) if not isinstance(value, int) else value
+    except ValueError:
+        raise ValueError(
+            f"precision: expected 'double' or a number of digits, got {value!r}") from None
+    if not MIN_DIGITS <= digits <= MAX_DIGITS:
+        raise ValueError(
+            f"precision: {digits} digits is outside {MIN_DIGITS}..{MAX_DIGITS} "
+            "('double' is float64's 16)")
+    return digits
+
+
+# ------------------------------------------------------------------ parameters in mpmath
+
+
+def _mpf_point(p):
+    return mp.mpf(float(p[0])), mp.mpf(float(p[1]))
+
+
+def _frames_mp(scene: Scene, frames) -> dict:
+    """Each moving link's frame origin (mpf pair) and assembly angle ``theta0`` in mpmath.
+
+    The joints ``u`` and ``v`` are those of :func:`~linkage_sym.structure.parameters.link_frames`
+    (the same choice, made in float64, of which joint sets the x-axis).
+    """
+    out = {}
+    for link, fr in frames.items():
+        U = _mpf_point(scene.joint(fr.u).at)
+        if fr.v is None:
+            th = mp.mpf(0)
+        else:
+            V = _mpf_point(scene.joint(fr.v).at)
+            th = mp.atan2(V[1] - U[1], V[0] - U[0])
+        out[link] = (U, th)
+    return out
+
+
+def _local_mp(mframes, link, at):
+    (ox, oy), th = mframes[link]
+    x, y = _mpf_point(at)
+    dx, dy = x - ox, y - oy
+    c, s = mp.cos(th), mp.sin(th)
+    return c * dx + s * dy, -s * dx + c * dy
+
+
+def _wrap_mp(a):
+    return mp.atan2(mp.sin(a), mp.cos(a))
+
+
+def parameter_mp(scene: Scene, recipe: tuple, mframes):
+    """The value of a parameter recipe in mpmath (mirrors ``structure.parameters.evaluate``)."""
+    k = recipe[0]
+    if k in ("l", "beta"):
+        _, link, point = recipe
+        x, y = _local_mp(mframes, link, scene.joint(point).at)
+        return mp.hypot(x, y) if k == "l" else mp.atan2(y, x)
+    if k in ("x", "y"):
+        return mp.mpf(float(scene.joint(recipe[1]).at[0 if k == "x" else 1]))
+    if k == "theta0":
+        return mframes[recipe[1]][1]
+    if k == "gamma":
+        j = scene.joint(recipe[1])
+        a = j.links[0]
+        return _wrap_mp(mp.mpf(float(j.axis)) - (0 if a == GROUND else mframes[a][1]))
+    if k == "delta":
+        j, t = scene.joint(recipe[1]), scene.joint(recipe[2])
+        b = j.links[1]
+        J, T = _mpf_point(j.at), _mpf_point(t.at)
+        ang = mp.atan2(T[1] - J[1], T[0] - J[0])
+        return _wrap_mp(ang - (0 if b == GROUND else mframes[b][1]))
+    if k in ("m", "I"):
+        link = scene.link(recipe[1])
+        return mp.mpf(float(link.mass if k == "m" else link.inertia))
+    if k in ("p", "q"):
+        link = scene.link(recipe[1])
+        x, y = _local_mp(mframes, link.name, link.com)
+        return x if k == "p" else y
+    if k in ("gx", "gy"):
+        g = scene.effects.gravity or (0.0, 0.0)
+        return mp.mpf(float(g[0 if k == "gx" else 1]))
+    ld = scene.loads[recipe[1]]
+    if k in ("Fx", "Fy"):
+        return mp.mpf(float(ld.force[0 if k == "Fx" else 1]))
+    if k in ("xi", "eta"):
+        x, y = _local_mp(mframes, ld.link, ld.at)
+        return x if k == "xi" else y
+    if k == "T":
+        return mp.mpf(float(ld.torque))
+    raise ValueError(f"unknown parameter recipe {recipe!r}")
+
+
+# ------------------------------------------------------------------ the generated functions
+
+
+def mp_artifact(scene: Scene) -> dict:
+    """The mechanism's functions printed for mpmath (built once per topology and process)."""
+    key = cache.key_of(cache.signature(scene))
+    art = _ARTIFACTS.get(key)
+    if art is None:
+        art = build_artifact(scene, printer="mpmath")
+        _ARTIFACTS[key] = art
+    return art
+
+
+def _load_mp_functions(art: dict) -> dict:
+    ns: dict = {}
+    exec("from mpmath import *", ns)  # the names SymPy's mpmath printer uses
+    out = {}
+    for name, src in art["functions"].items():
+        exec(compile(src, f"<linkage_sym mpmath:{name}>", "exec"), ns)
+        out[name] = ns[name]
+    return out
+
+
+class _NotReal(Exception):
+    """A closed form with no real value at this precision (a tangency missed by rounding)."""
+
+
+def _real(values):
+    out = []
+    for v in values:
+        if isinstance(v, mp.mpc):
+            if v.imag != 0:
+                raise _NotReal
+            v = v.real
+        out.append(mp.mpf(v))
+    return out
+
+
+@dataclass
+class PreciseResult:
+    """What :func:`run_precise` computed.
+
+    Attributes
+    ----------
+    analysis : Analysis
+        The usual result, every value at an ``ok`` step the mpmath value rounded to float64.
+    digits : int
+        Significant decimal digits of the evaluation (``mp.dps``).
+    steps : list of (dict or None)
+        Per step, the unrounded mpmath values (``None`` where the step has no
+        positions): ``"x"``, ``"xd"``, ``"xdd"`` (the derived coordinates, in the order
+        of ``x_names``), ``"links"`` ``{name: {"rotation", "omega", "alpha"}}``,
+        ``"joints"`` ``{name: {"position", "velocity", "acceleration"}}`` (pairs),
+        ``"points"`` likewise, and with forces ``"reactions"`` ``{joint: (fx, fy)}``,
+        ``"reaction_moments"``, ``"driving"``, ``"frame"`` ``(fx, fy, m)``.
+    x_names : list of str
+    """
+
+    analysis: object
+    digits: int
+    steps: list = field(default_factory=list)
+    x_names: list = field(default_factory=list)
+
+
+class PreciseMechanism:
+    """A scene's derived equations in mpmath (see the module docstring)."""
+
+    def __init__(self, scene: Scene, digits: int, compiled: CompiledMechanism | None = None):
+        self.scene = scene
+        self.digits = digits
+        self.cm = compiled if compiled is not None else compile_mechanism(scene)
+        self.art = mp_artifact(scene)
+        if (self.art["x"] != self.cm.art["x"]
+                or [tuple(p) for p in self.art["pattern"]] != [tuple(p) for p in self.cm.art["pattern"]]):
+            raise RuntimeError(  # pragma: no cover - both are built from one derivation
+                "mpmath and NumPy functions of one mechanism disagree in layout")
+        self.f = _load_mp_functions(self.art)
+        cm = self.cm
+        with mp.workdps(digits):
+            mframes = _frames_mp(scene, cm.frames)
+            self.mframes = mframes
+            params = [parameter_mp(scene, tuple(r), mframes) for _, r in self.art["params"]]
+            k = self.art["sigmas"]
+            sig = cm.params[len(cm.params) - k:] if k else []
+            self.P = params + [mp.mpf(float(s)) for s in sig]
+        self.m = cm.m
+        self.pattern = [tuple(p) for p in self.art["pattern"]]
+
+    # -- one step -------------------------------------------------------------------
+    def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, CS=(None, None)):
+        return self.f[name](X, XD, XDD, Q, QD, QDD, F, self.P, CS[0], CS[1])
+
+    def positions(self, Q, x_float):
+        """Coordinates (list of mpf) at driver values ``Q`` (mpf), near ``x_float``."""
+        X = [None] * self.m
+        tol = mp.mpf(10) ** (-self.digits + 2)
+        for step in self.art["steps"]:
+            cols = step["x"]
+            if step["kind"] == "closed":
+                out = _real(self._call(step["function"], X=X, Q=Q))
+                for c, v in zip(cols, out):
+                    if self.cm.is_angle[c]:
+                        v = v + 2 * mp.pi * round(float((x_float[c] - v) / (2 * mp.pi)))
+                    X[c] = v
+                continue
+            for c in cols:
+                X[c] = mp.mpf(float(x_float[c]))
+            n = len(cols)
+            for _ in range(NEWTON_ITER):
+                out = self._call(step["function"], X=X, Q=Q)
+                r = mp.matrix(out[:n])
+                J = mp.matrix(n, n)
+                for a in range(n):
+                    for b in range(n):
+                        J[a, b] = out[n + a * n + b]
+                d = mp.lu_solve(J, r)
+                for kk, c in enumerate(cols):
+                    X[c] -= d[kk]
+                scale = [1 if self.cm.is_angle[c] else self.cm.L for c in cols]
+                if max(abs(d[kk]) / scale[kk] for kk in range(n)) <= tol:
+                    break
+            else:
+                raise _NotReal  # pragma: no cover - Newton from a float64 root converges
+        return X
+
+    def _solve_blocks(self, A: dict, rhs):
+        x = [mp.mpf(0)] * self.m
+        for r0, r1, c0, c1 in self.cm.blocks:
+            b = [rhs[i] - mp.fsum(A[i, j] * x[j] for j in range(c0) if (i, j) in A)
+                 for i in range(r0, r1)]
+            n = c1 - c0
+            M = mp.matrix(n, n)
+            for i in range(n):
+                for j in range(n):
+                    M[i, j] = A.get((r0 + i, c0 + j), 0)
+            sol = mp.lu_solve(M, mp.matrix(b))
+            for j in range(n):
+                x[c0 + j] = sol[j]
+        return x
+
+    def step(self, q, qd, qdd, x_float, rates: bool, stages) -> dict:
+        """Every value at one step (mpf), from driver values (floats, exact in mpmath)."""
+        Q = [mp.mpf(float(v)) for v in q]
+        QD = [mp.mpf(float(v)) for v in qd]
+        QDD = [mp.mpf(float(v)) for v in qdd]
+        X = self.positions(Q, x_float)
+        CS = ([mp.cos(v) for v in X], [mp.sin(v) for v in X])
+        zero = [mp.mpf(0)] * self.m
+        XD, XDD = zero, zero
+        if rates and "velocity" in stages:
+            out = self._call("rates", X=X, Q=Q, QD=QD, CS=CS)
+            npat = len(self.pattern)
+            A = dict(zip(self.pattern, out[:npat]))
+            XD = self._solve_blocks(A, out[npat:])
+            if "acceleration" in stages:
+                r = self._call("accelerations", X=X, XD=XD, Q=Q, QD=QD, QDD=QDD, CS=CS)
+                XDD = self._solve_blocks(A, r)
+        pts = self._call("points", X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
+        rec = {"x": X, "xd": XD, "xdd": XDD, "pts": pts}
+        if rates and "forces" in stages:
+            rec["F"] = self._forces(pts, X, CS)
+            rec["frame"] = self._call("frame", X=X, F=rec["F"], CS=CS)
+        return rec
+
+    def _get(self, pts, key):
+        a, b = self.art["layout"][key]
+        return pts[a:b]
+
+    def _forces(self, pts, X, CS):
+        art = self.art
+        F = [mp.mpf(0)] * len(art["force_names"])
+        for g, lay in reversed(list(zip(art["groups"], art["forces"]))):
+            k = g["index"]
+            unk = lay["unknowns"]
+            n = len(unk)
+            A = mp.matrix(n, n)
+            for (i, j), v in zip(lay["A"], self._get(pts, f"A:{k}")):
+                A[i, j] = v
+            b = list(self._get(pts, f"b:{k}"))
+            for (i, fi), v in zip(lay["C"], self._get(pts, f"C:{k}")):
+                b[i] -= v * F[fi]
+            sol = mp.lu_solve(A, mp.matrix(b))
+            for j, u in enumerate(unk):
+                F[u] = sol[j]
+        return F
+
+    # -- the sweep ------------------------------------------------------------------
+    def run(self, q=None, qd=None, qdd=None) -> PreciseResult:
+        """Every step of a sweep (the scene's unless given) in mpmath; see the module docstring."""
+        cm, art, scene = self.cm, self.art, self.scene
+        if q is None:
+            q, qd, qdd = cm.sweep()
+        base = cm.run(q, qd, qdd)
+        names = art["q"]
+        Qs = np.array([np.asarray(q[n], float) for n in names])
+        QDs = np.array([np.asarray(qd[n], float) for n in names])
+        QDDs = np.array([np.asarray(qdd[n], float) for n in names])
+        Qpath, out = cm._path(Qs)
+        Xp, failed_p = cm.positions(Qpath)
+        valid = failed_p < 0
+        for c in np.flatnonzero(cm.is_angle):
+            th = np.unwrap(Xp[c, valid])
+            Xp[c, valid] = th - 2 * np.pi * np.round((th[0] - cm.x0[c]) / (2 * np.pi))
+        Xf = Xp[:, out]
+        status = base.status.copy()
+        messages = list(base.messages)
+        stages = tuple(art["stages"])
+        steps: list = [None] * len(status)
+        with mp.workdps(self.digits):
+            for i in range(len(status)):
+                if status[i] == UNASSEMBLABLE:
+                    continue
+                try:
+                    steps[i] = self.step(Qs[:, i], QDs[:, i], QDDs[:, i], Xf[:, i],
+                                         status[i] == OK, stages)
+                except _NotReal:
+                    status[i] = UNASSEMBLABLE
+                    messages[i] = (f"no real position at {self.digits} digits (a closed form's "
+                                   "square root is negative: the float64 run took a tangency)")
+                except ZeroDivisionError:
+                    status[i] = SINGULAR
+                    messages[i] = (f"singular position: a group block is exactly singular at "
+                                   f"{self.digits} digits; velocities and accelerations have no "
+                                   "unique solution")
+                    steps[i] = self.step(Qs[:, i], QDs[:, i], QDDs[:, i], Xf[:, i], False, stages)
+            records = [None if s is None else self._record(s, stages) for s in steps]
+        base.status = status
+        base.messages = messages
+        analysis = self._round_into(base, records, stages)
+        return PreciseResult(analysis, self.digits, records, list(art["x"]))
+
+    def _record(self, s, stages) -> dict:
+        """The step's values by name (mpf), as in :attr:`PreciseResult.steps`."""
+        scene, cm = self.scene, self.cm
+        pts = s["pts"]
+        levels = [0] + ([1] if "velocity" in stages else []) + ([2] if "acceleration" in stages else [])
+        X, XD, XDD = s["x"], s["xd"], s["xdd"]
+        rec: dict = {"x": X, "xd": XD, "xdd": XDD, "joints": {}, "links": {}, "points": {}}
+        lev_names = {0: "position", 1: "velocity", 2: "acceleration"}
+        for j in scene.joints:
+            rec["joints"][j.name] = {lev_names[v]: tuple(self._get(pts, f"joint:{j.name}:{v}"))
+                                     for v in levels}
+        for link in scene.links:
+            n = link.name
+            c = cm.angle_of[n]
+            (Ux, Uy), th0 = self.mframes[n]
+            rot = X[c] - th0
+            cr, sr = mp.cos(rot), mp.sin(rot)
+            # the link point at the global origin in the assembly configuration
+            dx, dy = -(cr * Ux - sr * Uy), -(sr * Ux + cr * Uy)
+            ux, uy = self._get(pts, f"origin:{n}:0")
+            lk = {"rotation": rot, "origin": (ux + dx, uy + dy)}
+            if 1 in levels:
+                w = XD[c]
+                vx, vy = self._get(pts, f"origin:{n}:1")
+                lk["omega"] = w
+                lk["origin_velocity"] = (vx - w * dy, vy + w * dx)
+            if 2 in levels:
+                w, al = XD[c], XDD[c]
+                ax, ay = self._get(pts, f"origin:{n}:2")
+                lk["alpha"] = al
+                lk["origin_acceleration"] = (ax - al * dy - w * w * dx, ay + al * dx - w * w * dy)
+            if link.com is not None:
+                for v in levels:
+                    key = "com" if v == 0 else f"com_{lev_names[v]}"
+                    lk[key] = tuple(self._get(pts, f"com:{n}:{v}"))
+            rec["links"][n] = lk
+        for pt in scene.points:
+            lk = rec["links"][pt.link]
+            x, y = _mpf_point(pt.at)
+            c, s_ = mp.cos(lk["rotation"]), mp.sin(lk["rotation"])
+            rx, ry = c * x - s_ * y, s_ * x + c * y
+            ox, oy = lk["origin"]
+            p = {"position": (ox + rx, oy + ry)}
+            if 1 in levels:
+                w = lk["omega"]
+                vx, vy = lk["origin_velocity"]
+                p["velocity"] = (vx - w * ry, vy + w * rx)
+            if 2 in levels:
+                w, al = lk["omega"], lk["alpha"]
+                ax, ay = lk["origin_acceleration"]
+                p["acceleration"] = (ax - al * ry - w * w * rx, ay + al * rx - w * w * ry)
+            rec["points"][pt.name] = p
+        if "F" in s:
+            F = s["F"]
+            fidx = {nm: i for i, nm in enumerate(self.art["force_names"])}
+            reactions, moments = {}, {}
+            for j in scene.joints:
+                n = ident(j.name)
+                if j.type == "R":
+                    reactions[j.name] = (F[fidx[f"R_{n}x"]], F[fidx[f"R_{n}y"]])
+                    moments[j.name] = mp.mpf(0)
+                else:
+                    ux, uy = self._get(pts, f"slide:{j.name}")
+                    Nn = F[fidx[f"N_{n}"]]
+                    reactions[j.name] = (-uy * Nn, ux * Nn)
+                    moments[j.name] = F[fidx[f"M_{n}"]]
+            rec["reactions"] = reactions
+            rec["reaction_moments"] = moments
+            rec["driving"] = {d.joint: F[fidx[("tau_" if d.kind == "R" else "f_") + ident(d.joint)]]
+                              for d in scene.drivers}
+            rec["frame"] = tuple(s["frame"])
+        return rec
+
+    def _round_into(self, res, records, stages):
+        """``res`` (the float64 run's Analysis) with every value replaced by the mpmath one."""
+        N = len(res.status)
+        ok = res.status == OK
+        has_pos = res.status != UNASSEMBLABLE
+
+        def put(arr, i, value):
+            if arr.ndim == 1:
+                arr[i] = float(value)
+            else:
+                arr[i, 0], arr[i, 1] = float(value[0]), float(value[1])
+
+        def blank(arr, mask):
+            arr[~mask] = np.nan
+
+        pairs = []  # (array, getter, needs rates)
+        for name, jk in res.joints.items():
+            pairs.append((jk.position, lambda r, n=name: r["joints"][n]["position"], False))
+            if jk.velocity is not None:
+                pairs.append((jk.velocity, lambda r, n=name: r["joints"][n]["velocity"], True))
+            if jk.acceleration is not None:
+                pairs.append((jk.acceleration, lambda r, n=name: r["joints"][n]["acceleration"], True))
+        for name, pk in res.points.items():
+            for fld, rate in (("position", False), ("velocity", True), ("acceleration", True)):
+                if getattr(pk, fld) is not None:
+                    pairs.append((getattr(pk, fld), lambda r, n=name, f=fld: r["points"][n][f], rate))
+        for name, lk in res.links.items():
+            for fld, rate in (("rotation", False), ("origin", False), ("omega", True),
+                              ("alpha", True), ("origin_velocity", True),
+                              ("origin_acceleration", True), ("com", False),
+                              ("com_velocity", True), ("com_acceleration", True)):
+                arr = getattr(lk, fld)
+                if arr is not None:
+                    pairs.append((arr, lambda r, n=name, f=fld: r["links"][n][f], rate))
+        fo = res.forces
+        if fo is not None:
+            fo.method = "mpmath"
+            fo.groups = [GroupForces(tuple(g.links), "mpmath") for g in fo.groups]
+            for name in fo.reactions:
+                pairs.append((fo.reactions[name], lambda r, n=name: r["reactions"][n], True))
+                pairs.append((fo.reaction_moments[name], lambda r, n=name: r["reaction_moments"][n], True))
+            for name in fo.driving:
+                pairs.append((fo.driving[name], lambda r, n=name: r["driving"][n], True))
+            pairs.append((fo.frame_force, lambda r: r["frame"][:2], True))
+            pairs.append((fo.frame_moment, lambda r: r["frame"][2], True))
+        for arr, get, rate in pairs:
+            if not arr.flags.writeable:
+                continue  # pragma: no cover - results own their arrays
+            mask = ok if rate else has_pos
+            blank(arr, mask)
+            for i in np.flatnonzero(mask):
+                rec = records[i]
+                if rec is None or (rate and "velocity" not in stages and "F" not in rec
+                                   and "reactions" not in rec):
+                    continue
+                put(arr, i, get(rec))
+        del N
+        return res
+
+
+def run_precise(scene: Scene, digits, q=None, qd=None, qdd=None) -> PreciseResult:
+    """Analyse ``scene`` with its derived equations in mpmath at ``digits`` digits.
+
+    See the module docstring; ``q, qd, qdd``: driver values as for ``Plan.run``.
+    """
+    d = parse_precision(digits)
+    if d is None:
+        raise ValueError("precision: run_precise needs a number of digits, not 'double'")
+    return PreciseMechanism(scene, d).run(q, qd, qdd)
+
+
+def analyze_precise(scene: Scene, digits) -> object:
+    """The :class:`~linkage_sym.numeric.result.Analysis` of :func:`run_precise`."""
+    return run_precise(scene, digits).analysis
+
+
+__all__ = ["DOUBLE", "PreciseMechanism", "PreciseResult", "analyze_precise", "parse_precision",
+           "run_precise"]
