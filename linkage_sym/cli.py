@@ -320,13 +320,17 @@ def _plain_text(eqs) -> str:
 def cmd_derive(args) -> int:
     from linkage_sym.symbolic import derive
 
+    if (args.standalone or args.symbols) and not args.latex:
+        raise OptionError("--standalone and --symbols shape the LaTeX output: give --latex too")
     _check_outputs(files=[("-o/--output", args.output)])
     scene = _load(args.scene)
     eqs = derive(scene, symbolic=not args.numeric, forces=True)
     if args.latex:
-        from linkage_sym.symbolic.latex import latex_document
+        from linkage_sym.symbolic.latex import latex_document, standalone
 
-        text = latex_document(eqs)
+        text = latex_document(eqs, symbols=args.symbols)
+        if args.standalone:
+            text = standalone(text, f"Equations of the mechanism {scene.name}")
     else:
         text = _plain_text(eqs)
     if args.output in (None, "-"):
@@ -612,6 +616,10 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("scene", help="scene JSON file")
     v.add_argument("--latex", action="store_true", help="write a LaTeX fragment (notation of the textbook chapter 'Kinematic analysis of planar mechanisms')")
     v.add_argument("--numeric", action="store_true", help="the scene's numbers instead of parameter symbols")
+    v.add_argument("--standalone", action="store_true",
+                   help="with --latex: a complete document (preamble, bibliography) instead of a fragment")
+    v.add_argument("--symbols", action="store_true",
+                   help="with --latex: a table of every symbol with its meaning and unit")
     v.add_argument("-o", "--output", help="output file (default: standard output)")
     v.set_defaults(func=cmd_derive)
     b = sub.add_parser(

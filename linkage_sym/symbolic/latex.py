@@ -34,6 +34,12 @@ _GREEK = {
     "sddot": r"\ddot{s}",
     "qdot": r"\dot{q}",
     "qddot": r"\ddot{q}",
+    "dx": r"\Delta x",
+    "dy": r"\Delta y",
+    "cphi": r"\cos\varphi",
+    "sphi": r"\sin\varphi",
+    "xQ": r"x^{Q}",
+    "yQ": r"y^{Q}",
 }
 _LINK_PREFIXES = {"theta0", "theta", "omega", "alpha", "m", "I", "p", "q"}
 """Parameter prefixes followed by a link name (always upright)."""
@@ -44,6 +50,8 @@ MAX_ENTRY = 70
 MAX_MATRIX_CHARS = 900
 LINE = 150
 """Sums longer than this (LaTeX characters) are broken over several rows."""
+MAX_EQUATION = 250
+"""A matrix equation longer than this is written with named matrices and their entries."""
 
 _TEXT_ESCAPES = {
     "\\": r"\textbackslash{}",
@@ -111,6 +119,12 @@ class _Namer:
                 names[e] = (r"\tau" if pre == "tau" else "f") + f"_{{{_sub(n)}}}"
         for s in eqs.parameters:
             names.setdefault(s, self.param(s.name))
+        for s, _, _ in getattr(eqs, "force_intermediates", ()):
+            comp, link = s.name[2], s.name[4:]
+            names[s] = rf"a^{{G}}_{{{_sub(link, upright=True)},{comp}}}"
+        for s, _ in eqs.intermediates:
+            base = s.name.rstrip("'")
+            names[s] = self.param(base) + "'" * (len(s.name) - len(base))
         self.names = names
 
     @staticmethod
@@ -127,16 +141,24 @@ class _Namer:
         for s in getattr(expr, "free_symbols", ()):
             if s not in self.names:  # pragma: no cover - every symbol is named above
                 self.names[s] = self.param(s.name)
-        return sp.latex(expr, symbol_names=self.names)
+        return sp.latex(expr, symbol_names=self.names).replace(
+            r"\operatorname{atan}_{2}", r"\operatorname{atan2}")
 
     def sum_rows(self, lhs: str, expr, width: int = LINE) -> list[str]:
         """``lhs &= expr`` as align rows, a long sum broken between its terms."""
         expr = sp.sympify(expr)
         whole = self(expr)
-        if len(whole) <= width or not isinstance(expr, sp.Add):
+        if len(whole) <= width:
+            return [f"{lhs} &= {whole}"]
+        # a term too long for a row is expanded into terms of its own, where that helps
+        terms = []
+        for t in (expr.as_ordered_terms() if isinstance(expr, sp.Add) else [expr]):
+            te = sp.expand(t) if len(self(t)) > width else t
+            terms += te.as_ordered_terms() if isinstance(te, sp.Add) else [t]
+        if len(terms) == 1:
             return [f"{lhs} &= {whole}"]
         rows, cur = [], ""
-        for i, t in enumerate(expr.as_ordered_terms()):
+        for i, t in enumerate(terms):
             neg = t.could_extract_minus_sign()
             body = self(-t if neg else t)
             if isinstance(-t if neg else t, sp.Add):
@@ -165,7 +187,19 @@ def _pmatrix(namer: _Namer, M: sp.Matrix, force: bool = False) -> str | None:
         if sum(len(c) for r in cells for c in r) > MAX_MATRIX_CHARS:
             return None
     body = r" \\ ".join(" & ".join(r) for r in cells)
-    return r"\begin{pmatrix} " + body + r" \end{pmatrix}"
+    out = r"\begin{pmatrix} " + body + r" \end{pmatrix}"
+    return None if not force and len(out) > MAX_EQUATION else out
+
+
+def _rows_of(namer: _Namer, lhs: str, syms, per_row: int = 8) -> list[str]:
+    """``lhs &= (a, b, c, ...)^T`` as align rows of at most ``per_row`` entries."""
+    names = [namer(s) for s in syms]
+    chunks = [names[i:i + per_row] for i in range(0, len(names), per_row)]
+    rows = []
+    for k, chunk in enumerate(chunks):
+        text = ", ".join(chunk) + ("," if k < len(chunks) - 1 else r")^{\mathsf{T}}")
+        rows.append(f"{lhs} &= ({text}" if k == 0 else rf"&\qquad {text}")
+    return rows
 
 
 def _column(namer: _Namer, syms) -> str:
@@ -219,7 +253,111 @@ class _Doc:
             self.align(rows, numbered=False)
 
 
-def latex_document(eqs: MechanismEquations) -> str:
+BIBLIOGRAPHY = {
+    "linkagesym-kinematics": (
+        r"\emph{Kinematic analysis of planar mechanisms} (Chinese: Pingmian jigou de yundong "
+        r"fenxi), chapter~3 of a textbook on the theory of machines and mechanisms; author, "
+        r"publisher and year not shown in the text available to linkage\_sym (not before 2008)."
+    ),
+}
+"""The works the derived equations cite, as ``\\bibitem`` texts (author, title; README, Sources)."""
+
+UNITS = {
+    "length": "m", "coordinate": "m", "angle": "rad", "mass": "kg",
+    "inertia": r"kg\,m$^2$", "gravity": r"m/s$^2$",
+}
+
+
+def _unit_of_parameter(p) -> str:
+    if p.kind == "load":
+        return r"N\,m" if p.name.startswith("T_") else "N"
+    return UNITS.get(p.kind, "")
+
+
+def _unit_of_intermediate(sym) -> str:
+    pre = sym.name.split("_", 1)[0]
+    if pre in ("cphi", "sphi"):
+        return "1"
+    if pre in ("aGx", "aGy"):
+        return r"m/s$^2$"
+    return "m"
+
+
+def bibliography() -> str:
+    """A ``thebibliography`` environment with every work the documents cite."""
+    items = [rf"\bibitem{{{k}}} {v}" for k, v in BIBLIOGRAPHY.items()]
+    return "\n".join([r"\begin{thebibliography}{9}", *items, r"\end{thebibliography}"])
+
+
+def standalone(body: str, title: str = "Equations") -> str:
+    """``body`` (fragments of :func:`latex_document`) as a complete document with its bibliography."""
+    return "\n".join([
+        r"\documentclass{article}",
+        r"\usepackage{amsmath,amssymb}",
+        r"\usepackage{longtable}",
+        r"\usepackage[margin=2cm]{geometry}",
+        r"\setcounter{MaxMatrixCols}{20}",
+        rf"\title{{{escape_text(title)}}}",
+        r"\author{generated by linkage\_sym}",
+        r"\begin{document}",
+        r"\maketitle",
+        body,
+        bibliography(),
+        r"\end{document}",
+        "",
+    ])
+
+
+def _nomenclature(doc, nm, eqs) -> None:
+    """Every symbol with its meaning and unit, as a ``longtable``."""
+    rows = []
+    for s, sd, sdd in zip(eqs.x, eqs.xd, eqs.xdd):
+        if s.name.startswith("theta_"):
+            link = escape_text(s.name[6:])
+            rows += [(nm(s), f"angle of link {link}", "rad"),
+                     (nm(sd), f"angular velocity of link {link}", "rad/s"),
+                     (nm(sdd), f"angular acceleration of link {link}", r"rad/s$^2$")]
+        else:
+            j = escape_text(s.name[2:])
+            rows += [(nm(s), f"slide of prismatic joint {j}", "m"),
+                     (nm(sd), f"slide velocity of joint {j}", "m/s"),
+                     (nm(sdd), f"slide acceleration of joint {j}", r"m/s$^2$")]
+    for q, qd, qdd, d in zip(eqs.q, eqs.qd, eqs.qdd, eqs.scene.drivers):
+        j = escape_text(d.joint)
+        u = "rad" if d.kind == "R" else "m"
+        rows += [(nm(q), f"driver coordinate of joint {j}", u),
+                 (nm(qd), "its velocity", u + "/s"), (nm(qdd), "its acceleration", u + r"/s$^2$")]
+    for ge in eqs.groups:
+        if ge.sigma is not None:
+            rows.append((nm(ge.sigma), f"assembly mode of group {ge.index + 1} ($\\pm 1$)", "1"))
+    for s in eqs.parameters:
+        p = eqs.table.params[s.name]
+        rows.append((nm(s), escape_text(p.meaning), _unit_of_parameter(p)))
+    for s, meaning in eqs.intermediates:
+        rows.append((nm(s), escape_text(meaning), _unit_of_intermediate(s)))
+    if eqs.has_forces:
+        for s, _, meaning in eqs.force_intermediates:
+            rows.append((nm(s), escape_text(meaning), _unit_of_intermediate(s)))
+        for j in eqs.scene.joints:
+            f1, f2 = eqs.F[j.name]
+            jn = escape_text(j.name)
+            if j.type == "R":
+                rows += [(nm(f1), f"force of joint {jn}'s first link on its second, x", "N"),
+                         (nm(f2), "the same, y", "N")]
+            else:
+                rows += [(nm(f1), f"normal force of prismatic joint {jn}", "N"),
+                         (nm(f2), f"couple of prismatic joint {jn}", r"N\,m")]
+        for d in eqs.scene.drivers:
+            rows.append((nm(eqs.E[d.joint]), f"driving effort at joint {escape_text(d.joint)}",
+                         r"N\,m" if d.kind == "R" else "N"))
+    doc.text(r"\begin{longtable}{lll}")
+    doc.text(r"symbol & meaning & unit \\ \hline \endhead")
+    for sym, meaning, unit in rows:
+        doc.text(rf"${sym}$ & {meaning} & {unit} \\")
+    doc.text(r"\end{longtable}")
+
+
+def latex_document(eqs: MechanismEquations, symbols: bool = False) -> str:
     r"""A LaTeX fragment with a mechanism's equations in the kinematics chapter's notation.
 
     Sections: the symbols and their meanings; every closed vector loop in
@@ -233,6 +371,9 @@ def latex_document(eqs: MechanismEquations) -> str:
     ----------
     eqs : MechanismEquations
         The result of :func:`linkage_sym.symbolic.derive`.
+    symbols : bool
+        A nomenclature table (``longtable``) of every symbol with its meaning
+        and unit instead of the list of symbols.
 
     Returns
     -------
@@ -257,8 +398,11 @@ def latex_document(eqs: MechanismEquations) -> str:
     doc = _Doc("eq:" + scene.name)
     title = escape_text(scene.name)
     doc.text(f"% Equations of mechanism '{scene.name}', generated by linkage_sym.")
-    doc.text(r"% Needs amsmath; for matrices with more than 10 columns add")
-    doc.text(r"% \setcounter{MaxMatrixCols}{20} to the preamble.")
+    doc.text(r"% Needs amsmath (and longtable with a symbol table); for matrices with more")
+    doc.text(r"% than 10 columns add \setcounter{MaxMatrixCols}{20} to the preamble.")
+    doc.text(r"% Cites the keys below; add these entries to your bibliography:")
+    for key, text in BIBLIOGRAPHY.items():
+        doc.text(rf"%   \bibitem{{{key}}} {text}")
     doc.text(rf"\subsection*{{Equations of the mechanism \texttt{{{title}}}}}")
 
     # (a) symbols
@@ -268,6 +412,17 @@ def latex_document(eqs: MechanismEquations) -> str:
         r"$\omega = \dot\theta$, $\alpha = \ddot\theta$; $s$ is the slide of a prismatic "
         r"joint (0 in the assembly configuration), $q$ a driver coordinate."
     )
+    if symbols:
+        _nomenclature(doc, nm, eqs)
+    else:
+        _symbol_list(doc, nm, eqs)
+    if not eqs.parameters:
+        doc.text("The dimensions are the scene's numbers (derived with symbolic=False).")
+    _rest(doc, nm, eqs)
+    return "\n".join(doc.out) + "\n"
+
+
+def _symbol_list(doc, nm, eqs) -> None:
     doc.text(r"\begin{itemize}")
     for s, sd, sdd in zip(eqs.x, eqs.xd, eqs.xdd):
         if s.name.startswith("theta_"):
@@ -284,6 +439,10 @@ def latex_document(eqs: MechanismEquations) -> str:
     for s in eqs.parameters:
         p = eqs.table.params[s.name]
         doc.text(rf"\item ${nm(s)}$: {escape_text(p.meaning)} ({p.kind})")
+    for s, meaning in eqs.intermediates:
+        doc.text(rf"\item ${nm(s)}$: {escape_text(meaning)} (intermediate)")
+    for s, _, meaning in getattr(eqs, "force_intermediates", ()):
+        doc.text(rf"\item ${nm(s)}$: {escape_text(meaning)} (intermediate)")
     if eqs.has_forces:
         doc.text(
             r"\item $R_{J,x}, R_{J,y}$: force of the joint's first link on its second at "
@@ -291,33 +450,39 @@ def latex_document(eqs: MechanismEquations) -> str:
             r"$J$; $\tau_{J}$, $f_{J}$: driving torque or force at joint $J$"
         )
     doc.text(r"\end{itemize}")
-    if not eqs.parameters:
-        doc.text("The dimensions are the scene's numbers (derived with symbolic=False).")
+
+
+def _rest(doc, nm, eqs) -> None:
 
     # (b) loops
     doc.text(r"\paragraph{Loop equations.}")
     if eqs.loops:
         doc.text(
             "Each joint that closes a loop gives a closed vector loop "
-            r"(\emph{Kinematic analysis of planar mechanisms}, eq.~3-8) and its projections on the "
-            "axes (eq.~3-9):"
+            r"\cite[eq.~3-8]{linkagesym-kinematics} and its projections on the "
+            "axes (its eq.~3-9):"
         )
     else:
         doc.text("The mechanism has no closed loop: every link is placed along a tree.")
     for jname, v in eqs.loops:
         key = f"loop-{jname}"
-        doc.equation(f"{nm(v.complex())} = 0", key)
-        doc.align([f"{nm(v.x)} &= 0", f"{nm(v.y)} &= 0"], [key + "-x", key + "-y"])
+        rows = [r.replace("&=", "&=", 1) for r in nm.sum_rows("0", v.complex())]
+        doc.align(rows, [key] + [None] * (len(rows) - 1))
+        rx, ry = nm.sum_rows("0", v.x), nm.sum_rows("0", v.y)
+        doc.align(rx + ry, [key + "-x"] + [None] * (len(rx) - 1) + [key + "-y"] + [None] * (len(ry) - 1))
 
     # (c) positions
     doc.text(r"\paragraph{Positions.}")
     if eqs.closed_forms:
         doc.text(
             "Explicit positions of the input links and dyads, in solving order "
-            r"(each may use those above it; $\sigma = \pm 1$ selects the assembly mode):"
+            r"(each may use those above it; $\sigma = \pm 1$ selects the assembly mode). "
+            "Each dyad first names its outer joints, the distance $d$ between them, the "
+            "projection $a$ and the half-chord $h$ of its inner joint (Heron's form, accurate "
+            "near a dead centre), then its inner joint and its angles:"
         )
         rows, keys = [], []
-        for s, e in eqs.closed_forms:
+        for s, e in eqs.position_steps:
             r = nm.sum_rows(nm(s), e)
             rows += r
             keys += [f"pos-{s.name}"] + [None] * (len(r) - 1)
@@ -337,16 +502,19 @@ def latex_document(eqs: MechanismEquations) -> str:
     doc.text(
         r"Differentiating the position equations $\Phi$ with respect to time gives "
         r"$\mathbf{A}\,\dot{\mathbf{x}} = \mathbf{B}\,\dot{\mathbf{q}}$ "
-        r"(\emph{Kinematic analysis of planar mechanisms}, eq.~3-28), "
+        r"\cite[eq.~3-28]{linkagesym-kinematics}, "
         r"$\mathbf{A} = \partial\Phi/\partial\mathbf{x}$, "
         r"$\mathbf{B} = -\partial\Phi/\partial\mathbf{q}$:"
     )
     A, B = _pmatrix(nm, eqs.A), _pmatrix(nm, eqs.B)
     col_xd, col_qd = _column(nm, eqs.xd), _column(nm, eqs.qd)
-    if A is not None and B is not None:
-        doc.equation(f"{A} {col_xd} = {B} {col_qd}", "velocity")
+    whole = f"{A} {col_xd} = {B} {col_qd}"
+    if A is not None and B is not None and len(whole) <= MAX_EQUATION:
+        doc.equation(whole, "velocity")
     else:
-        doc.equation(rf"\mathbf{{A}} {col_xd} = \mathbf{{B}} {col_qd}", "velocity")
+        doc.equation(r"\mathbf{A}\,\dot{\mathbf{x}} = \mathbf{B}\,\dot{\mathbf{q}}", "velocity")
+        doc.align([rf"\dot{{\mathbf{{x}}}} &= {col_xd}", rf"\dot{{\mathbf{{q}}}} &= {col_qd}"],
+                  numbered=False)
         if A is None:
             doc.entries(nm, r"\mathbf{A}", eqs.A, "the matrix", "A")
         else:
@@ -359,17 +527,17 @@ def latex_document(eqs: MechanismEquations) -> str:
     # (e) accelerations
     doc.text(r"\paragraph{Accelerations.}")
     doc.text(
-        r"Differentiating once more (\emph{Kinematic analysis of planar mechanisms}, eq.~3-29), "
+        r"Differentiating once more \cite[eq.~3-29]{linkagesym-kinematics}, "
         r"$\mathbf{A}\,\ddot{\mathbf{x}} = -\dot{\mathbf{A}}\,\dot{\mathbf{x}} + "
         r"\dot{\mathbf{B}}\,\dot{\mathbf{q}} + \mathbf{B}\,\ddot{\mathbf{q}}$, with the same "
         r"$\mathbf{A}$; the right-hand side is printed as one column $\mathbf{r}$:"
     )
-    col_xdd = _column(nm, eqs.xdd)
     doc.equation(
-        rf"\mathbf{{A}} {col_xdd} = \mathbf{{r}} = -\dot{{\mathbf{{A}}}}\,\dot{{\mathbf{{x}}}} "
-        rf"+ \dot{{\mathbf{{B}}}}\,\dot{{\mathbf{{q}}}} + \mathbf{{B}}\,\ddot{{\mathbf{{q}}}}",
+        r"\mathbf{A}\,\ddot{\mathbf{x}} = \mathbf{r} = -\dot{\mathbf{A}}\,\dot{\mathbf{x}} "
+        r"+ \dot{\mathbf{B}}\,\dot{\mathbf{q}} + \mathbf{B}\,\ddot{\mathbf{q}}",
         "acceleration",
     )
+    doc.align([rf"\ddot{{\mathbf{{x}}}} &= {_column(nm, eqs.xdd)}"], numbered=False)
     rhs = _pmatrix(nm, eqs.acc_rhs)
     if rhs is not None and eqs.acc_rhs.rows <= MAX_MATRIX:
         doc.align([rf"\mathbf{{r}} &= {rhs}"], numbered=False)
@@ -385,7 +553,18 @@ def latex_document(eqs: MechanismEquations) -> str:
             r"\mathbf{F}_{\mathrm{later}}$, solved from the last group back "
             r"($\mathbf{F}_{\mathrm{later}}$: the reactions and efforts of the groups solved after it)."
         )
-        for ge, (Ag, bg, Cg, later) in zip(eqs.groups, eqs.force_blocks):
+        if eqs.force_intermediates:
+            doc.text(
+                r"The d'Alembert forces use the accelerations $a^{G}$ of the centres of mass, "
+                "from the positions and rates above:"
+            )
+            rows, keys = [], []
+            for sym, e, _ in eqs.force_intermediates:
+                r = nm.sum_rows(nm(sym), e)
+                rows += r
+                keys += [f"acc-{sym.name}"] + [None] * (len(r) - 1)
+            doc.align(rows, keys)
+        for ge, (Ag, bg, Cg, later) in zip(eqs.groups, eqs.readable_force_blocks):
             g = ge.index + 1
             links = escape_text(", ".join(ge.group.links))
             doc.text(rf"\subparagraph{{Group {g}}} ({escape_text(ge.group.kind)}: links {links}).")
@@ -395,12 +574,17 @@ def latex_document(eqs: MechanismEquations) -> str:
             F = _column(nm, ge.forces)
             Fl = _column(nm, later) if later else None
             small = a is not None and b is not None and (not later or c is not None)
-            if small:
-                rhs = b + (f" - {c} {Fl}" if later else "")
+            rhs = None if not small else b + (f" - {c} {Fl}" if later else "")
+            if small and len(f"{a} {F} = {rhs}") <= MAX_EQUATION:
                 doc.equation(f"{a} {F} = {rhs}", f"forces-{g}")
             else:
-                rhs = rf"\mathbf{{b}}_{{{g}}}" + (rf" - \mathbf{{C}}_{{{g}}} {Fl}" if later else "")
-                doc.equation(rf"\mathbf{{A}}_{{{g}}} {F} = {rhs}", f"forces-{g}")
+                rhs = rf"\mathbf{{b}}_{{{g}}}" + (
+                    rf" - \mathbf{{C}}_{{{g}}} \mathbf{{F}}_{{>{g}}}" if later else "")
+                doc.equation(rf"\mathbf{{A}}_{{{g}}} \mathbf{{F}}_{{{g}}} = {rhs}", f"forces-{g}")
+                rows = _rows_of(nm, rf"\mathbf{{F}}_{{{g}}}", ge.forces)
+                if later:
+                    rows += _rows_of(nm, rf"\mathbf{{F}}_{{>{g}}}", later)
+                doc.align(rows, numbered=False)
                 for name, M, m_tex, what, entry in (
                     (rf"\mathbf{{A}}_{{{g}}}", Ag, a, "the matrix", f"A^{{({g})}}"),
                     (rf"\mathbf{{b}}_{{{g}}}", bg, b, "the column", f"b^{{({g})}}"),
@@ -428,4 +612,3 @@ def latex_document(eqs: MechanismEquations) -> str:
             rows += r
             keys += [k] + [None] * (len(r) - 1)
         doc.align(rows, keys)
-    return "\n".join(doc.out) + "\n"

@@ -115,6 +115,15 @@ class MechanismEquations:
     closed_forms : list of (Symbol, Expr)
         Explicit positions, in solving order; an expression may use the
         coordinates defined before it.
+    position_steps : list of (Symbol, Expr)
+        The same positions as a reader follows them: each dyad's named
+        intermediate quantities (its outer joints' coordinates, the distance
+        between them, the projection and half-chord of the inner joint, the
+        inner joint's coordinates) defined once, then its angles in terms of
+        them.  Equal to :attr:`closed_forms` once the intermediates are
+        substituted (tested); printed by :mod:`linkage_sym.symbolic.latex`.
+    intermediates : list of (Symbol, str)
+        Each intermediate symbol of :attr:`position_steps` with its meaning.
     """
 
     def __init__(self, scene: Scene, symbolic=True, forces=None, decomposition=None):
@@ -135,6 +144,8 @@ class MechanismEquations:
         self.groups: list[GroupEquations] = []
         self.loops: list = []
         self.closed_forms: list = []
+        self.position_steps: list = []
+        self.intermediates: list = []
         self.sigmas: list = []
         self.row_is_length: list[bool] = []
         rows = []
@@ -325,8 +336,28 @@ class MechanismEquations:
         return rows
 
     # -- closed forms -------------------------------------------------------------
-    def _define(self, symbol, expr):
+    def _define(self, symbol, expr, readable=None):
+        """``symbol = expr`` (closed forms); ``readable``: the same in intermediates."""
         self.closed_forms.append((symbol, expr))
+        self.position_steps.append((symbol, expr if readable is None else readable))
+
+    def _named(self, name: str, expr, meaning: str):
+        """An intermediate symbol for ``expr`` (``expr`` itself if it is a symbol or number)."""
+        expr = sp.sympify(expr)
+        if expr.is_Atom or (-expr).is_Atom:
+            return expr
+        taken = {str(t) for t, _ in self.intermediates} | set(self._syms) | {
+            str(t) for t in (*self.th.values(), *self.slide.values(), *self.q)}
+        while name in taken:
+            name += "'"
+        sym = sp.Symbol(name, real=True)
+        self.intermediates.append((sym, meaning))
+        self.position_steps.append((sym, expr))
+        return sym
+
+    def _named_point(self, joint: str, P):
+        return (self._named(f"x_{ident(joint)}", P[0], f"x-coordinate of joint {joint}"),
+                self._named(f"y_{ident(joint)}", P[1], f"y-coordinate of joint {joint}"))
 
     def _input_closed_form(self, g, d):
         J = self.scene.joint(d.joint)
@@ -371,8 +402,24 @@ class MechanismEquations:
             a = (d**2 + r0**2 - r1**2) / (2 * d)
             Yx = C0[0] + (a * ex - sigma * h * ey) / d
             Yy = C0[1] + (a * ey + sigma * h * ex) / d
-            self._define(self.th[b0], sp.atan2(Yy - C0[1], Yx - C0[0]) - d0)
-            self._define(self.th[b1], sp.atan2(Yy - C1[1], Yx - C1[0]) - d1)
+            # the same, as a reader follows it: named intermediates
+            g, o0, o1, i = gi + 1, e0.name, e1.name, ji.name
+            P0, P1 = self._named_point(o0, C0), self._named_point(o1, C1)
+            nx = self._named(f"dx_{g}", P1[0] - P0[0], f"x-distance from joint {o0} to joint {o1}")
+            ny = self._named(f"dy_{g}", P1[1] - P0[1], f"y-distance from joint {o0} to joint {o1}")
+            nd = self._named(f"d_{g}", sp.sqrt(nx**2 + ny**2), f"distance between joints {o0} and {o1}")
+            na = self._named(f"a_{g}", (nd**2 + r0**2 - r1**2) / (2 * nd),
+                             f"projection of {o0}{i} on the line {o0}{o1}")
+            nh = self._named(
+                f"h_{g}",
+                sp.sqrt((r0 + r1 - nd) * (nd + r0 - r1) * (nd - r0 + r1) * (r0 + r1 + nd)) / (2 * nd),
+                f"half-chord: distance of joint {i} from the line {o0}{o1} (Heron's form)")
+            Y = self._named_point(i, (P0[0] + (na * nx - sigma * nh * ny) / nd,
+                                      P0[1] + (na * ny + sigma * nh * nx) / nd))
+            self._define(self.th[b0], sp.atan2(Yy - C0[1], Yx - C0[0]) - d0,
+                         sp.atan2(Y[1] - P0[1], Y[0] - P0[0]) - d0)
+            self._define(self.th[b1], sp.atan2(Yy - C1[1], Yx - C1[0]) - d1,
+                         sp.atan2(Y[1] - P1[1], Y[0] - P1[0]) - d1)
         elif t == "RRP":
             self._define(self.th[b1], self._copied(b1, e1))
             (Qx, Qy), (ux, uy), sign = self._line(e1, b1, ji.name)
@@ -383,8 +430,20 @@ class MechanismEquations:
             delta = -uy * w[0] + ux * w[1]  # distance of the centre from the line
             tt = dot(w, (ux, uy)) + sigma * sp.sqrt((r0 - delta) * (r0 + delta))
             Yx, Yy = Qx + tt * ux, Qy + tt * uy
-            self._define(self.th[b0], sp.atan2(Yy - C[1], Yx - C[0]) - d0)
-            self._define(self.slide[e1.name], sign * tt)
+            g, o0, o1, i = gi + 1, e0.name, e1.name, ji.name
+            P0 = self._named_point(o0, C)
+            Q = (self._named(f"xQ_{g}", Qx, f"x of the point of {i}'s line through {o1}"),
+                 self._named(f"yQ_{g}", Qy, f"y of the point of {i}'s line through {o1}"))
+            ndel = self._named(f"delta_{g}", -uy * (P0[0] - Q[0]) + ux * (P0[1] - Q[1]),
+                               f"distance of joint {o0} from the line of {i}")
+            nt = self._named(
+                f"t_{g}",
+                ux * (P0[0] - Q[0]) + uy * (P0[1] - Q[1]) + sigma * sp.sqrt((r0 - ndel) * (r0 + ndel)),
+                f"position of joint {i} along its line")
+            Y = self._named_point(i, (Q[0] + nt * ux, Q[1] + nt * uy))
+            self._define(self.th[b0], sp.atan2(Yy - C[1], Yx - C[0]) - d0,
+                         sp.atan2(Y[1] - P0[1], Y[0] - P0[0]) - d0)
+            self._define(self.slide[e1.name], sign * tt, sign * nt)
         elif t == "RPR":
             E0, E1 = self.pos(k0, e0.name), self.pos(k1, e1.name)
             D = (E1.x - E0.x, E1.y - E0.y)
@@ -402,10 +461,26 @@ class MechanismEquations:
             ex = (sigma * w * D[0] + Ky * D[1]) / D2
             ey = (sigma * w * D[1] - Ky * D[0]) / D2
             ang = sp.atan2(ey, ex) - gam  # angle of the carrier's x-axis
+            # the same with named intermediates
+            g, o0, o1, i = gi + 1, e0.name, e1.name, ji.name
+            P0, P1 = self._named_point(o0, (E0.x, E0.y)), self._named_point(o1, (E1.x, E1.y))
+            nx = self._named(f"dx_{g}", P1[0] - P0[0], f"x-distance from joint {o0} to joint {o1}")
+            ny = self._named(f"dy_{g}", P1[1] - P0[1], f"y-distance from joint {o0} to joint {o1}")
+            nd = self._named(f"d_{g}", sp.sqrt(nx**2 + ny**2), f"distance between joints {o0} and {o1}")
+            nk = self._named(f"k_{g}", Ky, f"offset of joint {o1} from the slide of {i} through {o0}")
+            nc = self._named(f"c_{g}", Kx, f"offset along the slide of {i} (link geometry)")
+            nw = self._named(f"w_{g}", sp.sqrt((nd - nk) * (nd + nk)),
+                             f"distance from {o0} to the foot of {o1} on the slide of {i}")
+            ncos = self._named(f"cphi_{g}", (sigma * nw * nx + nk * ny) / nd**2,
+                               f"cosine of the slide direction of {i}")
+            nsin = self._named(f"sphi_{g}", (sigma * nw * ny - nk * nx) / nd**2,
+                               f"sine of the slide direction of {i}")
+            ang_r = sp.atan2(nsin, ncos) - gam
             for b in (b0, b1):
-                self._define(self.th[b], ang + self.theta0(b) - self.theta0(carrier))
+                self._define(self.th[b], ang + self.theta0(b) - self.theta0(carrier),
+                             ang_r + self.theta0(b) - self.theta0(carrier))
             ss = 1 if b1 == ji.links[1] else -1
-            self._define(self.slide[ji.name], ss * (sigma * w - Kx))
+            self._define(self.slide[ji.name], ss * (sigma * w - Kx), ss * (sigma * nw - nc))
         elif t == "PRP":
             self._define(self.th[b0], self._copied(b0, e0))
             self._define(self.th[b1], self._copied(b1, e1))
@@ -471,6 +546,7 @@ class MechanismEquations:
             for d in scene.drivers
         }
         acc = {n: [sp.Integer(0)] * 3 for n in scene.link_names}
+        self.force_intermediates = []
 
         def add(link, f=None, lever=None, couple=0):
             if link == GROUND:
@@ -529,8 +605,14 @@ class MechanismEquations:
                 add(n, (m * self.sym(g[0]), m * self.sym(g[1])), lever)
             if eff.inertia:
                 if has_mass:
+                    # named in the equations (a reader's form), substituted below
                     _, _, (ax, ay) = self.com_kin[n]
-                    add(n, (-m * ax, -m * ay), lever)
+                    sx, sy = (sp.Symbol(f"aG{c}_{ident(n)}", real=True) for c in "xy")
+                    self.force_intermediates += [
+                        (sx, ax, f"acceleration of the centre of mass of link {n}, x"),
+                        (sy, ay, f"acceleration of the centre of mass of link {n}, y"),
+                    ]
+                    add(n, (-m * sx, -m * sy), lever)
                 if link.inertia > 0:
                     add(n, couple=-I * self.xdd[self.x.index(self.th[n])])
         if eff.loads:
@@ -542,23 +624,28 @@ class MechanismEquations:
                     add(ld.link, (fx, fy), self.frame_vec(ld.link, px, py))
                 if "torque" in names:
                     add(ld.link, couple=self.sym(names["torque"]))
-        self.link_equations = acc
-        # group blocks, solved from the last group back
+        named = {sym: e for sym, e, _ in self.force_intermediates}
+        self.link_equations = {n: [e.xreplace(named) for e in row] for n, row in acc.items()}
+        # group blocks, solved from the last group back (``readable_force_blocks``: the
+        # same with the centres of mass's accelerations named)
         order = []
         for ge in self.groups:
             g = ge.group
             ge.forces = [s for n in g.joints for s in self.F[n]] + [self.E[n] for n in g.drivers]
-            ge.force_rows = [e for n in g.links for e in acc[n]]
+            ge.force_rows = [e for n in g.links for e in self.link_equations[n]]
             order.append(ge)
         later: list = []
         zero = {s: 0 for ge in self.groups for s in ge.forces}
         self.force_blocks = []
+        self.readable_force_blocks = []
         for ge in reversed(order):
-            eqs = sp.Matrix(ge.force_rows)
+            eqs = sp.Matrix([e for n in ge.group.links for e in acc[n]])
             Ag = eqs.jacobian(ge.forces)
             Cg = eqs.jacobian(later) if later else sp.zeros(len(ge.force_rows), 0)
             bg = -eqs.xreplace(zero)
-            self.force_blocks.insert(0, (Ag, bg, Cg, list(later)))
+            self.readable_force_blocks.insert(0, (Ag, bg, Cg, list(later)))
+            self.force_blocks.insert(0, (Ag.xreplace(named), bg.xreplace(named), Cg.xreplace(named),
+                                         list(later)))
             later = list(ge.forces) + later
         self.all_forces = later
         # frame force and moment (what the links put on the ground, about the origin)
