@@ -4,11 +4,13 @@ from __future__ import annotations
 
 from linkage_sym.model import Scene
 from linkage_sym.structure.disconnection import default_choice, usable_disconnections
+from linkage_sym.structure.grashof import grashof_lines
 from linkage_sym.structure.groups import Decomposition
 
 
 def structure_report(scene: Scene, dec: Decomposition) -> str:
-    """Describe drivers and Assur groups in solving order, with disconnection choices.
+    """Describe drivers and Assur groups in solving order, with disconnection choices,
+    and the Grashof class of every four-bar loop (:mod:`linkage_sym.structure.grashof`).
 
     Examples
     --------
@@ -25,6 +27,9 @@ def structure_report(scene: Scene, dec: Decomposition) -> str:
     Solving order:
       1. input link: crank; driven joint A (R); external joints A
       2. dyad RRR (class II): coupler, rocker; external joints B, D; internal joints C
+    Four-bar loops (Grashof class, textbook section 'Design of four-bar mechanisms' [2]):
+      ground D-A 3, crank A-B 1, coupler B-C 1.414, rocker C-D 1.414 (m): double-rocker
+         not Grashof: s + l = 1 + 3 = 4 > p + q = 2.82843; no link turns fully (a triple-rocker)
     """
     nd = len(scene.drivers)
     lines = [
@@ -62,4 +67,5 @@ def structure_report(scene: Scene, dec: Decomposition) -> str:
                     "     no disconnection leaves a pure-dyad mechanism: forces by a dense "
                     "solve of the group's own equilibrium"
                 )
+    lines += grashof_lines(scene)
     return "\n".join(lines)
