@@ -368,10 +368,10 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
     fin = reached & ~inf
     with np.errstate(invalid="ignore", divide="ignore"):
         pos = c + L * h[..., :2] / h[..., 2:3]
+        d = h[..., :2] / np.linalg.norm(h[..., :2], axis=-1, keepdims=True)
     for k, ij in enumerate(P):
         if ij in exact:
             pos[:, k] = exact[ij]
-        d = h[..., :2] / np.linalg.norm(h[..., :2], axis=-1, keepdims=True)
     return KennedyCentres(
         links=names,
         pairs=tuple(pairs),

@@ -70,6 +70,9 @@ class RelativeMotion:
 class Sliding:
     """A sliding pair between two moving links at one step.
 
+    ``point`` names the coincident points in :attr:`Polygons.points` (the
+    name of an ``R`` joint at the slider's reference point, else the joint's).
+
     The slider's point (the joint's reference point, fixed on ``slider``, the
     joint's ``links[1]``) moves relative to the coincident point of the
     ``guide`` (``links[0]``, which carries the slide):
@@ -82,6 +85,7 @@ class Sliding:
     """
 
     joint: str
+    point: str
     guide: str
     slider: str
     axis: np.ndarray
@@ -105,6 +109,8 @@ class Polygons:
         Angular velocity (rad/s) and acceleration (rad/s^2) of each moving link.
     points : list of PointMotion
     relative : list of RelativeMotion
+        Each point of a link about each pivot (``R`` joint) of it; two pivots
+        once, the later about the earlier (the other way round is its negative).
     sliding : list of Sliding
         One per ``P`` joint between two moving links.
     """
@@ -137,7 +143,7 @@ class Polygons:
             "relative": [{"link": r.link, "point": r.point, "about": r.about,
                           "velocity": vec(r.velocity), "normal_acceleration": vec(r.normal),
                           "tangential_acceleration": vec(r.tangential)} for r in self.relative],
-            "sliding": [{"joint": s.joint, "guide": s.guide, "slider": s.slider,
+            "sliding": [{"joint": s.joint, "point": s.point, "guide": s.guide, "slider": s.slider,
                          "axis": vec(s.axis), "slip_velocity": vec(s.velocity),
                          "slip_speed": float(s.speed), "slip_acceleration": vec(s.acceleration),
                          "slip_rate": float(s.rate), "coriolis": vec(s.coriolis)}
@@ -254,11 +260,11 @@ def polygon_quantities(scene, analysis, step: int) -> Polygons:
     relative = []
     for link, entries in per_link.items():
         w, al = omega[link], alpha[link]
-        for pname, _, P, pivot in entries:
+        for a, (pname, _, P, pivot) in enumerate(entries):
             if not pivot:
                 continue
-            for qname, _, Q, _ in entries:
-                if qname == pname:
+            for b, (qname, _, Q, q_pivot) in enumerate(entries):
+                if b == a or (q_pivot and b < a):  # each pair of pivots once: later about earlier
                     continue
                 r = Q - P
                 jr = np.array([-r[1], r[0]])
@@ -277,6 +283,6 @@ def polygon_quantities(scene, analysis, step: int) -> Polygons:
         vrel = vs - vg
         cor = 2.0 * omega[guide] * np.array([-vrel[1], vrel[0]])
         arel = as_ - ag - cor
-        sliding.append(Sliding(j.name, guide, slider, u, vrel, float(vrel @ u), arel,
-                               float(arel @ u), cor))
+        sliding.append(Sliding(j.name, r_name.get(j.name, j.name), guide, slider, u, vrel,
+                               float(vrel @ u), arel, float(arel @ u), cor))
     return Polygons(i, numbers, omega, alpha, points, relative, sliding)

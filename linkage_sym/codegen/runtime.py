@@ -608,6 +608,10 @@ class CompiledMechanism:
             points=points,
         )
         res.warnings.extend(run_warnings(res))
+        if "instant_centres" in scene.outputs:  # an extension of the format
+            from linkage_sym.centres import instant_centres
+
+            res.instant_centres = instant_centres(scene, res)
         return res
 
 

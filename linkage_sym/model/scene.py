@@ -22,7 +22,12 @@ GROUND = "ground"
 """Name of the fixed link; never listed in ``Scene.links``."""
 
 OUTPUTS = ("kinematics", "reactions", "driving", "frame")
-"""Every output a scene may ask for, in the order results list them."""
+"""The contract's outputs, in the order results list them; a scene's default."""
+
+EXTENSION_OUTPUTS = ("instant_centres",)
+"""Outputs linkage_sym adds to the contract's (an extension of the format): a scene
+may list them, none is a default.  ``instant_centres``: every pair's instant centre
+at each step with velocities (see :mod:`linkage_sym.centres`)."""
 
 STAGES = ("position", "velocity", "acceleration", "forces")
 """Every computation stage, in the order they run."""

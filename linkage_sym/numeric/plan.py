@@ -130,9 +130,10 @@ def scene_sweep(scene: Scene):
 def needed_stages(scene: Scene) -> tuple[str, ...]:
     """The stages a scene's outputs and effects call for, in order.
 
-    Kinematics output needs positions, velocities and accelerations; forces
-    need velocities and accelerations only when inertia acts on a link with
-    mass.
+    Kinematics output needs positions, velocities and accelerations (so does
+    the ``instant_centres`` extension: velocities, and accelerations for the
+    polygons); forces need velocities and accelerations only when inertia acts
+    on a link with mass.
     """
     outs = set(scene.outputs)
     forces = bool(outs & {"reactions", "driving", "frame"})
@@ -140,7 +141,7 @@ def needed_stages(scene: Scene) -> tuple[str, ...]:
         link.mass > 0 or link.inertia > 0 for link in scene.links
     )
     stages = ["position"]
-    if "kinematics" in outs or (forces and inertia):
+    if "kinematics" in outs or "instant_centres" in outs or (forces and inertia):
         stages += ["velocity", "acceleration"]
     if forces:
         stages.append("forces")
@@ -372,6 +373,10 @@ class Plan:
         res.warnings.extend(continuation.step_warnings(
             [n for sv in self.solvers for n in sv.notes], path_index))
         res.warnings.extend(run_warnings(res))
+        if "instant_centres" in self.scene.outputs:  # an extension of the format
+            from linkage_sym.centres import instant_centres
+
+            res.instant_centres = instant_centres(self.scene, res)
         return res
 
     def condition_numbers(self, S, idx) -> np.ndarray:

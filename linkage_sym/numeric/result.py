@@ -194,6 +194,10 @@ class Analysis:
     points : dict
         :class:`JointKinematics` of the scene's traced points (its
         ``points``, an extension of the format), by name.
+    instant_centres : InstantCentres or None
+        Every pair's instant centre at every step, when the scene lists the
+        ``instant_centres`` output (an extension of the format; see
+        :mod:`linkage_sym.centres`); written to each ``ok`` step's record.
     """
 
     scene: str
@@ -209,6 +213,7 @@ class Analysis:
     forces: Forces | None = None
     p_joints: tuple[str, ...] = ()
     points: dict = field(default_factory=dict)
+    instant_centres: object = None
 
     @property
     def ok(self) -> np.ndarray:
@@ -238,6 +243,7 @@ class Analysis:
             return rec
 
         dropped: list[str] = []  # fields left out because they are not finite
+        centres = self.instant_centres if "instant_centres" in self.outputs else None
         for i in range(self.n_steps):
             st = str(self.status[i])
             step: dict = {"status": st}
@@ -283,6 +289,8 @@ class Analysis:
                         "force": _vec(forces.frame_force[i]),
                         "moment": float(forces.frame_moment[i]),
                     }
+            if rates and centres is not None:  # extension: every pair's instant centre
+                step["instant_centres"] = centres.records(i)
             steps.append(_finite_only(step, f"steps[{i}]", dropped))
         out = {"scene": self.scene, "stages": list(self.stages), "steps": steps}
         if forces is not None:

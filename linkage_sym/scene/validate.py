@@ -22,6 +22,7 @@ from typing import Any, NamedTuple
 
 from linkage_sym.errors import SceneError
 from linkage_sym.model.scene import (
+    EXTENSION_OUTPUTS,
     GROUND,
     OUTPUTS,
     Driver,
@@ -462,13 +463,14 @@ class _SceneReader:
         if entries is None:
             return None
         seen: dict[str, int] = {}
+        known = OUTPUTS + EXTENSION_OUTPUTS  # the contract's and linkage_sym's extensions
         for i, entry in enumerate(entries):
             path = f"outputs[{i}]"
-            expected = f"one of {', '.join(OUTPUTS)}"
+            expected = f"one of {', '.join(known)}"
             if not isinstance(entry, str):
                 self.add(path, f"must be {expected}, got {_show(entry)}")
-            elif entry not in OUTPUTS:
-                self.add(path, f"unknown output '{entry}'{_suggest(entry, OUTPUTS)}; expected {expected}")
+            elif entry not in known:
+                self.add(path, f"unknown output '{entry}'{_suggest(entry, known)}; expected {expected}")
             elif entry in seen:
                 self.add(path, f"output '{entry}' is listed twice (also outputs[{seen[entry]}])")
             else:
