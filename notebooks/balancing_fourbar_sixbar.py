@@ -25,16 +25,17 @@
 # Fig. 2 (and recover its eqs. 13-15 and 18).
 
 # %%
+# %matplotlib inline
 import dataclasses
 
 import numpy as np
 import sympy as sp
 
 import linkage_sym
+from linkage_sym.balancing import with_counterweights
 from linkage_sym.balancing.conditions import derive_balance
-from linkage_sym.balancing.counterweights import force_balancing_counterweights
+from linkage_sym.balancing.force_counterweights import force_balancing_counterweights
 from linkage_sym.balancing.module import check_identity, link_module
-from linkage_sym.balancing.optimize import with_counterweights
 from linkage_sym.model import Effects
 
 # %% [markdown]
@@ -87,6 +88,27 @@ F1 = linkage_sym.analyze(dataclasses.replace(balanced, effects=inertia_only)).fo
 print(cws)
 print("peak shaking force: %.4g N before, %.3g N after" % (np.abs(F0).max(), np.abs(F1).max()))
 assert np.abs(F1).max() <= 1e-9 * np.abs(F0).max()
+
+# %% [markdown]
+# The shaking force polar diagram and the shaking moment before and after: the force
+# vanishes, the moment grows (force balance typically raises it).
+
+# %%
+from IPython.display import Math, display  # noqa: E402
+
+from linkage_sym.balancing.series import solver_series  # noqa: E402
+from linkage_sym.plotting.balance import shaking_force_polar_figure, shaking_moment_figure  # noqa: E402
+
+series = [solver_series(fourbar, "original"), solver_series(balanced, "force-balanced")]
+display(shaking_force_polar_figure(series, "crank-rocker"))
+display(shaking_moment_figure(series, "crank-rocker"))
+
+# %% [markdown]
+# The force conditions, rendered:
+
+# %%
+display(Math(r"\begin{aligned}" + r" \\ ".join(
+    f"{sp.latex(c.expr)} &= 0" for c in b4.force.conditions) + r"\end{aligned}"))
 
 # %% [markdown]
 # ## Song and Wang's six-bar

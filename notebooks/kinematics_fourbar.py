@@ -22,6 +22,7 @@
 # eq. 3-13, written out here by hand.
 
 # %%
+# %matplotlib inline
 import numpy as np
 
 import linkage_sym
@@ -30,6 +31,19 @@ from linkage_sym.structure import structure_report
 scene = linkage_sym.load_example("crank_rocker")
 print(structure_report(scene, linkage_sym.decompose(scene)))
 res = linkage_sym.analyze(scene)
+
+# %% [markdown]
+# The motion at a glance: the joints' paths with the coupler curve of the traced point P,
+# and the velocities against the crank angle (the textbook's motion diagrams).
+
+# %%
+from IPython.display import display  # noqa: E402
+
+from linkage_sym.plotting.motion import motion_figure  # noqa: E402
+from linkage_sym.plotting.paths import coupler_curves_figure  # noqa: E402
+
+display(coupler_curves_figure(scene, res))
+display(motion_figure(scene, res, "velocity"))
 
 # %% [markdown]
 # Absolute link angles: the angle in the assembly configuration plus the

@@ -23,6 +23,7 @@
 # functions against the numeric dyad solver `linkage_sym.analyze`.
 
 # %%
+# %matplotlib inline
 import numpy as np
 import sympy as sp
 
@@ -53,6 +54,21 @@ for name in SCENES:
     print(f"=== {name}")
     for sym, expr in eqs.closed_forms:
         print(f"{sym} = {expr}")
+
+# %% [markdown]
+# As a textbook prints them (`linkage-sym derive --latex`): each dyad's distance $d$
+# between its outer joints, the projection $a$ and the half-chord $h$ of its inner joint
+# named once, then the angles.
+
+# %%
+from IPython.display import Math, display  # noqa: E402
+
+from linkage_sym.symbolic.latex import _Namer  # noqa: E402
+
+eqs = linkage_sym.derive(linkage_sym.load_example("crank_rocker"))
+nm = _Namer(eqs)
+display(Math(r"\begin{aligned}" + r" \\ ".join(
+    f"{nm(s)} &= {nm(e)}" for s, e in eqs.position_steps) + r"\end{aligned}"))
 
 # %% [markdown]
 # The velocity equation as matrices, $A\,\dot x = B\,\dot q$, and its LaTeX
@@ -93,6 +109,27 @@ for name in SCENES:
     for k, v in worst.items():
         print(f"  {k:32s} {v:.1e}")
         assert v < TOL, k  # (a quantity identically 0, the slider's rotation, gives 0/tiny = 0)
+
+# %% [markdown]
+# The two methods over the crank-rocker's turn: the rocker's angular velocity from the
+# generated code and from the dyad solver, and their difference (rounding).
+
+# %%
+from linkage_sym.plotting.style import new_figure  # noqa: E402
+
+scene = linkage_sym.load_example("crank_rocker")
+sym, num = linkage_sym.compile_mechanism(scene).run(), linkage_sym.analyze(scene)
+q = np.degrees(num.drivers["A"]["q"])
+fig = new_figure(7, 4.5)
+ax1, ax2 = fig.subplots(2, 1, sharex=True)
+ax1.plot(q, num.links["rocker"].omega, label="dyad solver")
+ax1.plot(q, sym.links["rocker"].omega, "--", label="generated (SymPy)")
+ax1.set_ylabel("rocker omega (rad/s)")
+ax1.legend()
+ax2.semilogy(q, np.abs(sym.links["rocker"].omega - num.links["rocker"].omega) + 1e-18)
+ax2.set_ylabel("|difference| (rad/s)")
+ax2.set_xlabel("crank angle (deg)")
+display(fig)
 
 # %% [markdown]
 # The generated functions carry their argument order in their docstring:

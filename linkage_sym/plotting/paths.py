@@ -336,7 +336,12 @@ def snapshot_steps(analysis: Analysis, count: int = 4) -> list:
 
 
 def coupler_curves(scene: Scene, analysis: Analysis, out_file) -> Path:
-    """Write the paths of the joints, traced points and centres of mass over the sweep as a PNG.
+    """Write :func:`coupler_curves_figure` as a PNG at ``out_file``; returns the path."""
+    return style.save(coupler_curves_figure(scene, analysis), out_file)
+
+
+def coupler_curves_figure(scene: Scene, analysis: Analysis):
+    """The paths of the joints, traced points and centres of mass over the sweep.
 
     The figure shows, with an equal aspect ratio, the path of every moving
     joint point (the point fixed on the joint's ``links[1]``; a point on the
@@ -350,16 +355,11 @@ def coupler_curves(scene: Scene, analysis: Analysis, out_file) -> Path:
     ----------
     scene : Scene
     analysis : Analysis
-    out_file : str or os.PathLike
-        PNG file to write; its folder is created if needed.
 
     Returns
     -------
-    pathlib.Path
-        ``out_file``.
+    matplotlib.figure.Figure
     """
-    out_file = Path(out_file)
-    style.ensure_dir(out_file.parent)
     unit, scale = style.length_unit(scene)
     fig = _figure_for(scene, analysis)
     ax = fig.subplots()
@@ -432,4 +432,4 @@ def coupler_curves(scene: Scene, analysis: Analysis, out_file) -> Path:
                  f"{scene.name}: assembly configuration (no solved step)", fontsize=11)
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8, frameon=False)
-    return style.save(fig, out_file)
+    return fig
