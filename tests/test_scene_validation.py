@@ -438,7 +438,7 @@ REFUSALS = [
         "crank_rocker",
         lambda s: s.update(outputs=[None]),
         "outputs[0]",
-        "must be one of kinematics, reactions, driving, frame, got null",
+        "must be one of kinematics, reactions, driving, frame, instant_centres, got null",
         id="output-not-string",
     ),
     # structure
