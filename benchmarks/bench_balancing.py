@@ -64,8 +64,8 @@ def derive_cold(name: str) -> dict:
 def series_and_counterweights(name: str) -> dict:
     from linkage_sym.balancing.assembly import shaking_moment
     from linkage_sym.balancing.conditions import derive_balance
-    from linkage_sym.balancing.counterweights import force_balancing_counterweights
-    from linkage_sym.balancing.model import BalanceModel
+    from linkage_sym.balancing.force_counterweights import force_balancing_counterweights
+    from linkage_sym.balancing.pins import BalanceModel
     from linkage_sym.balancing.series import ModuleFunctions, kinematics
     from linkage_sym.examples import load_example
 

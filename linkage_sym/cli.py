@@ -399,7 +399,7 @@ def _optimize(scene, args, weights, links) -> tuple:
 
 def _balance_sliding(scene, args, options, sliding) -> int:
     """``balance --optimize`` for a scene with prismatic joints: no module, optimisation only."""
-    from linkage_sym.balancing.model import require_hinged
+    from linkage_sym.balancing.pins import require_hinged
     from linkage_sym.balancing.series import solver_series
 
     for flag, given in (("--latex", args.latex), ("--balanced-scene", args.balanced_scene)):

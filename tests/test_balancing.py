@@ -27,13 +27,13 @@ import pytest
 import sympy as sp
 
 import linkage_sym
+from linkage_sym.balancing import Counterweight, optimize_counterweights, with_counterweights
 from linkage_sym.balancing.assembly import shaking_moment
 from linkage_sym.balancing.conditions import derive_balance
-from linkage_sym.balancing.counterweights import force_balancing_counterweights, solve_counterweights
 from linkage_sym.balancing.force import force_balance
-from linkage_sym.balancing.model import BalanceModel
+from linkage_sym.balancing.force_counterweights import force_balancing_counterweights, solve_counterweights
 from linkage_sym.balancing.module import check_identity, link_module
-from linkage_sym.balancing.optimize import Counterweight, optimize_counterweights, with_counterweights
+from linkage_sym.balancing.pins import BalanceModel
 from linkage_sym.balancing.series import module_series
 from linkage_sym.errors import BalanceError, SceneError
 from linkage_sym.examples import example_dict, example_names, load_example

@@ -1,4 +1,4 @@
-"""Counterweights and partial balancing (linkage_sym.balancing.optimize).
+"""Counterweights and partial balancing (linkage_sym.balancing: counterweight, cycle, options, search).
 
 Every check compares with something that shares no code with the thing
 tested:
@@ -20,16 +20,21 @@ from __future__ import annotations
 
 import copy
 import math
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import linkage_sym
-from linkage_sym.balancing.optimize import (
+from linkage_sym.balancing import (
     Counterweight,
     CycleModel,
+    OptionsError,
     default_bounds,
     optimize_counterweights,
+    search_options,
     with_counterweights,
 )
 from linkage_sym.examples import example_dict
@@ -408,3 +413,57 @@ def test_full_force_balance_of_the_crank_rocker_is_berkof_lowen():
     rocker = -rocker_here
     assert abs(crank - crank_bl) <= 1e-6 * abs(crank_bl)
     assert abs(rocker - rocker_bl) <= 1e-6 * abs(rocker_bl)
+
+
+# -- the package's layout ------------------------------------------------------------
+def test_the_former_optimize_module_re_exports_the_same_objects():
+    import linkage_sym.balancing as balancing
+    from linkage_sym.balancing import optimize
+
+    for name in optimize.__all__:
+        assert getattr(optimize, name) is getattr(balancing, name), name
+
+
+def test_the_optimiser_runs_without_loading_sympy():
+    """The package's names load their modules lazily: the NumPy/SciPy layer never pulls SymPy in."""
+    code = (
+        "import sys\n"
+        "from linkage_sym.balancing import Counterweight, CycleModel, search_options\n"
+        "from linkage_sym.examples import load_example\n"
+        "scene = load_example('crank_rocker')\n"
+        "search_options(scene)\n"
+        "CycleModel(scene).rms([Counterweight('crank', 0.1, (-0.01, 0.0))])\n"
+        "print('sympy' in sys.modules)\n"
+    )
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       cwd=Path(__file__).resolve().parents[1])
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.split() == ["False"]
+
+
+def test_mean_square_factors_give_the_rms_of_the_cycle():
+    scene = linkage_sym.load_scene(example_dict("watt_sixbar"))
+    model = CycleModel(scene)
+    links = ["rocker", "crank"]
+    cws = [Counterweight("crank", 0.05, (0.01, -0.02)), Counterweight("rocker", 0.02, (0.0, 0.03))]
+    p = model.parameters(cws).reshape(-1, 4)
+    x = np.append(np.concatenate([p[model.links.index(n)] for n in links]), 1.0)
+    factors = model.mean_square_factors(links)
+    rms = model.rms(cws)
+    for term, R in factors.items():
+        assert np.linalg.norm(R @ x) == pytest.approx(rms[term], rel=1e-12)
+
+
+def test_options_are_checked_in_one_place_with_every_problem_at_once():
+    scene = example_dict("crank_rocker")
+    with pytest.raises(OptionsError) as err:
+        optimize_counterweights(scene, links=["crank", "crank"], weights=(1, -1, 0), max_mass={"rocker": 1.0},
+                                max_radius=float("inf"))
+    assert [o for o, _ in err.value.problems] == ["weights", "links", "max_mass", "max_radius"]
+    with pytest.raises(OptionsError) as again:
+        search_options(scene, links=["crank", "crank"], weights=(1, -1, 0), max_mass={"rocker": 1.0},
+                       max_radius=float("inf"))
+    assert again.value.problems == err.value.problems
+    ok = search_options(scene, links=["rocker"], weights=("1", "0", "0.5"), max_mass={"rocker": 0.2})
+    assert ok.links == ("rocker",) and ok.weights == (1.0, 0.0, 0.5) and ok.max_mass == {"rocker": 0.2}
+    assert ok.max_radius == {"rocker": default_bounds(linkage_sym.load_scene(scene))[1]["rocker"]}

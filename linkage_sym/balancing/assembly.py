@@ -36,8 +36,8 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from linkage_sym.balancing.model import BalanceModel, tag
 from linkage_sym.balancing.module import link_module, regrouped
+from linkage_sym.balancing.pins import BalanceModel, tag
 from linkage_sym.model import Scene
 
 
@@ -49,17 +49,28 @@ def pair(u: str, v: str) -> str:
 
 @dataclass(frozen=True)
 class AccelerationParameter:
-    """One acceleration parameter after merging: ``D_{link,i} = sign * expr`` for each member."""
+    """One acceleration parameter after merging: ``D_{link,i} = sign * expr`` for each member.
+
+    Attributes
+    ----------
+    name, symbol
+        ``D_<uv>_<i>`` of its first member (eq. 7), and that symbol.
+    expr : sympy.Expr
+        In the pins' coordinates and accelerations.
+    members : tuple
+        ``((link, i, sign), ...)``: every link parameter that is this quantity.
+    """
 
     name: str
     symbol: sp.Symbol
     expr: sp.Expr
-    members: tuple  # ((link, i, sign), ...)
+    members: tuple
 
 
 @dataclass(frozen=True)
 class ShakingMoment:
-    """The assembled shaking moment of a hinged linkage about the global origin.
+    """The assembled shaking moment of a hinged linkage about the global origin,
+    ``M_0 = -sum_i M_i D_i`` over every link's module (eq. 12), its parameters merged.
 
     Attributes
     ----------

@@ -40,7 +40,7 @@ import sympy as sp
 
 from linkage_sym.balancing.assembly import ShakingMoment, shaking_moment
 from linkage_sym.balancing.force import ForceBalance, force_balance
-from linkage_sym.balancing.model import BalanceModel, tag
+from linkage_sym.balancing.pins import BalanceModel, tag
 from linkage_sym.model import GROUND, Scene
 
 
@@ -60,7 +60,7 @@ class Balance:
     Attributes
     ----------
     model, moment, force
-        The :class:`~.model.BalanceModel`, :class:`~.assembly.ShakingMoment`
+        The :class:`~.pins.BalanceModel`, :class:`~.assembly.ShakingMoment`
         and :class:`~.force.ForceBalance`.
     normal_links : tuple of str
         Links whose ``D_3`` does not vanish (step 1).

@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
-from linkage_sym.balancing.model import BalanceModel, tag
+from linkage_sym.balancing.pins import BalanceModel, tag
 from linkage_sym.errors import SceneError
 from linkage_sym.model import Scene
 

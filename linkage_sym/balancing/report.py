@@ -69,8 +69,8 @@ def balance_report(scene: Scene, balance: Balance | None = None, latex: bool = F
     :class:`~.series.BalanceSeries` before (and, when counterweights balance
     the force, after) balancing, for the plots.
     """
-    from linkage_sym.balancing.counterweights import force_balancing_counterweights
-    from linkage_sym.balancing.optimize import with_counterweights
+    from linkage_sym.balancing.counterweight import with_counterweights
+    from linkage_sym.balancing.force_counterweights import force_balancing_counterweights
     from linkage_sym.scene import load_scene
 
     b = balance or derive_balance(scene)

@@ -25,7 +25,7 @@ import numpy as np
 import sympy as sp
 
 from linkage_sym.balancing.assembly import ShakingMoment, shaking_moment
-from linkage_sym.balancing.model import BalanceModel
+from linkage_sym.balancing.pins import BalanceModel
 from linkage_sym.model import Effects, Scene
 
 

@@ -26,7 +26,7 @@ import numpy as np
 import sympy as sp
 
 from linkage_sym.balancing.conditions import Balance, derive_balance
-from linkage_sym.balancing.optimize import Counterweight
+from linkage_sym.balancing.counterweight import Counterweight
 from linkage_sym.errors import BalanceError
 from linkage_sym.model import Scene
 
