@@ -344,88 +344,25 @@ def cmd_derive(args) -> int:
 # ------------------------------------------------------------------ balance
 
 
-def _optimize_options(scene, args) -> tuple:
-    """``(weights, links)`` of ``--optimize``, checked before anything is computed or written."""
+def _optimize_options(scene, args):
+    """The checked options of ``--optimize`` (``None`` without it), before anything is computed or written."""
     if not args.optimize:
         given = [o for o, v in (("--weights", args.weights), ("--max-mass", args.max_mass),
                                 ("--links", args.links)) if v is not None]
         if given:
             raise OptionError([f"{o}: used only with --optimize FILE" for o in given])
-        return (), None
-    text = "1,1,1" if args.weights is None else args.weights
-    try:
-        weights = tuple(float(w) for w in text.split(","))
-    except ValueError:
-        weights = ()
-    problems = []
-    if (len(weights) != 3 or not all(0 <= w < float("inf") for w in weights)
-            or not any(w > 0 for w in weights)):
-        problems.append(f"--weights: three numbers F,M,T >= 0, not all 0, expected; got {text!r}")
-    links = None
-    if args.links is not None:
-        links = [n.strip() for n in args.links.split(",")]
-        bad = [n for n in links if n not in scene.link_names]
-        if bad:
-            problems.append(f"--links: {', '.join(map(repr, bad))} not among the moving links "
-                            f"{', '.join(scene.link_names)}")
-        elif len(set(links)) != len(links):
-            problems.append(f"--links: a link is listed twice in {args.links!r}")
-    if args.max_mass is not None and not args.max_mass >= 0:
-        problems.append(f"--max-mass: a mass >= 0 expected, got {args.max_mass!r}")
-    if problems:
-        raise OptionError(problems)
-    return weights, links
-
-
-def _optimize(scene, args, weights, links) -> tuple:
-    """Run ``--optimize``: the JSON section, the optimised scene's shaking series (solver)
-    and the optimised scene's JSON text (written later, with the other files)."""
-    from linkage_sym.balancing.optimize import optimize_counterweights
-    from linkage_sym.balancing.series import solver_series
+        return None
+    from linkage_sym.balancing.options import OptionsError, search_options
 
     try:
-        res = optimize_counterweights(scene, links=links, weights=weights, max_mass=args.max_mass)
-    except ValueError as err:  # what the optimiser refuses (e.g. no ok step): a clear exit 2
-        raise BalanceError(f"--optimize: {err}") from err
-    after = solver_series(_load(res.scene), label="optimised")
-    section = {
-        "weights": list(weights), "links": list(links or scene.link_names),
-        "objective_start": res.objective_start, "objective": res.objective,
-        "rms_start": res.rms_start, "rms_final": res.rms_final, "message": res.message,
-        "counterweights": [{"link": c.link, "mass": c.mass, "at": list(c.at)} for c in res.counterweights],
-    }
-    return section, after, json.dumps(res.scene, indent=2) + "\n"
-
-
-def _balance_sliding(scene, args, options, sliding) -> int:
-    """``balance --optimize`` for a scene with prismatic joints: no module, optimisation only."""
-    from linkage_sym.balancing.pins import require_hinged
-    from linkage_sym.balancing.series import solver_series
-
-    for flag, given in (("--latex", args.latex), ("--balanced-scene", args.balanced_scene)):
-        if given:
-            raise OptionError(
-                f"{flag}: needs the derived balance conditions, which cover hinged (R-joint) "
-                f"linkages only; with prismatic joints ({', '.join(sliding)}) only --optimize "
-                "(and --plots) run")
-    try:
-        require_hinged(scene, "the mass/acceleration-parameter module (Song and Wang 1992)")
-    except SceneError as err:
-        why = "; ".join(err.problems)
-    else:  # not reached: called for scenes with a P joint
-        raise AssertionError("_balance_sliding called for a hinged scene")
-    before = solver_series(scene, label="as given")
-    section, after, optimized = _optimize(scene, args, *options)
-    report = {
-        "scene": scene.name,
-        "conditions_derived": False,
-        "reasons": {"conditions": why},
-        "optimized": section,
-        "series": before.to_dict(),
-        "series_optimized": after.to_dict(),
-        "series_source": "numeric force solver, inertia only (no module: prismatic joints)",
-    }
-    return _write_balance(scene, args, report, [before, after], [(args.optimize, optimized)])
+        return search_options(
+            scene,
+            links=None if args.links is None else [n.strip() for n in args.links.split(",")],
+            weights=(1.0, 1.0, 1.0) if args.weights is None else args.weights.split(","),
+            max_mass=args.max_mass,
+        )
+    except OptionsError as err:
+        raise OptionError([f"--{option.replace('_', '-')}: {why}" for option, why in err.problems]) from err
 
 
 def _write_balance(scene, args, report, series, files) -> int:
@@ -470,22 +407,23 @@ def cmd_balance(args) -> int:
             f"the derived balancing conditions cover hinged (R-joint only) linkages; "
             f"{scene.name!r} has prismatic joint(s) {', '.join(sliding)}: use --optimize FILE "
             "for counterweights optimised on the force solver's shaking force and moment")
-    if sliding:
-        return _balance_sliding(scene, args, options, sliding)
-    from linkage_sym.balancing.report import balance_report
+    for flag, given in (("--latex", args.latex), ("--balanced-scene", args.balanced_scene)):
+        if sliding and given:
+            raise OptionError(
+                f"{flag}: needs the derived balance conditions, which cover hinged (R-joint) "
+                f"linkages only; with prismatic joints ({', '.join(sliding)}) only --optimize "
+                "(and --plots) run")
+    from linkage_sym.balancing.report import balance_document
 
-    report, series = balance_report(scene, latex=args.latex)
+    doc = balance_document(scene, latex=args.latex, optimize=options)
     files = []
     if args.balanced_scene:
-        if "balanced_scene" not in report:
-            raise BalanceError(report["counterweights"]["error"])
-        files.append((args.balanced_scene, json.dumps(report["balanced_scene"], indent=2) + "\n"))
+        if doc.balanced_scene is None:
+            raise BalanceError(doc.report["counterweights"]["error"])
+        files.append((args.balanced_scene, json.dumps(doc.balanced_scene, indent=2) + "\n"))
     if args.optimize:
-        report["optimized"], after, optimized = _optimize(scene, args, *options)
-        report["series_optimized"] = after.to_dict()
-        series = [*series, after]
-        files.append((args.optimize, optimized))
-    return _write_balance(scene, args, report, series, files)
+        files.append((args.optimize, json.dumps(doc.optimized_scene, indent=2) + "\n"))
+    return _write_balance(scene, args, doc.report, doc.series, files)
 
 
 # ------------------------------------------------------------------ the others
@@ -553,16 +491,16 @@ def cmd_demo(args) -> int:
 
 def _demo_balance(scene, stem, out) -> list:
     """Song and Wang's (1992) balancing of a hinged example: JSON and before/after plots."""
-    from linkage_sym.balancing.report import balance_report
+    from linkage_sym.balancing.report import balance_document
     from linkage_sym.plotting.balance import shaking_force_polar, shaking_moment_curve
 
-    report, series = balance_report(scene)
+    doc = balance_document(scene)
     path = out / f"{stem}_balance.json"
-    path.write_text(json.dumps(report) + "\n")
+    path.write_text(json.dumps(doc.report) + "\n")
     return [
         path,
-        shaking_force_polar(series, out / f"{stem}_balance_force_polar.png", title=scene.name),
-        shaking_moment_curve(series, out / f"{stem}_balance_moment.png", title=scene.name),
+        shaking_force_polar(doc.series, out / f"{stem}_balance_force_polar.png", title=scene.name),
+        shaking_moment_curve(doc.series, out / f"{stem}_balance_moment.png", title=scene.name),
     ]
 
 

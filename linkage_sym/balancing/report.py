@@ -17,19 +17,32 @@ a *condition* is an expression that must equal zero):
 ``counterweights``             counterweights satisfying the force conditions (or why none)
 ``series``                     shaking force and moment at every step, from the modules
 ``series_balanced``            the same with the counterweights
-``optimized``, ``series_optimized``  with ``--optimize`` (command line): the optimised
+``optimized``, ``series_optimized``  with ``--optimize``: the optimised
                                counterweights and the force solver's series of the new scene
 ``seconds``                    derivation times
 ``latex``                      with ``--latex``: the same expressions as LaTeX
+
+For a linkage with prismatic joints no condition is derived; with
+``--optimize`` the JSON has ``scene``, ``conditions_derived`` (false),
+``reasons``, ``optimized``, ``series`` and ``series_optimized`` (both from
+the force solver) and ``series_source``.
+
+:func:`balance_document` builds all of it (and the scene files and series
+the command line writes next to it); :func:`balance_report` is its part for
+the derived conditions.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import sympy as sp
 
 from linkage_sym.balancing.conditions import Balance, derive_balance
-from linkage_sym.balancing.series import ModuleFunctions, kinematics, module_series
-from linkage_sym.errors import BalanceError
+from linkage_sym.balancing.options import SearchOptions
+from linkage_sym.balancing.pins import require_hinged
+from linkage_sym.balancing.series import ModuleFunctions, kinematics, module_series, solver_series
+from linkage_sym.errors import BalanceError, SceneError
 from linkage_sym.model import Scene
 
 
@@ -142,3 +155,98 @@ def balance_report(scene: Scene, balance: Balance | None = None, latex: bool = F
             "moment_balance_conditions": [_latex(c.expr, names) + " = 0" for c in b.moment_conditions],
         }
     return out, series
+
+
+@dataclass
+class BalanceDocument:
+    """What ``linkage-sym balance`` writes (see :func:`balance_document`).
+
+    Attributes
+    ----------
+    report : dict
+        The JSON (module docstring).
+    series : list of BalanceSeries
+        Shaking force and moment as given, then force-balanced (when
+        counterweights could balance the force), then optimised (when asked),
+        for the plots.
+    balanced_scene : dict or None
+        The scene with the force-balancing counterweights; ``None`` when none
+        balance the force (``report["counterweights"]["error"]`` says why) or
+        for a linkage with prismatic joints.
+    optimized_scene : dict or None
+        The scene with the optimised counterweights, when asked.
+    """
+
+    report: dict
+    series: list
+    balanced_scene: dict | None = None
+    optimized_scene: dict | None = None
+
+
+def balance_document(scene: Scene, latex: bool = False, optimize: SearchOptions | None = None) -> BalanceDocument:
+    """Everything ``linkage-sym balance`` writes, built in one place.
+
+    Parameters
+    ----------
+    scene : Scene
+    latex : bool
+        Add the expressions as LaTeX (hinged linkages only).
+    optimize : SearchOptions, optional
+        Also optimise counterweights with these options
+        (:func:`~.options.search_options`).  A linkage with prismatic joints
+        needs them: its conditions are not derived, and its series come from
+        the force solver.
+
+    Raises
+    ------
+    SceneError
+        For prismatic joints without ``optimize``, or with ``latex``.
+    BalanceError
+        When the optimiser refuses the scene (no step whose status is ``ok``).
+    """
+    if all(j.type == "R" for j in scene.joints):
+        report, series = balance_report(scene, latex=latex)
+        doc = BalanceDocument(report, series, report.get("balanced_scene"))
+        if optimize is not None:
+            report["optimized"], after, doc.optimized_scene = _optimized(scene, optimize)
+            report["series_optimized"] = after.to_dict()
+            doc.series = [*series, after]
+        return doc
+    try:
+        require_hinged(scene, "the mass/acceleration-parameter module (Song and Wang 1992)")
+    except SceneError as err:
+        if optimize is None or latex:
+            raise
+        why = "; ".join(err.problems)
+    before = solver_series(scene, label="as given")
+    section, after, optimized = _optimized(scene, optimize)
+    report = {
+        "scene": scene.name,
+        "conditions_derived": False,
+        "reasons": {"conditions": why},
+        "optimized": section,
+        "series": before.to_dict(),
+        "series_optimized": after.to_dict(),
+        "series_source": "numeric force solver, inertia only (no module: prismatic joints)",
+    }
+    return BalanceDocument(report, [before, after], None, optimized)
+
+
+def _optimized(scene: Scene, options: SearchOptions) -> tuple:
+    """The ``optimized`` section, the force solver's series of the optimised scene, and that scene."""
+    from linkage_sym.balancing.search import optimize_counterweights
+    from linkage_sym.scene import load_scene
+
+    try:
+        res = optimize_counterweights(scene, links=options.links, weights=options.weights,
+                                      max_mass=options.max_mass, max_radius=options.max_radius)
+    except ValueError as err:  # what the optimiser refuses (e.g. no ok step)
+        raise BalanceError(f"--optimize: {err}") from err
+    after = solver_series(load_scene(res.scene), label="optimised")
+    section = {
+        "weights": list(options.weights), "links": list(options.links),
+        "objective_start": res.objective_start, "objective": res.objective,
+        "rms_start": res.rms_start, "rms_final": res.rms_final, "message": res.message,
+        "counterweights": [{"link": c.link, "mass": c.mass, "at": list(c.at)} for c in res.counterweights],
+    }
+    return section, after, res.scene
