@@ -5,11 +5,23 @@
   (``linkage-sym new``);
 * :mod:`~linkage_sym.synthesis.kratio` -- design by the stroke-time ratio
   ``K`` with the auxiliary circle: crank-rocker, slider-crank, guide-bar
-  (``linkage-sym synthesize crank-rocker|slider-crank|guide-bar``).
+  (``linkage-sym synthesize crank-rocker|slider-crank|guide-bar``);
+* :mod:`~linkage_sym.synthesis.positions` -- design by two or three coupler
+  positions (``linkage-sym synthesize coupler-positions``);
+* :mod:`~linkage_sym.synthesis.equations` -- the design equations derived
+  with SymPy, as text or LaTeX (``linkage-sym synthesize equations``); the
+  only module here that imports SymPy (import contract in ``pyproject.toml``).
 
 The methods are those of the textbook section *Design of four-bar mechanisms*
 (Sources [2] of the README).  Every design is a plain scene dict that
 ``linkage_sym.load_scene`` reads; the tests analyse each with the solver.
+
+Examples
+--------
+>>> from linkage_sym.synthesis import crank_rocker
+>>> d = crank_rocker(K=1.5, rocker=0.075, swing_deg=45.0, ground=0.1)
+>>> round(d.lengths["crank"], 6), round(d.lengths["coupler"], 6)
+(0.025224, 0.050989)
 """
 
 from linkage_sym.synthesis.builders import fourbar, guide_bar, slider_crank
@@ -17,6 +29,17 @@ from linkage_sym.synthesis.common import Design, SynthesisError
 from linkage_sym.synthesis.kratio import crank_rocker, extreme_position_angle
 from linkage_sym.synthesis.kratio import guide_bar as guide_bar_by_K
 from linkage_sym.synthesis.kratio import slider_crank as slider_crank_by_K
+from linkage_sym.synthesis.positions import coupler_positions
 
-__all__ = ["Design", "SynthesisError", "crank_rocker", "extreme_position_angle", "fourbar",
-           "guide_bar", "guide_bar_by_K", "slider_crank", "slider_crank_by_K"]
+__all__ = [
+    "Design",
+    "SynthesisError",
+    "coupler_positions",
+    "crank_rocker",
+    "extreme_position_angle",
+    "fourbar",
+    "guide_bar",
+    "guide_bar_by_K",
+    "slider_crank",
+    "slider_crank_by_K",
+]
