@@ -1,0 +1,284 @@
+"""``linkage-sym centres``: the instant centres of one step, as a person reads them.
+
+::
+
+    linkage-sym centres SCENE.json [--step K | --deg PHI] [-o FILE] [--plots DIR] [--polygons]
+
+prints the ``N (N - 1) / 2`` instant centres of the step (eq. 3-5 of the
+textbook chapter *Kinematic analysis of planar mechanisms*), numbered as the
+chapter's figures number links (the ground 1, then the scene's links in
+order: ``P13``), each with how it was found: at a joint, by Kennedy's
+three-centre lines (which two), or from the velocities where those lines run
+out; ``-o`` writes them as JSON; ``--plots`` draws the linkage with its centres
+and three-centre lines, and the fixed and moving centrodes of the floating
+links over the sweep.  ``--polygons`` adds the quantities of the graphical
+method (each link's angular velocity and acceleration, the slip velocity,
+slip acceleration and Coriolis term of each sliding pair between moving
+links, the normal and tangential accelerations of each point about each
+pivot of its link) to the print-out and the JSON, and with ``--plots`` draws
+the velocity and acceleration polygons to scale.
+
+The step is the sweep's step ``K`` (default: its first solved step), or with
+``--deg PHI`` the mechanism solved at the driver angle ``PHI`` degrees itself
+(a scene with one ``R`` driver), reached continuously from the assembly
+configuration as every step is.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import sys
+
+import numpy as np
+
+
+__all__ = ["centres_report", "cmd_centres", "register"]
+
+ROUNDING = 1e-12
+"""Printed numbers below this fraction of their scale (the mechanism's size, the
+step's largest speed or acceleration) are rounding: they print as 0."""
+
+
+def register(sub) -> None:
+    """Add the ``centres`` command to the ``linkage-sym`` subparsers ``sub``."""
+    c = sub.add_parser(
+        "centres", help="instant centres of a step, centrodes, velocity and acceleration polygons",
+        description="Print the instant centres of one step (numbered as in the textbook chapter "
+        "'Kinematic analysis of planar mechanisms': the ground is link 1), found by Kennedy's "
+        "three-centre lines (from the velocities where those run out); optionally write them as "
+        "JSON, draw them with the centrodes, and add the polygon method's quantities.")
+    c.add_argument("scene", help="scene JSON file")
+    at = c.add_mutually_exclusive_group()
+    at.add_argument("--step", type=int, metavar="K",
+                    help="step of the scene's sweep (from 0; default: the first solved step)")
+    at.add_argument("--deg", type=float, metavar="PHI",
+                    help="solve at this driver angle (degrees, as the scene's start_deg; a scene "
+                    "with one R driver)")
+    c.add_argument("-o", "--output", metavar="FILE", help="write the step's centres as JSON "
+                   "('-' for standard output, the table then goes to standard error)")
+    c.add_argument("--plots", metavar="DIR", help="draw the linkage with its centres and "
+                   "three-centre lines, and the centrodes of the floating links (and with "
+                   "--polygons the velocity and acceleration polygons)")
+    c.add_argument("--polygons", action="store_true", help="add the graphical method's "
+                   "quantities: slip velocity and acceleration, Coriolis terms, normal and "
+                   "tangential accelerations")
+    c.set_defaults(func=cmd_centres)
+
+
+def _unit(scene):
+    return ("mm", 1000.0) if scene.characteristic_length() < 1.0 else ("m", 1.0)
+
+
+def _xy(v, scale=1.0, digits=5, tiny=0.0):
+    """``(x, y)`` with ``digits`` significant digits; components below ``tiny`` print as 0."""
+    x, y = (0.0 if abs(c) <= tiny else float(c) * scale + 0.0 for c in v[:2])
+    return f"({x:.{digits}g}, {y:.{digits}g})"
+
+
+def _where(scene, analysis, i) -> str:
+    """``A = 60°`` for each driver at step ``i``."""
+    out = []
+    for name, d in analysis.drivers.items():
+        q = float(d["q"][i])
+        kind = scene.joint(name).type
+        out.append(f"{name} = {math.degrees(q):.6g}°" if kind == "R" else f"{name} = {q:.6g} m")
+    return ", ".join(out)
+
+
+def centres_report(scene, analysis, centres, i, polygons=None) -> list:
+    """The printed table of step ``i``: one line per centre, then the polygon quantities.
+
+    Parameters
+    ----------
+    scene : Scene
+    analysis : Analysis
+    centres : InstantCentres
+    i : int
+        Step index into ``analysis``.
+    polygons : Polygons, optional
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> import linkage_sym
+    >>> from linkage_sym.centres import instant_centres
+    >>> scene = linkage_sym.load_example("crank_rocker")
+    >>> res = linkage_sym.analyze(scene)
+    >>> lines = centres_report(scene, res, instant_centres(scene, res), 30)
+    >>> print("\\n".join(lines[:4]))
+    crank-rocker: 6 = 4·3/2 instant centres at step 30 (A = 30°)
+    links: 1 ground, 2 crank, 3 coupler, 4 rocker (numbered as in the textbook chapter's figures)
+      P12  ground-crank    (0, 0) mm  at joint A
+      P13  ground-coupler  (73.092, 42.2) mm  three-centre lines P12-P23 and P14-P34
+    """
+    unit, scale = _unit(scene)
+    L = scene.characteristic_length() or 1.0
+    names = centres.links
+    n = len(names)
+    num = {name: k + 1 for k, name in enumerate(names)}
+    lines = [f"{scene.name}: {n * (n - 1) // 2} = {n}·{n - 1}/2 instant centres at step {i}"
+             + (f" ({_where(scene, analysis, i)})" if analysis.drivers else ""),
+             "links: " + ", ".join(f"{num[x]} {x}" for x in names)
+             + " (numbered as in the textbook chapter's figures)"]
+    width = max(len(f"{a}-{b}") for a, b in centres.pairs)
+    k_all = centres.kennedy
+    for k, (a, b) in enumerate(centres.pairs):
+        label = centres.label(k)
+        head = f"  {label:<4} {a + '-' + b:<{width}}  "
+        src = centres.source[k]
+        if centres.undefined[i, k]:
+            lines.append(head + "undefined: the two links are at rest relative to each other")
+            continue
+        if centres.at_infinity[i, k]:
+            what = f"at infinity, direction {_xy(centres.direction[i, k], digits=6, tiny=ROUNDING)}"
+        else:
+            what = _xy(centres.position[i, k], scale, tiny=ROUNDING * L) + f" {unit}"
+        if centres.from_velocities[i, k]:
+            how = "from the velocities (no two three-centre lines reach it)"
+        elif src.startswith("joint") or src.startswith("pin"):
+            how = ("normal to the slide of joint " + src[6:-8] if src.endswith("(slide)")
+                   else "at " + src)
+        else:
+            ia, ib = names.index(a), names.index(b)
+            via = [int(t) for t in k_all.via[i, k] if t >= 0]
+            pair = lambda x, y: centres.label(centres.index(names[x], names[y]))  # noqa: E731
+            how = "three-centre lines " + " and ".join(f"{pair(ia, t)}-{pair(t, ib)}" for t in via)
+        lines.append(head + what + "  " + how)
+    if polygons is not None:
+        lines += _polygon_lines(scene, polygons, num)
+    return lines
+
+
+def _polygon_lines(scene, pq, num) -> list:
+    """The graphical method's quantities, as the textbook chapter writes them (eqs. 3-1 to 3-4)."""
+    vmax = max([float(np.hypot(*p.velocity)) for p in pq.points] + [0.0])
+    amax = max([float(np.hypot(*p.acceleration)) for p in pq.points] + [0.0])
+    wmax = max([abs(w) for w in pq.omega.values()] + [0.0])
+    almax = max([abs(a) for a in pq.alpha.values()] + [0.0])
+
+    def v(x):
+        return _xy(x, tiny=ROUNDING * vmax)
+
+    def a(x):
+        return _xy(x, tiny=ROUNDING * amax)
+
+    def num_(x, top):
+        return 0.0 if abs(x) <= ROUNDING * top else x
+
+    out = ["angular velocity and acceleration of each link:"]
+    for name in scene.link_names:
+        out.append(f"  {num[name]} {name}: ω = {num_(pq.omega[name], wmax):.6g} rad/s, "
+                   f"α = {num_(pq.alpha[name], almax):.6g} rad/s²")
+    if pq.sliding:
+        out.append("sliding pairs between moving links (v_slider = v_guide + v_rel; "
+                   "a_slider = a_guide + a_k + a_rel, a_k = 2ω×v_rel):")
+    for s in pq.sliding:
+        b_s, b_g = f"{s.point}{num[s.slider]}", f"{s.point}{num[s.guide]}"
+        out.append(f"  {s.joint}: {s.slider} on {s.guide}; {b_s} relative to {b_g}:")
+        out.append(f"    v_rel = {num_(s.speed, vmax):.6g} m/s along the slide "
+                   f"{_xy(s.axis, digits=4, tiny=ROUNDING)}, vector {v(s.velocity)} m/s")
+        out.append(f"    a_rel = {num_(s.rate, amax):.6g} m/s² along the slide, "
+                   f"vector {a(s.acceleration)} m/s²")
+        out.append(f"    Coriolis a_k = 2ω({s.guide})×v_rel = {a(s.coriolis)} m/s², "
+                   f"|a_k| = {num_(float(np.hypot(*s.coriolis)), amax):.6g} m/s²")
+    out.append("each point relative to each pivot of its link (v = ω×r, a_n = -ω²r, a_t = α×r):")
+    for r in pq.relative:
+        out.append(f"  {r.link}: {r.point} about {r.about}: v = {v(r.velocity)} m/s, "
+                   f"a_n = {a(r.normal)} (|{num_(float(np.hypot(*r.normal)), amax):.5g}|), "
+                   f"a_t = {a(r.tangential)} (|{num_(float(np.hypot(*r.tangential)), amax):.5g}|) m/s²")
+    return out
+
+
+def _problems_at(scene, args):
+    """Option problems that the scene alone shows (before solving)."""
+    from linkage_sym.cli import OptionError
+
+    if args.deg is not None:
+        if len(scene.drivers) != 1 or scene.drivers[0].kind != "R":
+            have = ", ".join(f"{d.joint} ({d.kind} joint)" for d in scene.drivers)
+            raise OptionError(f"--deg: needs a scene with one R driver; its drivers: {have}")
+        if not math.isfinite(args.deg):
+            raise OptionError(f"--deg: {args.deg} is not a finite angle")
+    if args.step is not None and not 0 <= args.step < scene.steps:
+        raise OptionError(f"--step: {args.step} is not a step of the sweep (0 to {scene.steps - 1})")
+
+
+def cmd_centres(args) -> int:
+    """Run ``linkage-sym centres`` (see the module docstring); returns the exit status."""
+    from linkage_sym.centres import centrodes, floating_links, instant_centres, polygon_quantities
+    from linkage_sym.cli import OptionError, _check_outputs, _load, _write
+    from linkage_sym.numeric.plan import compile_plan
+
+    _check_outputs(files=[("-o/--output", args.output)], folders=[("--plots", args.plots)])
+    scene = _load(args.scene)
+    _problems_at(scene, args)
+    scene = dataclasses.replace(scene, outputs=("kinematics",))  # velocities and accelerations
+    plan = compile_plan(scene)
+    sweep = plan.run()
+    if args.deg is not None:
+        d = scene.drivers[0]
+        one = lambda v: {d.joint: np.array([float(v)])}  # noqa: E731
+        analysis = plan.run(q=one(math.radians(args.deg)), qd=one(d.speed), qdd=one(d.acceleration))
+        i = 0
+        where = f"--deg {args.deg:g}"
+    else:
+        analysis = sweep
+        ok = np.flatnonzero(sweep.status == "ok")
+        if args.step is None and ok.size == 0:
+            raise OptionError("--step: no step of the sweep could be solved with velocities "
+                              f"(step 0: {sweep.messages[0]})")
+        i = int(ok[0]) if args.step is None else args.step
+        where = f"--step {i}"
+    if str(analysis.status[i]) != "ok":
+        raise OptionError(f"{where.split()[0]}: {where} is {analysis.status[i]}: "
+                          f"{analysis.messages[i]}; no velocities there")
+    centres = instant_centres(scene, analysis)
+    pq = polygon_quantities(scene, analysis, i) if args.polygons else None
+    lines = centres_report(scene, analysis, centres, i, pq)
+    if args.deg is not None:
+        lines[0] = lines[0].replace(f"at step {i} ", "", 1)
+    out = {"scene": scene.name, "step": None if args.deg is not None else i,
+           "drivers": {k: {x: float(v[x][i]) for x in ("q", "qd", "qdd")}
+                       for k, v in analysis.drivers.items()},
+           "numbering": {name: k + 1 for k, name in enumerate(centres.links)},
+           "instant_centres": centres.records(i)}
+    if pq is not None:
+        out["polygons"] = pq.to_dict()
+        out["polygons"].pop("step")
+    notes = sys.stdout
+    if args.output == "-":
+        sys.stdout.write(json.dumps(out, indent=1, allow_nan=False) + "\n")
+        notes = sys.stderr
+        print("\n".join(lines), file=notes)
+    else:
+        print("\n".join(lines))
+        if args.output:
+            _write(args.output, json.dumps(out, indent=1, allow_nan=False) + "\n")
+            print(f"wrote {args.output}")
+    if args.plots:
+        from pathlib import Path
+
+        from linkage_sym.plotting.centres import centres_figure, centrodes_figure, polygons_figure
+        from linkage_sym.plotting.style import file_stem
+
+        stem = Path(args.plots) / file_stem(scene, None)
+        written = [centres_figure(scene, analysis, centres, i, f"{stem}_centres.png")]
+        floating = floating_links(scene)
+        if floating:
+            crv = centrodes(scene, sweep, instant_centres(scene, sweep), floating)
+            written.append(centrodes_figure(scene, analysis, centres, i, crv,
+                                            f"{stem}_centrodes.png"))
+        else:
+            print("no centrodes drawn: no floating link (every link is pivoted or slides on "
+                  "the ground)", file=notes)
+        if pq is not None:
+            written.append(polygons_figure(scene, pq, f"{stem}_polygons.png"))
+        print(f"wrote {len(written)} plots into {args.plots}:", file=notes)
+        for path in written:
+            print(f"  {path}", file=notes)
+    return 0

@@ -1,0 +1,381 @@
+"""Pictures of the instant centres, the centrodes and the velocity and acceleration polygons.
+
+Three figures of one step of a sweep, drawn as the textbook chapter *Kinematic analysis of planar mechanisms* draws
+them (README Sources [4]: Figs. 3-1, 3-2, 3-4, 3-6):
+
+:func:`centres_figure`
+    The linkage with every instant centre, named ``P13`` (the ground is link
+    1) and the three-centre lines Kennedy's construction used.
+:func:`centrodes_figure`
+    The fixed centrode of each floating link, and its moving centrode carried
+    to the step, touching the fixed one at the instant centre.
+:func:`polygons_figure`
+    The velocity polygon (pole ``p``) and the acceleration polygon (pole
+    ``p'``) to scale, with the normal and tangential components about each
+    link's first pivot and, for a sliding pair, the Coriolis and slip terms.
+
+Only results are read here (:mod:`linkage_sym.centres`); nothing is solved.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.patches import FancyArrowPatch
+
+from linkage_sym.model import GROUND
+from linkage_sym.plotting import style
+from linkage_sym.plotting.paths import mechanism_snapshot
+
+__all__ = ["centres_figure", "centrodes_figure", "polygons_figure"]
+
+VIEW = 2.5
+"""Centres and centrode points farther than this many mechanism sizes from the
+mechanism's middle are listed beside the drawing instead of drawn."""
+
+KIND_STYLE = {
+    "joint": {"marker": "o", "mfc": "0.1", "mec": "0.1", "ms": 6},
+    "kennedy": {"marker": "o", "mfc": "#d62728", "mec": "#d62728", "ms": 7},
+    "velocity": {"marker": "s", "mfc": "white", "mec": "#1f77b4", "ms": 7},
+}
+
+
+def _middle(scene, analysis, step):
+    """Middle (m) of the joints at ``step`` and the mechanism's size (m)."""
+    pts = np.array([analysis.joints[j.name].position[step] for j in scene.joints], dtype=float)
+    return pts.mean(axis=0), scene.characteristic_length() or 1.0
+
+
+def _kind(centres, k):
+    src = centres.source[k]
+    return "kennedy" if src == "three-centre lines" else ("velocity" if src == "unreachable" else "joint")
+
+
+def _fmt_point(p, scale, unit):
+    return f"({p[0] * scale:.4g}, {p[1] * scale:.4g}) {unit}"
+
+
+def centres_figure(scene, analysis, centres, step, out_file):
+    """Write the linkage at ``step`` with its instant centres and three-centre lines (PNG).
+
+    Parameters
+    ----------
+    scene : Scene
+    analysis : Analysis
+    centres : InstantCentres
+        From :func:`linkage_sym.centres.instant_centres`.
+    step : int
+    out_file : str or os.PathLike
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    unit, scale = style.length_unit(scene)
+    mid, L = _middle(scene, analysis, step)
+    fig = style.new_figure(10.5, 7.0)
+    ax = fig.subplots()
+    ax.set_aspect("equal", adjustable="box")
+    mechanism_snapshot(scene, analysis, step, ax, labels=True, unit_scale=scale)
+    k_all = centres.kennedy
+    pos = centres.position[step]
+    names = centres.links
+    listed = []  # text beside the drawing
+
+    def near(p):
+        return bool(np.all(np.isfinite(p))) and np.hypot(*(p - mid)) <= VIEW * L
+
+    def centre_at(i, j):
+        """Finite position or ('inf', direction) of pair (links i, j) at the step, or None."""
+        k = centres.index(names[i], names[j])
+        if centres.at_infinity[step, k]:
+            return "inf", centres.direction[step, k]
+        p = pos[k]
+        return ("pt", p) if np.all(np.isfinite(p)) else None
+
+    # three-centre lines of the Kennedy centres: P_ik, P_kj, P_ij on one line
+    drawn = set()
+    for k, (a, b) in enumerate(centres.pairs):
+        if _kind(centres, k) != "kennedy" or centres.undefined[step, k] or centres.at_infinity[step, k]:
+            continue
+        i, j = names.index(a), names.index(b)
+        target = pos[k]
+        for third in k_all.via[step, k]:
+            if third < 0:
+                continue
+            ends = [centre_at(i, third), centre_at(third, j)]
+            if any(e is None for e in ends):
+                continue
+            line = tuple(sorted((frozenset((i, third)), frozenset((third, j))), key=sorted))
+            pts = [target] + [e[1] for e in ends if e[0] == "pt"]
+            dirs = [e[1] for e in ends if e[0] == "inf"]
+            if dirs:  # through a point along the direction of the centre at infinity
+                u = dirs[0]
+                t = [(p - pts[0]) @ u for p in pts]
+                span = max(max(t) - min(t), 0.3 * L)
+                seg = [pts[0] + (min(t) - 0.15 * span) * u, pts[0] + (max(t) + 0.15 * span) * u]
+            else:
+                u = pts[1] - pts[0] if len(pts) > 1 else np.array([1.0, 0.0])
+                n = np.hypot(*u)
+                u = u / n if n > 0 else np.array([1.0, 0.0])
+                t = [(p - pts[0]) @ u for p in pts]
+                span = max(max(t) - min(t), 0.3 * L)
+                seg = [pts[0] + (min(t) - 0.08 * span) * u, pts[0] + (max(t) + 0.08 * span) * u]
+            if (line, k) in drawn:
+                continue
+            drawn.add((line, k))
+            seg = np.array(seg) * scale
+            ax.plot(seg[:, 0], seg[:, 1], color="#d62728", lw=0.7, ls=(0, (5, 3)), alpha=0.55,
+                    zorder=2)
+
+    for k in range(len(centres.pairs)):
+        label = centres.label(k)
+        a, b = centres.pairs[k]
+        if centres.undefined[step, k]:
+            listed.append(f"{label} ({a}, {b}): undefined (no relative motion)")
+            continue
+        if centres.at_infinity[step, k]:
+            u = centres.direction[step, k]
+            listed.append(f"{label} ({a}, {b}): at infinity, direction ({u[0]:.3f}, {u[1]:.3f})")
+            src = centres.source[k]
+            if src.startswith("joint ") and src.endswith(" (slide)"):  # show it at the slide
+                at = np.asarray(analysis.joints[src[6:-8]].position[step], dtype=float)
+                for sign in (1.0, -1.0):
+                    _arrow(ax, at * scale, (at + sign * 0.16 * L * u) * scale, "0.1", lw=0.9, z=8)
+                tip = (at + 0.16 * L * u) * scale
+                ax.annotate(label + " → ∞", tuple(tip), xytext=(4, 2), textcoords="offset points",
+                            fontsize=9, color="0.1", zorder=9)
+            continue
+        p = pos[k]
+        if not np.all(np.isfinite(p)):
+            continue
+        kind = "velocity" if centres.from_velocities[step, k] else _kind(centres, k)
+        if not near(p):
+            listed.append(f"{label} ({a}, {b}): {_fmt_point(p, scale, unit)}, off the drawing")
+            continue
+        st = KIND_STYLE[kind]
+        ax.plot([p[0] * scale], [p[1] * scale], ls="none", zorder=8, **st)
+        ax.annotate(label, (p[0] * scale, p[1] * scale), xytext=(6, -12), textcoords="offset points",
+                    fontsize=9, color=st["mec"], zorder=9,
+                    bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none", "alpha": 0.7})
+
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], ls="none", label="centre at a joint", **KIND_STYLE["joint"]),
+               Line2D([], [], ls="none", label="centre by three-centre lines (Kennedy)",
+                      **KIND_STYLE["kennedy"]),
+               Line2D([], [], color="#d62728", lw=0.7, ls=(0, (5, 3)), label="three-centre line")]
+    if centres.from_velocities[step].any():
+        handles.insert(2, Line2D([], [], ls="none", label="centre from the velocities "
+                                 "(three-centre lines run out)", **KIND_STYLE["velocity"]))
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8,
+              frameon=False)
+    numbers = ", ".join(f"{i + 1} {n}" for i, n in enumerate(names))
+    text = "numbering: " + numbers + ("\n" + "\n".join(listed) if listed else "")
+    ax.text(1.02, 0.0, text, transform=ax.transAxes, fontsize=7.5, va="bottom", ha="left",
+            color="0.2", wrap=True)
+    ax.set_xlabel(f"x ({unit})")
+    ax.set_ylabel(f"y ({unit})")
+    ax.grid(True, color="0.92", lw=0.6, zorder=0)
+    n = len(names)
+    ax.set_title(f"{scene.name}: {n * (n - 1) // 2} = {n}·{n - 1}/2 instant centres at step {step}",
+                 fontsize=11)
+    lo, hi = (mid - 0.9 * L) * scale, (mid + 0.9 * L) * scale
+    for k in range(len(centres.pairs)):
+        p = pos[k]
+        if near(p):
+            lo, hi = np.minimum(lo, p * scale), np.maximum(hi, p * scale)
+    pad = 0.08 * (hi - lo).max()
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    return style.save(fig, out_file)
+
+
+def _broken(path, mid, L):
+    """A centrode (N, 2) with its far points NaN and breaks where it jumps."""
+    path = np.array(path, dtype=float)
+    far = ~np.all(np.isfinite(path), axis=-1) | (np.hypot(*(path - mid).T) > VIEW * L)
+    path[far] = np.nan
+    jump = np.hypot(*np.diff(path, axis=0).T) > 0.5 * L
+    path[1:][jump] = np.nan
+    return path
+
+
+def centrodes_figure(scene, analysis, centres, step, centrodes, out_file):
+    """Write the fixed and moving centrodes of the floating links (PNG).
+
+    The mechanism is drawn at ``step`` of ``analysis``; each fixed centrode is
+    solid, its moving centrode (fixed on the link) is dashed where the link
+    is at that step, and the two touch at the link's instant centre (marked).
+    Points more than ``VIEW`` mechanism sizes away (the centre runs off to
+    infinity where the link stops turning) are left out.
+
+    Parameters
+    ----------
+    scene : Scene
+    analysis : Analysis
+        The solved step to draw (a sweep, or one step solved on its own).
+    centres : InstantCentres
+        The centres of ``analysis``.
+    step : int
+        Step of ``analysis``.
+    centrodes : dict of str to Centrode
+        The curves, from a sweep (:func:`linkage_sym.centres.centrodes`).
+    out_file : str or os.PathLike
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    unit, scale = style.length_unit(scene)
+    mid, L = _middle(scene, analysis, step)
+    colors = style.link_colors(scene)
+    fig = style.new_figure(12.5, 7.0)
+    ax = fig.subplots()
+    ax.set_aspect("equal", adjustable="box")
+    mechanism_snapshot(scene, analysis, step, ax, labels=True, unit_scale=scale)
+    for name, c in centrodes.items():
+        col = colors.get(name, "0.3")
+        fixed = _broken(c.fixed, mid, L) * scale
+        moving = _broken(c.moving_at(analysis, step), mid, L) * scale
+        ax.plot(fixed[:, 0], fixed[:, 1], color=col, lw=2.0, zorder=5,
+                label=f"fixed centrode of {name} (on the ground)")
+        ax.plot(moving[:, 0], moving[:, 1], color=col, lw=1.6, ls=(0, (5, 2)), zorder=5,
+                label=f"moving centrode of {name} (on {name}, at step {step})")
+        p = centres.position[step, centres.index(GROUND, name)]
+        if np.all(np.isfinite(p)) and np.hypot(*(p - mid)) <= VIEW * L:
+            ax.plot([p[0] * scale], [p[1] * scale], marker="o", ms=8, mfc="white", mec=col,
+                    mew=2.0, zorder=7, ls="none", label=f"instant centre of {name} and the ground")
+    ax.set_xlabel(f"x ({unit})")
+    ax.set_ylabel(f"y ({unit})")
+    ax.grid(True, color="0.92", lw=0.6, zorder=0)
+    ax.set_xlim((mid[0] - VIEW * L) * scale, (mid[0] + VIEW * L) * scale)
+    ax.set_ylim((mid[1] - VIEW * L) * scale, (mid[1] + VIEW * L) * scale)
+    ax.set_title(f"{scene.name}: centrodes over the sweep; the moving one rolls on the fixed one\n"
+                 f"(drawn at step {step}; points beyond {VIEW:g} mechanism sizes left out)",
+                 fontsize=11)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8, frameon=False)
+    return style.save(fig, out_file)
+
+
+def _arrow(ax, a, b, color, lw=1.4, ls="-", z=4):
+    if np.hypot(*(np.asarray(b) - np.asarray(a))) == 0.0:
+        return
+    ax.add_patch(FancyArrowPatch(tuple(a), tuple(b), arrowstyle="-|>", mutation_scale=11,
+                                 color=color, lw=lw, ls=ls, zorder=z, shrinkA=0, shrinkB=0))
+
+
+def _labels(ax, vertices, prime):
+    """Vertex names (lower case, as the textbook writes them), merged where vertices coincide."""
+    groups = []
+    span = max(float(np.ptp(np.array([v for _, v in vertices]), axis=0).max()), 1e-300)
+    for name, v in vertices:
+        for g in groups:
+            if np.hypot(*(g[0] - v)) <= 1e-6 * span:
+                g[1].append(name)
+                break
+        else:
+            groups.append([v, [name]])
+    for v, names in groups:
+        # the textbook's lower-case vertex names; a point named P... keeps its capital (p: the pole)
+        low = [n[0].lower() + n[1:] for n in names]
+        text = ", ".join((n if lo.startswith("p") else lo) + prime for n, lo in zip(names, low))
+        ax.annotate(text, tuple(v), xytext=(5, 4), textcoords="offset points", fontsize=9,
+                    color="0.1", zorder=9,
+                    bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none", "alpha": 0.75})
+
+
+def polygons_figure(scene, polygons, out_file):
+    """Write the velocity and acceleration polygons of one step, to scale (PNG).
+
+    Left, the velocity polygon: from the pole ``p`` (zero velocity: every
+    ground point) an arrow to each point's vertex (its absolute velocity); the
+    vertices of one link's points make that link's velocity image; a sliding
+    pair adds its slip velocity from the guide's coincident point to the
+    slider's (``b4 -> b3``).  Right, the acceleration polygon from the pole
+    ``p'``: absolute accelerations; about each link's first pivot the normal
+    component (to ``n'``) and the tangential one (on to the point's vertex);
+    for a sliding pair the Coriolis term (to ``k'``) and the slip
+    acceleration (on to the slider's vertex).
+
+    Parameters
+    ----------
+    scene : Scene
+    polygons : Polygons
+        From :func:`linkage_sym.centres.polygon_quantities`.
+    out_file : str or os.PathLike
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    colors = style.link_colors(scene)
+    fig = style.new_figure(13.0, 6.6)
+    axv, axa = fig.subplots(1, 2)
+    moving = [p for p in polygons.points if p.link != GROUND]
+    for ax, what, prime, unit in ((axv, "velocity", "", "m/s"), (axa, "acceleration", "'", "m/s²")):
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.plot([0], [0], marker="o", ms=5, color="0.1", zorder=6)
+        ax.annotate("p" + prime, (0, 0), xytext=(-12, -12), textcoords="offset points", fontsize=10,
+                    fontweight="bold", zorder=9)
+        vertices = []
+        for p in moving:
+            v = getattr(p, what)
+            _arrow(ax, (0.0, 0.0), v, colors.get(p.link, "0.3"), lw=1.3)
+            vertices.append((p.label, np.asarray(v)))
+        # each link's image: its points' vertices joined in order
+        for link in scene.link_names:
+            pts = [getattr(p, what) for p in moving if p.link == link]
+            if len(pts) >= 2:
+                ring = np.array(pts + ([pts[0]] if len(pts) > 2 else []))
+                ax.plot(ring[:, 0], ring[:, 1], color=colors.get(link, "0.3"), lw=0.8, alpha=0.6,
+                        zorder=3)
+        if vertices:
+            _labels(ax, vertices, prime)
+        ax.axhline(0, color="0.85", lw=0.6, zorder=0)
+        ax.axvline(0, color="0.85", lw=0.6, zorder=0)
+        ax.grid(True, color="0.94", lw=0.5, zorder=0)
+        ax.set_xlabel(f"{what} x ({unit})")
+        ax.set_ylabel(f"{what} y ({unit})")
+    by_name = {(p.name, p.link): p for p in polygons.points}
+    # acceleration: normal then tangential component about each link's first pivot
+    shown = set()
+    for r in polygons.relative:
+        if r.link in shown or (r.about, r.link) not in by_name or (r.point, r.link) not in by_name:
+            continue
+        first = next(x for x in polygons.relative if x.link == r.link)
+        if r.about != first.about:
+            continue
+        base = by_name[(r.about, r.link)].acceleration
+        n = base + r.normal
+        col = colors.get(r.link, "0.3")
+        _arrow(axa, base, n, col, lw=1.0, ls=(0, (4, 2)), z=5)
+        _arrow(axa, n, n + r.tangential, col, lw=1.0, ls=(0, (1, 1.5)), z=5)
+    for s in polygons.sliding:
+        g = by_name.get((s.point, s.guide))
+        sl = by_name.get((s.point, s.slider))
+        if g is None or sl is None:
+            continue
+        _arrow(axv, g.velocity, sl.velocity, "0.15", lw=1.6, z=6)
+        k = g.acceleration + s.coriolis
+        _arrow(axa, g.acceleration, k, "#9467bd", lw=1.6, z=6)
+        _arrow(axa, k, sl.acceleration, "0.15", lw=1.6, z=6)
+        axa.annotate("k'", tuple(k), xytext=(5, -12), textcoords="offset points", fontsize=9,
+                     color="#9467bd", zorder=9)
+    from matplotlib.lines import Line2D
+
+    handles_v = [Line2D([], [], color=colors[n], lw=1.3, label=f"points of {n}") for n in scene.link_names]
+    handles_a = list(handles_v) + [Line2D([], [], color="0.4", lw=1.0, ls=(0, (4, 2)),
+                                          label="normal component about the link's first pivot"),
+                                   Line2D([], [], color="0.4", lw=1.0, ls=(0, (1, 1.5)),
+                                          label="tangential component")]
+    if polygons.sliding:
+        handles_v.append(Line2D([], [], color="0.15", lw=1.6, label="slip velocity (sliding pair)"))
+        handles_a += [Line2D([], [], color="#9467bd", lw=1.6, label="Coriolis 2ω×v_rel"),
+                      Line2D([], [], color="0.15", lw=1.6, label="slip acceleration")]
+    axv.legend(handles=handles_v, loc="best", fontsize=7, framealpha=0.8)
+    axa.legend(handles=handles_a, loc="best", fontsize=7, framealpha=0.8)
+    axv.set_title(f"velocity polygon (pole p), step {polygons.step}", fontsize=11)
+    axa.set_title(f"acceleration polygon (pole p'), step {polygons.step}", fontsize=11)
+    fig.suptitle(f"{scene.name}: polygons to scale (equal axes)", fontsize=12)
+    return style.save(fig, out_file)
