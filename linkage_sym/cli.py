@@ -2,14 +2,17 @@
 
 Commands
 --------
-analyze SCENE.json [-o RESULT.json | -o -] [--method dyad|global|symbolic]
-        [--disconnection K] [--plots DIR]
+analyze SCENE.json [-o RESULT.json | -o -] [--format json|csv|npz|parquet]
+        [--method dyad|global|symbolic] [--disconnection K] [--plots DIR]
     Solve the scene's sweep and write the result of the contract: kinematics,
     joint reactions, driver efforts and frame loads, as the scene asks; with
     ``--plots`` also its pictures.  The console gets a summary (statuses
     counted, peak driving efforts, the largest reaction, frame/shaking force
     and moment peaks, warnings); ``-o -`` writes the JSON to standard output
-    instead.  ``symbolic`` evaluates the SymPy-derived, lambdified equations
+    instead.  ``--format`` (default: the file's suffix) writes the steps as
+    columns instead (CSV, NumPy npz, Parquet); the sweep is solved and
+    written in chunks of steps (``linkage_sym.output``), so memory does not
+    grow with its length.  ``symbolic`` evaluates the SymPy-derived, lambdified equations
     (compiled once per topology and cached) instead of the numeric dyad
     solver.
 derive SCENE.json [--latex] [--numeric] [-o FILE]
@@ -45,7 +48,8 @@ Plot files are named after the scene's ``name`` (made safe for a path) in
 every command.
 
 Exit status (see ``EXIT_STATUS``): 0 done; 1 a write that failed although its
-path was checked (disk full); 2 an invalid scene or option
+path was checked (disk full), or memory that ran out although the run was
+estimated to fit (nothing written); 2 an invalid scene or option
 (a message naming each offending field or option on standard error; nothing
 is written, every output path is checked before anything is computed); 3
 ``analyze`` whose sweep has no step that could be assembled (the result file
@@ -63,7 +67,6 @@ from pathlib import Path
 
 import numpy as np
 
-from linkage_sym import cli_centres
 from linkage_sym._version import __version__
 from linkage_sym.errors import BalanceError, SceneError
 
@@ -75,7 +78,8 @@ BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for `yes | head`
 EXIT_STATUS = f"""\
 exit status:
   0    done
-  1    a file could not be written after all (e.g. disk full): the message says which
+  1    a file could not be written after all (e.g. disk full, or out of memory): the message
+       says which; no partial file is left
   2    invalid scene or option: a message names each field or option; nothing is written
        (every output path is checked before anything is computed)
   {NO_STEP_ASSEMBLED}    analyze: no step of the sweep could be assembled; the result file is still
@@ -178,76 +182,82 @@ def _stem(scene) -> str:
 # ------------------------------------------------------------------ analyze
 
 
-def _at(scene, analysis, i: int) -> str:
-    """``step i (A = 57°, ...)``: a step with its driver values."""
+def _at(scene, peak) -> str:
+    """``step i (A = 57°, ...)``: a peak's step with its driver values."""
     vals = []
-    for name, d in analysis.drivers.items():
-        q = float(d["q"][i])
+    for name, q in peak.drivers.items():
         kind = scene.joint(name).type
         vals.append(f"{name} = {np.degrees(q):.4g}°" if kind == "R" else f"{name} = {q:.4g} m")
-    return f"step {i} ({', '.join(vals)})" if vals else f"step {i}"
-
-
-def _peak(values):
-    """``(index, value)`` of the largest finite ``|values|`` (signed value), or None."""
-    v = np.abs(np.asarray(values, dtype=float))
-    if not np.isfinite(v).any():
-        return None
-    i = int(np.nanargmax(np.where(np.isfinite(v), v, np.nan)))
-    return i, float(np.asarray(values, dtype=float)[i])
+    return f"step {peak.step} ({', '.join(vals)})" if vals else f"step {peak.step}"
 
 
 def summary(scene, analysis) -> list[str]:
-    """The console summary of a sweep: statuses counted, peak efforts and loads, warnings."""
-    status = [str(s) for s in analysis.status]
-    counts = {s: status.count(s) for s in dict.fromkeys(["ok", *status])}
-    lines = [f"{scene.name}: {len(status)} steps: "
+    """The console summary of a sweep: statuses counted, peak efforts and loads, warnings.
+
+    ``analysis``: an ``Analysis``, or the ``SweepStats`` of a sweep solved in
+    chunks (``linkage_sym.output``).
+    """
+    from linkage_sym.output import SweepStats
+
+    stats = analysis if isinstance(analysis, SweepStats) else SweepStats.of(analysis)
+    counts = {"ok": stats.counts.get("ok", 0), **stats.counts}
+    lines = [f"{scene.name}: {stats.n_steps} steps: "
              + ", ".join(f"{n} {s}" for s, n in counts.items())
-             + f" (stages {', '.join(analysis.stages)})"]
-    forces = analysis.forces
-    if forces is not None:
-        if "driving" in analysis.outputs:
-            for name, values in forces.driving.items():
-                peak = _peak(values)
-                if peak is None:
+             + f" (stages {', '.join(stats.stages)})"]
+    if stats.has_forces:
+        if "driving" in stats.outputs:
+            for name, peak in stats.driving.items():
+                if not peak:
                     continue
-                i, v = peak
                 what, unit = ("torque", "N·m") if scene.joint(name).type == "R" else ("force", "N")
-                lines.append(f"peak driving {what} at {name}: {v:.4g} {unit} at {_at(scene, analysis, i)}")
-        if "reactions" in analysis.outputs and forces.reactions:
+                lines.append(f"peak driving {what} at {name}: {peak.value:.4g} {unit} at {_at(scene, peak)}")
+        if "reactions" in stats.outputs and stats.reactions:
             best = None
-            for name, r in forces.reactions.items():
-                peak = _peak(np.hypot(r[:, 0], r[:, 1]))
-                if peak is not None and (best is None or peak[1] > best[2]):
-                    best = (name, peak[0], peak[1])
+            for name, peak in stats.reactions.items():
+                if peak and (best is None or peak.value > best[1].value):
+                    best = (name, peak)
             if best is not None:
-                name, i, v = best
-                lines.append(f"largest reaction: {v:.4g} N at joint {name}, {_at(scene, analysis, i)}")
-        if "frame" in analysis.outputs:
+                name, peak = best
+                lines.append(f"largest reaction: {peak.value:.4g} N at joint {name}, {_at(scene, peak)}")
+        if "frame" in stats.outputs:
             shaking = (scene.effects.inertia and scene.effects.gravity is None
                        and (not scene.effects.loads or not scene.loads))
             word = "shaking" if shaking else "frame"
-            f = forces.frame_force
-            for label, values, unit in ((f"{word} force", np.hypot(f[:, 0], f[:, 1]), "N"),
-                                        (f"{word} moment", forces.frame_moment, "N·m")):
-                peak = _peak(values)
-                if peak is not None:
-                    lines.append(f"peak {label}: {peak[1]:.4g} {unit} at {_at(scene, analysis, peak[0])}")
-    lines += [f"warning: {w}" for w in analysis.warnings]
+            for label, peak, unit in ((f"{word} force", stats.frame_force, "N"),
+                                      (f"{word} moment", stats.frame_moment, "N·m")):
+                if peak:
+                    lines.append(f"peak {label}: {peak.value:.4g} {unit} at {_at(scene, peak)}")
+    lines += [f"warning: {w}" for w in stats.warnings]
     return lines
 
 
 def cmd_analyze(args) -> int:
+    from linkage_sym import output
     from linkage_sym.numeric.plan import compile_plan
 
     _check_outputs(files=[("-o/--output", args.output)], folders=[("--plots", args.plots)])
+    try:
+        fmt = output.output_format(args.output, args.format)
+        problems = []
+        if args.format is not None and args.output is None:
+            problems.append("--format: needs -o FILE (without -o only the summary is printed)")
+        if args.output == "-" and fmt in ("npz", "parquet"):
+            problems.append(f"--format {fmt}: a binary file; give -o FILE, not standard output")
+        if args.pretty and fmt != "json":
+            problems.append(f"--pretty: indents JSON only, not {fmt}")
+        if problems:
+            raise OptionError(problems)
+        if fmt == "parquet" and args.output is not None:
+            output.require_pyarrow()
+    except output.OutputError as err:
+        raise OptionError(err.problems) from err
     scene = _load(args.scene)
     if args.method == "symbolic":
         from linkage_sym.codegen.compile import compile_mechanism
 
         if args.disconnection is not None:
             print("note: --disconnection ignored by the symbolic method", file=sys.stderr)
-        analysis = compile_mechanism(scene).run()
+        sweep = output.compiled_sweep(compile_mechanism(scene))
     else:
         try:
             plan = compile_plan(scene, args.disconnection)
@@ -260,30 +270,39 @@ def cmd_analyze(args) -> int:
             g.kind not in ("input", "dyad") for g in plan.decomposition.groups
         ):
             print("note: --disconnection ignored: the mechanism has no complex group", file=sys.stderr)
-        analysis = plan.run(method=args.method)
-    result = analysis.to_dict()
-    if args.output == "-":  # the JSON for a pipe; what a person reads goes to standard error
-        sys.stdout.write(json.dumps(result, indent=1 if args.pretty else None) + "\n")
-        for w in analysis.warnings:
+        sweep = output.plan_sweep(plan, args.method)
+    to_stdout = args.output == "-"
+    try:
+        stats = output.write_sweep(
+            sweep, None if to_stdout else args.output, fmt,
+            indent=1 if args.pretty else None, stream=sys.stdout if to_stdout else None,
+            progress=True, keep=bool(args.plots))
+    except output.OutputError as err:
+        raise OptionError(err.problems) from err
+    except (MemoryError, output.ChunkError) as err:
+        what = "out of memory" if isinstance(err, MemoryError) else str(err)
+        print(f"linkage-sym analyze: {what}; nothing written", file=sys.stderr)
+        return 1
+    if to_stdout:  # the result for a pipe; what a person reads goes to standard error
+        for w in stats.warnings:
             print(f"warning: {w}", file=sys.stderr)
         notes = sys.stderr
     else:
         if args.output:
-            _write(args.output, json.dumps(result, indent=1 if args.pretty else None) + "\n")
             print(f"wrote {args.output}")
-        print("\n".join(summary(scene, analysis)))
+        print("\n".join(summary(scene, stats)))
         if not args.output:
             print("(the result JSON: -o FILE, or -o - for standard output)")
         notes = sys.stdout
-    if not (analysis.status != "unassemblable").any():
-        first = f" (step 0: {analysis.messages[0]})" if analysis.n_steps else ""
+    if not stats.any_assembled:
+        first = f" (step 0: {stats.first_message})" if stats.n_steps else ""
         print(f"linkage-sym: no step of the sweep could be assembled{first}"
               + ("; no plots written" if args.plots else ""), file=sys.stderr)
         return NO_STEP_ASSEMBLED
     if args.plots:
         from linkage_sym.plotting import plot_all
 
-        written = plot_all(scene, analysis, args.plots)
+        written = plot_all(scene, stats.analysis, args.plots)
         print(f"wrote {len(written)} plots into {args.plots}:", file=notes)
         for path in written:
             print(f"  {path}", file=notes)
@@ -526,9 +545,18 @@ def build_parser() -> argparse.ArgumentParser:
     )
     a.add_argument("scene", help="scene JSON file")
     a.add_argument("-o", "--output", metavar="FILE",
-                   help="result JSON file; '-' writes it to standard output (and the summary "
-                   "is left out); default: the summary only")
+                   help="result file (JSON unless --format or its suffix says otherwise); '-' "
+                   "writes it to standard output (and the summary is left out); default: the "
+                   "summary only")
     a.add_argument("--pretty", action="store_true", help="indent the JSON")
+    a.add_argument(
+        "--format", choices=("json", "csv", "npz", "parquet"), default=None,
+        help="result file format (default: from the -o file's suffix, .csv .npz .parquet, "
+        "else json): json is the contract's layout; csv one row per step with a column per "
+        "number (joints.B.position.x ...); npz one array per column; parquet through pyarrow "
+        "(pip install 'linkage_sym[parquet]'). Any length of sweep is solved and written "
+        "in chunks of steps, in bounded memory",
+    )
     a.add_argument(
         "--method",
         choices=("dyad", "global", "symbolic"),
@@ -593,7 +621,6 @@ def build_parser() -> argparse.ArgumentParser:
     d.set_defaults(func=cmd_demo)
     e = sub.add_parser("examples", help="list the shipped example scenes")
     e.set_defaults(func=cmd_examples)
-    cli_centres.register(sub)
     return p
 
 

@@ -224,106 +224,218 @@ class Analysis:
     def n_steps(self) -> int:
         return len(self.status)
 
-    def to_dict(self) -> dict:
-        """The result in the JSON layout of the scene-format contract."""
-        steps = []
+    # -- serialisation ---------------------------------------------------------
+    # The contract's JSON is built from three parts so that a long sweep can be
+    # written step by step, in chunks (``linkage_sym.output``): the head
+    # (``scene``, ``stages``), the step records, and the tail (``force_method``,
+    # ``groups``, ``warnings``).  ``to_dict`` joins them for a whole run.
+
+    def head(self) -> dict:
+        """The keys of the result before ``steps``: ``scene`` and ``stages``."""
+        return {"scene": self.scene, "stages": list(self.stages)}
+
+    def step_records(self, start: int = 0, stop: int | None = None, number_from: int | None = None,
+                     dropped: "LeftOut | None" = None):
+        """The JSON records of steps ``start`` to ``stop`` (a generator of dicts).
+
+        Values that are not finite are left out (see :func:`_finite_only`) and
+        named in ``dropped`` as ``steps[k]...``, ``k`` counted from
+        ``number_from`` (default ``start``: the step's own index; a chunk of a
+        longer sweep passes its offset in that sweep).  The arrays are turned
+        into Python numbers one block of steps at a time (``tolist``), so the
+        records of a long run cost no more memory than one block's.
+        """
+        stop = self.n_steps if stop is None else stop
+        number_from = start if number_from is None else number_from
+        dropped = LeftOut() if dropped is None else dropped
+        for a in range(start, stop, _RECORD_BLOCK):
+            b = min(stop, a + _RECORD_BLOCK)
+            yield from self._records(a, b, number_from + (a - start), dropped)
+
+    def _records(self, a: int, b: int, number_from: int, dropped: "LeftOut"):
+        """Step records of steps ``a`` to ``b`` (see :meth:`step_records`)."""
         want_kin = "kinematics" in self.outputs
         has_vel = "velocity" in self.stages
         has_acc = "acceleration" in self.stages
         forces = self.forces
         p_joints = set(self.p_joints)
 
-        def motion(k: JointKinematics, i: int, rates: bool) -> dict:
-            """A joint's or traced point's record at step ``i``."""
-            rec = {"position": _vec(k.position[i])}
+        def rows(v):
+            return None if v is None else v[a:b].tolist()
+
+        def motion_lists(k: JointKinematics):
+            return (rows(k.position), rows(k.velocity) if has_vel else None,
+                    rows(k.acceleration) if has_acc else None)
+
+        status = self.status[a:b].tolist()
+        messages = self.messages[a:b]
+        drivers = {name: {k: np.asarray(v, dtype=float)[a:b].tolist() for k, v in d.items()}
+                   for name, d in self.drivers.items()}
+        if want_kin:
+            joints = {name: motion_lists(jk) for name, jk in self.joints.items()}
+            points = {name: motion_lists(pk) for name, pk in self.points.items()}
+            links = {
+                name: (rows(lk.rotation), rows(lk.omega) if has_vel else None,
+                       rows(lk.alpha) if has_acc else None, rows(lk.com),
+                       rows(lk.com_velocity) if has_vel else None,
+                       rows(lk.com_acceleration) if has_acc else None)
+                for name, lk in self.links.items()
+            }
+        if forces is not None:
+            reactions = {name: (rows(r), rows(forces.reaction_moments[name]) if name in p_joints else None)
+                         for name, r in forces.reactions.items()} if "reactions" in self.outputs else {}
+            driving = {k: rows(v) for k, v in forces.driving.items()}
+            frame_force, frame_moment = rows(forces.frame_force), rows(forces.frame_moment)
+
+        def motion(lists, i: int, rates: bool) -> dict:
+            """A joint's or traced point's record at step ``i`` (of the block)."""
+            pos, vel, acc = lists
+            rec = {"position": pos[i]}
             if rates and has_vel:
-                rec["velocity"] = _vec(k.velocity[i])
+                rec["velocity"] = vel[i]
             if rates and has_acc:
-                rec["acceleration"] = _vec(k.acceleration[i])
+                rec["acceleration"] = acc[i]
             return rec
 
-        dropped: list[str] = []  # fields left out because they are not finite
         centres = self.instant_centres if "instant_centres" in self.outputs else None
-        for i in range(self.n_steps):
-            st = str(self.status[i])
+        # only these records can hold a value of a column to leave out; keys of a record
+        # that no column covers are checked at every step
+        suspect = self.not_finite(a, b)
+        covered = {"status", "message", *(n.split(".", 1)[0] for n, _, _ in self.columns())}
+        for i in range(b - a):
+            st = str(status[i])
             step: dict = {"status": st}
-            if self.messages[i] is not None:
-                step["message"] = self.messages[i]
+            if messages[i] is not None:
+                step["message"] = messages[i]
             step["drivers"] = {
-                name: {k: float(v[i]) for k, v in d.items()} for name, d in self.drivers.items()
+                name: {k: v[i] for k, v in d.items()} for name, d in drivers.items()
             }
             positions = st in (OK, SINGULAR)
             rates = st == OK
             if want_kin and positions:
-                joints = {name: motion(jk, i, rates) for name, jk in self.joints.items()}
-                links = {}
-                for name, lk in self.links.items():
-                    rec = {"rotation": float(lk.rotation[i])}
+                step["joints"] = {name: motion(lists, i, rates) for name, lists in joints.items()}
+                out_links = {}
+                for name, (rot, om, al, com, comv, coma) in links.items():
+                    rec = {"rotation": rot[i]}
                     if rates and has_vel:
-                        rec["omega"] = float(lk.omega[i])
+                        rec["omega"] = om[i]
                     if rates and has_acc:
-                        rec["alpha"] = float(lk.alpha[i])
-                    if lk.com is not None:
-                        rec["com"] = _vec(lk.com[i])
+                        rec["alpha"] = al[i]
+                    if com is not None:
+                        rec["com"] = com[i]
                         if rates and has_vel:
-                            rec["com_velocity"] = _vec(lk.com_velocity[i])
+                            rec["com_velocity"] = comv[i]
                         if rates and has_acc:
-                            rec["com_acceleration"] = _vec(lk.com_acceleration[i])
-                    links[name] = rec
-                step["joints"] = joints
-                step["links"] = links
+                            rec["com_acceleration"] = coma[i]
+                    out_links[name] = rec
+                step["links"] = out_links
                 if self.points:
-                    step["points"] = {name: motion(pk, i, rates) for name, pk in self.points.items()}
+                    step["points"] = {name: motion(lists, i, rates) for name, lists in points.items()}
             if forces is not None and rates:
                 if "reactions" in self.outputs:
-                    joints = step.setdefault("joints", {})
-                    for name, r in forces.reactions.items():
-                        rec = joints.setdefault(name, {})
-                        rec["reaction"] = _vec(r[i])
-                        if name in p_joints:
-                            rec["reaction_moment"] = float(forces.reaction_moments[name][i])
+                    out_joints = step.setdefault("joints", {})
+                    for name, (r, m) in reactions.items():
+                        rec = out_joints.setdefault(name, {})
+                        rec["reaction"] = r[i]
+                        if m is not None:
+                            rec["reaction_moment"] = m[i]
                 if "driving" in self.outputs:
-                    step["driving"] = {k: float(v[i]) for k, v in forces.driving.items()}
+                    step["driving"] = {k: v[i] for k, v in driving.items()}
                 if "frame" in self.outputs:
-                    step["frame"] = {
-                        "force": _vec(forces.frame_force[i]),
-                        "moment": float(forces.frame_moment[i]),
-                    }
+                    step["frame"] = {"force": frame_force[i], "moment": frame_moment[i]}
             if rates and centres is not None:  # extension: every pair's instant centre
-                step["instant_centres"] = centres.records(i)
-            steps.append(_finite_only(step, f"steps[{i}]", dropped))
-        out = {"scene": self.scene, "stages": list(self.stages), "steps": steps}
-        if forces is not None:
-            out["force_method"] = forces.method
-            out["groups"] = [
-                {
-                    "links": list(g.links),
-                    "method": g.method,
-                    **(
-                        {
-                            "choices": list(g.choices),
-                            "steps_per_choice": {
-                                g.choices[k]: int((g.used == k).sum())
-                                for k in range(len(g.choices))
-                                if (g.used == k).any()
-                            },
-                        }
-                        if g.used is not None
-                        else {}
-                    ),
-                }
-                for g in forces.groups
-            ]
-        warnings = list(self.warnings)
-        if dropped:
-            shown = ", ".join(dropped[:3]) + (f" and {len(dropped) - 3} more" if len(dropped) > 3 else "")
-            warnings.append(
-                f"{len(dropped)} computed value{'s are' if len(dropped) != 1 else ' is'} not finite "
-                f"(NaN or infinite) and left out of the result: {shown}"
-            )
+                step["instant_centres"] = centres.records(a + i)
+            if suspect[i]:
+                yield _finite_only(step, f"steps[{number_from + i}]", dropped)
+                continue
+            for key in [k for k in step if k not in covered]:
+                kept = _finite_only(step[key], f"steps[{number_from + i}].{key}", dropped)
+                if kept is _LEFT_OUT:
+                    del step[key]
+                else:
+                    step[key] = kept
+            yield step
+
+    def not_finite(self, start: int = 0, stop: int | None = None) -> np.ndarray:
+        """Which of steps ``start`` to ``stop`` have a value in their JSON record that is
+        not finite (and is left out of it): bool array of ``stop - start``.
+
+        A value is in a step's record where its column's ``when`` (see
+        :meth:`columns`) holds at the step's status.
+        """
+        stop = self.n_steps if stop is None else stop
+        st = self.status[start:stop]
+        present = {"positions": (st == OK) | (st == SINGULAR), "ok": st == OK}
+        out = np.zeros(stop - start, bool)
+        for name, v, when in self.columns():
+            if name in ("status", "message"):
+                continue
+            bad = ~np.isfinite(v[start:stop])
+            out |= bad if when == "always" else bad & present[when]
+        return out
+
+    def group_records(self, steps_per_choice: list | None = None) -> list | None:
+        """The ``groups`` entry (``None`` when forces did not run).
+
+        ``steps_per_choice``: for each group, the number of steps each choice was
+        used at (a list per group, ``None`` for groups without choices); default
+        this run's own counts.  A sweep written in chunks passes the sums.
+        """
+        if self.forces is None:
+            return None
+        if steps_per_choice is None:
+            steps_per_choice = self.choice_counts()
+        return [
+            {
+                "links": list(g.links),
+                "method": g.method,
+                **(
+                    {
+                        "choices": list(g.choices),
+                        "steps_per_choice": {
+                            g.choices[k]: int(n) for k, n in enumerate(counts) if n > 0
+                        },
+                    }
+                    if counts is not None
+                    else {}
+                ),
+            }
+            for g, counts in zip(self.forces.groups, steps_per_choice)
+        ]
+
+    def choice_counts(self, start: int = 0, stop: int | None = None) -> list:
+        """For each force group, the steps (``start`` to ``stop``) each choice was used at."""
+        if self.forces is None:
+            return []
+        return [
+            None if g.used is None
+            else [int((g.used[start:stop] == k).sum()) for k in range(len(g.choices))]
+            for g in self.forces.groups
+        ]
+
+    def tail(self, warnings: list | None = None, dropped: "LeftOut | None" = None,
+             steps_per_choice: list | None = None) -> dict:
+        """The keys of the result after ``steps``: ``force_method``, ``groups``, ``warnings``.
+
+        ``warnings`` default this run's; a note on the values left out
+        (``dropped``) is added to them.
+        """
+        out = {}
+        if self.forces is not None:
+            out["force_method"] = self.forces.method
+            out["groups"] = self.group_records(steps_per_choice)
+        warnings = list(self.warnings if warnings is None else warnings)
+        if dropped is not None and dropped.count:
+            warnings.append(dropped.warning())
         if warnings:
             out["warnings"] = warnings
         return out
+
+    def to_dict(self) -> dict:
+        """The result in the JSON layout of the scene-format contract."""
+        dropped = LeftOut()
+        steps = list(self.step_records(dropped=dropped))
+        return {**self.head(), "steps": steps, **self.tail(dropped=dropped)}
 
     def to_json(self, **kwargs) -> str:
         """:meth:`to_dict` as strict JSON text (never ``NaN`` nor ``Infinity``).
@@ -332,6 +444,104 @@ class Analysis:
         always ``False``, so a non-finite number is an error, never written.
         """
         return json.dumps(self.to_dict(), **{**kwargs, "allow_nan": False})
+
+    def columns(self) -> list:
+        """The step records flattened into columns: ``[(name, values, when), ...]``.
+
+        One column per number of a step's JSON record, named by its path with
+        the vector components as ``x``/``y`` (``joints.B.position.x``,
+        ``links.coupler.omega``, ``frame.moment``), in the order of the
+        record: ``status`` (strings), ``message`` (a list of str or None),
+        ``drivers.*``, ``joints.*`` (motion, then ``reaction``,
+        ``reaction_moment``), ``links.*``, ``points.*``, ``driving.*``,
+        ``frame.*``.  Numeric columns are (N,) float arrays (views of the
+        result, NaN where the JSON leaves the value out because it was not
+        computed).  ``when`` says at which steps the JSON holds the value:
+        ``"always"``, ``"positions"`` (``ok`` and ``singular`` steps) or
+        ``"ok"``.  The same columns exist whatever the steps' statuses, so
+        every chunk of a sweep has them.
+        """
+        want_kin = "kinematics" in self.outputs
+        has_vel = "velocity" in self.stages
+        has_acc = "acceleration" in self.stages
+        forces = self.forces
+        out = [("status", self.status, "always"), ("message", self.messages, "always")]
+        for name, d in self.drivers.items():
+            out += [(f"drivers.{name}.{k}", np.asarray(v, dtype=float), "always") for k, v in d.items()]
+
+        def vec(prefix, v, when="ok"):
+            return [(f"{prefix}.x", v[:, 0], when), (f"{prefix}.y", v[:, 1], when)]
+
+        def motion(prefix, k):
+            cols = vec(f"{prefix}.position", k.position, "positions")
+            if has_vel:
+                cols += vec(f"{prefix}.velocity", k.velocity)
+            if has_acc:
+                cols += vec(f"{prefix}.acceleration", k.acceleration)
+            return cols
+
+        reactions = forces is not None and "reactions" in self.outputs
+        # the joints in the order of the JSON's records: with motion first, then reactions only
+        joint_names = list(self.joints) if want_kin else []
+        if reactions:
+            joint_names += [n for n in forces.reactions if n not in joint_names]
+        for name in joint_names:
+            if want_kin and name in self.joints:
+                out += motion(f"joints.{name}", self.joints[name])
+            if reactions and name in forces.reactions:
+                out += vec(f"joints.{name}.reaction", forces.reactions[name])
+                if name in self.p_joints:
+                    out.append((f"joints.{name}.reaction_moment", forces.reaction_moments[name], "ok"))
+        if want_kin:
+            for name, lk in self.links.items():
+                out.append((f"links.{name}.rotation", lk.rotation, "positions"))
+                if has_vel:
+                    out.append((f"links.{name}.omega", lk.omega, "ok"))
+                if has_acc:
+                    out.append((f"links.{name}.alpha", lk.alpha, "ok"))
+                if lk.com is not None:
+                    out += vec(f"links.{name}.com", lk.com, "positions")
+                    if has_vel:
+                        out += vec(f"links.{name}.com_velocity", lk.com_velocity)
+                    if has_acc:
+                        out += vec(f"links.{name}.com_acceleration", lk.com_acceleration)
+            for name, pk in self.points.items():
+                out += motion(f"points.{name}", pk)
+        if forces is not None:
+            if "driving" in self.outputs:
+                out += [(f"driving.{k}", v, "ok") for k, v in forces.driving.items()]
+            if "frame" in self.outputs:
+                out += vec("frame.force", forces.frame_force)
+                out.append(("frame.moment", forces.frame_moment, "ok"))
+        return out
+
+
+_RECORD_BLOCK = 1024
+"""Steps whose arrays :meth:`Analysis.step_records` turns into Python numbers at once."""
+
+
+class LeftOut:
+    """Values left out of a result because they are not finite: how many, and the first paths."""
+
+    SHOWN = 3
+
+    def __init__(self):
+        self.count = 0
+        self.paths: list[str] = []
+
+    def append(self, path: str) -> None:
+        self.count += 1
+        if len(self.paths) < self.SHOWN:
+            self.paths.append(path)
+
+    def warning(self) -> str:
+        """The sentence added to the result's ``warnings``."""
+        n = self.count
+        shown = ", ".join(self.paths) + (f" and {n - self.SHOWN} more" if n > self.SHOWN else "")
+        return (
+            f"{n} computed value{'s are' if n != 1 else ' is'} not finite "
+            f"(NaN or infinite) and left out of the result: {shown}"
+        )
 
 
 def _vec(v) -> list:
