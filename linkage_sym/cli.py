@@ -67,6 +67,7 @@ from pathlib import Path
 
 import numpy as np
 
+from linkage_sym import cli_centres
 from linkage_sym._version import __version__
 from linkage_sym.errors import BalanceError, SceneError
 
@@ -621,6 +622,7 @@ def build_parser() -> argparse.ArgumentParser:
     d.set_defaults(func=cmd_demo)
     e = sub.add_parser("examples", help="list the shipped example scenes")
     e.set_defaults(func=cmd_examples)
+    cli_centres.register(sub)
     return p
 
 
