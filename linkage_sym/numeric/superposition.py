@@ -29,18 +29,98 @@ that step; the result records which.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from linkage_sym.errors import SceneError
-from linkage_sym.model import Scene
+from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.global_statics import assemble, dense_system, unpack
-from linkage_sym.numeric.loads import Wrench
+from linkage_sym.numeric.loads import Wrench, applied_wrenches
+from linkage_sym.numeric.state import LinkState
 from linkage_sym.numeric.statics import DyadForces, Geometry, InputForces, push
 from linkage_sym.structure import Group
-from linkage_sym.structure.disconnection import Disconnection, default_choice
+from linkage_sym.structure.disconnection import Disconnection, default_choice, usable_disconnections
 
 AMPLIFICATION_LIMIT = 1e3
 """Above this cancellation factor (3 digits lost) another disconnection is tried."""
+
+
+@dataclass
+class SuperpositionTerms:
+    """Dang and Zhang's intermediates of one disconnection over ``K`` steps.
+
+    With ``n`` unknowns (one or two), each hypothetical input's residual is
+    ``residual[i] + sum_k coefficients[i, k] X[k]`` (eq. 4, 8 or 10) and
+    every reaction is ``particular[j] + sum_k X[k] units[k][j]`` (eqs. 7, 11).
+
+    Attributes
+    ----------
+    choice : Disconnection
+    unknowns : tuple of str
+        What each ``X`` is, in words.
+    residual : ndarray, shape (n, K)
+        ``M_bar``: each input's residual (moment about its pivot, or force
+        along its guide, in the joint's own orientation) with every known
+        load and ``X = 0``.
+    coefficients : ndarray, shape (n, n, K)
+        ``K``: residual ``i`` per unit ``X[k]`` with no other load.
+    X : ndarray, shape (n, K)
+        The unknowns, ``-coefficients^-1 residual`` (eq. 6 or 10).
+    particular, units : dict of joint to (fx, fy, m)
+        ``R'`` (``X = 0``) and ``R''`` (per unit ``X[k]``) of every joint of
+        the group, as the reaction of ``links[0]`` on ``links[1]``.
+    """
+
+    choice: Disconnection
+    unknowns: tuple
+    residual: np.ndarray
+    coefficients: np.ndarray
+    X: np.ndarray
+    particular: dict
+    units: list
+
+
+def superposition_terms(plan, analysis, choice: int, group: int | None = None) -> SuperpositionTerms:
+    """The intermediates of disconnection ``choice`` of a complex group at the ``ok`` steps of
+    ``analysis`` (a run of ``plan``), for a reader who checks a hand calculation step by step.
+
+    ``group`` is the group's index in ``plan.decomposition.groups`` (default: the only group
+    solved by disconnection).  The loads of the groups hanging from it are those of
+    ``analysis.forces``; ``choice`` indexes the choices as ``linkage-sym structure`` lists them.
+    """
+    scene = plan.scene
+    groups = plan.decomposition.groups
+    if group is None:
+        complex_ = [i for i, g in enumerate(groups) if g.kind not in ("input", "dyad")]
+        if len(complex_) != 1:
+            raise ValueError(f"group: the mechanism has {len(complex_)} complex groups; name one by its index")
+        (group,) = complex_
+    g = groups[group]
+    choices = usable_disconnections(scene, g)
+    if not 0 <= choice < len(choices):
+        raise ValueError(f"choice: group {group} has {len(choices)} disconnections (0 to {len(choices) - 1})")
+    idx = np.flatnonzero(np.asarray(analysis.status) == "ok")
+    S = {}
+    for name, lk in analysis.links.items():
+        st = LinkState(lk.rotation[idx], lk.origin[idx, 0], lk.origin[idx, 1])
+        if lk.omega is not None:
+            st.w, st.vx, st.vy = lk.omega[idx], lk.origin_velocity[idx, 0], lk.origin_velocity[idx, 1]
+        if lk.alpha is not None:
+            st.al, st.ax, st.ay = lk.alpha[idx], lk.origin_acceleration[idx, 0], lk.origin_acceleration[idx, 1]
+        S[name] = st
+    S[GROUND] = LinkState()
+    geo = Geometry(scene, S)
+    W = applied_wrenches(scene, S)
+    forces = analysis.forces
+    for later in groups[group + 1:]:  # solved before this one: their reactions load it
+        inside = set(later.links)
+        for name in later.external:
+            r = forces.reactions[name][idx]
+            eff = forces.driving.get(name)
+            push(W, scene.joint(name), geo, (r[:, 0], r[:, 1], forces.reaction_moments[name][idx]),
+                 None if eff is None else eff[idx], only=W.keys() - inside)
+    return _Choice(scene, g, choices[choice]).terms(W, geo, plan.L, len(idx))
 
 
 class _Choice:
@@ -147,8 +227,8 @@ class _Choice:
             residuals.append(e)
         return reactions, residuals
 
-    def solve(self, W, geo: Geometry, L, K):
-        """Reactions and efforts of the group, and the amplification per step."""
+    def _parts(self, W, geo: Geometry, L, K):
+        """The runs of the virtual mechanism: ``(zp, Z, R0, m0, runs, Kmat, X)``."""
         zp, Z = self.split(W, geo, L, K)
         base = {n: W[n].copy() for n in self.remaining}
         R0, m0 = self.virtual_run(base, zp, geo)
@@ -168,6 +248,48 @@ class _Choice:
             else:
                 A = np.stack([np.stack(row, axis=-1) for row in Kmat], axis=-2)
                 X = list(np.linalg.solve(A, -np.stack(m0, axis=-1)[..., None])[..., 0].T)
+        return zp, Z, R0, m0, runs, Kmat, X
+
+    def terms(self, W, geo: Geometry, L, K) -> "SuperpositionTerms":
+        """Dang and Zhang's intermediates of this disconnection (see :class:`SuperpositionTerms`)."""
+        zp, Z, R0, m0, runs, Kmat, X = self._parts(W, geo, L, K)
+
+        def arrays(parts):
+            return tuple(np.broadcast_to(np.asarray(v, dtype=float), (K,)).copy() for v in parts[:3])
+
+        particular = {n: arrays(r) for n, r in R0.items()}
+        particular.update({n: arrays(r) for n, r in zp.items()})
+        units = []
+        for (Rk, _), Zk in zip(runs, Z):
+            u = {n: arrays(r) for n, r in Rk.items()}
+            u.update({n: arrays(r) for n, r in Zk.items()})
+            units.append(u)
+        return SuperpositionTerms(
+            choice=self.d,
+            unknowns=self.unknowns(),
+            residual=np.array([np.asarray(v, dtype=float) for v in m0]),
+            coefficients=np.array([[np.asarray(v, dtype=float) for v in row] for row in Kmat]),
+            X=np.array([np.broadcast_to(v, (K,)) for v in X], dtype=float),
+            particular=particular,
+            units=units,
+        )
+
+    def unknowns(self) -> tuple:
+        """What each unknown ``X`` is, in words (the unit runs' loads on the cut joints)."""
+        if not self.removed:
+            (j,) = self.cut
+            if j.type == "R":
+                return (f"x component of the reaction at {j.name}", f"y component of the reaction at {j.name}")
+            return (f"normal force of the slide {j.name}", f"couple of the slide {j.name}")
+        if self.rr is not None:
+            b, j1, j2 = self.rr
+            return (f"force on '{b}' at {j2.name} along {j1.name}->{j2.name} (the opposite of the "
+                    f"component along it at {j1.name}, less '{b}''s own load along it)",)
+        return tuple(f"null-space coordinate {k + 1} of the cut joints' reactions" for k in range(self.n))
+
+    def solve(self, W, geo: Geometry, L, K):
+        """Reactions and efforts of the group, and the amplification per step."""
+        zp, Z, R0, m0, runs, Kmat, X = self._parts(W, geo, L, K)
         reactions, efforts = {}, {}
         num = np.zeros(K)
         den = np.zeros(K)
