@@ -56,7 +56,8 @@ def test_analyze_plots(tmp_path, capsys):
     assert json.loads(out)["scene"] == "crank-rocker"
     names = sorted(p.name for p in pics.iterdir())
     assert names == sorted(f"crank-rocker_{k}.png" for k in
-                           ("positions", "velocities", "accelerations", "paths", "driving"))
+                           ("positions", "velocities", "accelerations", "transmission", "paths",
+                            "driving"))
     for p in pics.iterdir():
         assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", p
         assert p.name in err

@@ -149,14 +149,15 @@ def test_plot_all_adds_force_files_only_with_forces(tmp_path):
     with_forces = plot_all(scene, analysis, tmp_path / "with")
     names = [p.name for p in with_forces]
     assert names == [f"crank-rocker_{k}.png" for k in
-                     ("positions", "velocities", "accelerations", "paths", "driving",
-                      "reactions", "frame")]
+                     ("positions", "velocities", "accelerations", "transmission", "paths",
+                      "driving", "reactions", "frame")]
     for p in with_forces[-3:]:
         _assert_png(p)
 
     analysis.forces = None
     names = [p.name for p in plot_all(scene, analysis, tmp_path / "without", prefix="k")]
-    assert names == [f"k_{k}.png" for k in ("positions", "velocities", "accelerations", "paths")]
+    assert names == [f"k_{k}.png" for k in ("positions", "velocities", "accelerations",
+                                            "transmission", "paths")]
 
 
 def test_plot_all_follows_the_outputs(tmp_path):

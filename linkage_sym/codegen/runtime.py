@@ -37,6 +37,7 @@ from linkage_sym.numeric.result import (
     LinkKinematics,
 )
 from linkage_sym.numeric.plan import SINGULAR_COND, run_warnings, scene_sweep, solving_path
+from linkage_sym.numeric.transmission import transmission_angles
 from linkage_sym.structure.parameters import driver_q0, evaluate, ident, link_frames
 
 SCREEN = 1e-3
@@ -608,6 +609,7 @@ class CompiledMechanism:
             points=points,
         )
         res.warnings.extend(run_warnings(res))
+        res.transmission_angles = transmission_angles(scene, res)
         if "instant_centres" in scene.outputs:  # an extension of the format
             from linkage_sym.centres import instant_centres
 

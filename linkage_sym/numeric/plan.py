@@ -40,6 +40,7 @@ from linkage_sym.numeric.result import (
 )
 from linkage_sym.numeric.state import LinkState
 from linkage_sym.numeric.superposition import AMPLIFICATION_LIMIT
+from linkage_sym.numeric.transmission import transmission_angles
 from linkage_sym.structure import Decomposition, decompose
 from linkage_sym.structure.parameters import driver_q0
 
@@ -373,6 +374,7 @@ class Plan:
         res.warnings.extend(continuation.step_warnings(
             [n for sv in self.solvers for n in sv.notes], path_index))
         res.warnings.extend(run_warnings(res))
+        res.transmission_angles = transmission_angles(self.scene, res, self.decomposition)
         if "instant_centres" in self.scene.outputs:  # an extension of the format
             from linkage_sym.centres import instant_centres
 

@@ -194,6 +194,11 @@ class Analysis:
     points : dict
         :class:`JointKinematics` of the scene's traced points (its
         ``points``, an extension of the format), by name.
+    transmission_angles : dict
+        The transmission angle (rad, 0..pi) of every RRR dyad at every step,
+        by its inner joint (an extension of the format, written with the
+        kinematics; see :mod:`linkage_sym.numeric.transmission`), NaN where a
+        step has no positions.
     instant_centres : InstantCentres or None
         Every pair's instant centre at every step, when the scene lists the
         ``instant_centres`` output (an extension of the format; see
@@ -213,6 +218,7 @@ class Analysis:
     forces: Forces | None = None
     p_joints: tuple[str, ...] = ()
     points: dict = field(default_factory=dict)
+    transmission_angles: dict = field(default_factory=dict)
     instant_centres: object = None
 
     @property
@@ -274,6 +280,7 @@ class Analysis:
         if want_kin:
             joints = {name: motion_lists(jk) for name, jk in self.joints.items()}
             points = {name: motion_lists(pk) for name, pk in self.points.items()}
+            angles = {name: rows(v) for name, v in self.transmission_angles.items()}
             links = {
                 name: (rows(lk.rotation), rows(lk.omega) if has_vel else None,
                        rows(lk.alpha) if has_acc else None, rows(lk.com),
@@ -331,6 +338,8 @@ class Analysis:
                 step["links"] = out_links
                 if self.points:
                     step["points"] = {name: motion(lists, i, rates) for name, lists in points.items()}
+                if angles:  # extension: the RRR dyads' transmission angles, by inner joint
+                    step["transmission_angles"] = {name: v[i] for name, v in angles.items()}
             if forces is not None and rates:
                 if "reactions" in self.outputs:
                     out_joints = step.setdefault("joints", {})
@@ -507,6 +516,8 @@ class Analysis:
                         out += vec(f"links.{name}.com_acceleration", lk.com_acceleration)
             for name, pk in self.points.items():
                 out += motion(f"points.{name}", pk)
+            out += [(f"transmission_angles.{name}", v, "positions")
+                    for name, v in self.transmission_angles.items()]
         if forces is not None:
             if "driving" in self.outputs:
                 out += [(f"driving.{k}", v, "ok") for k, v in forces.driving.items()]

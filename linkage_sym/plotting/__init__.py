@@ -52,7 +52,9 @@ def plot_all(scene, analysis, out_dir, prefix=None):
     Returns
     -------
     list of pathlib.Path
-        The motion diagrams, then ``<stem>_paths.png``; when the analysis has
+        The motion diagrams, then ``<stem>_transmission.png`` (when the
+        analysis has transmission angles: an RRR dyad), ``<stem>_paths.png``;
+        when the analysis has
         forces (:attr:`Analysis.forces` is not None), then also
         ``<stem>_driving.png`` (if there are driver efforts and ``"driving"``
         is in :attr:`Analysis.outputs`), ``<stem>_reactions.png`` (if
@@ -64,6 +66,10 @@ def plot_all(scene, analysis, out_dir, prefix=None):
 
     written = motion_diagrams(scene, analysis, out_dir, prefix=prefix)
     stem = Path(out_dir) / file_stem(scene, prefix)
+    if analysis.transmission_angles:
+        from linkage_sym.plotting.transmission import transmission_angles
+
+        written.append(transmission_angles(scene, analysis, f"{stem}_transmission.png"))
     written.append(coupler_curves(scene, analysis, f"{stem}_paths.png"))
     forces = analysis.forces
     if forces is not None:
