@@ -42,7 +42,22 @@ step's largest speed or acceleration) are rounding: they print as 0."""
 
 
 def register(sub) -> None:
-    """Add the ``centres`` command to the ``linkage-sym`` subparsers ``sub``."""
+    """Add the ``centres`` command to the ``linkage-sym`` subparsers ``sub``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        What ``ArgumentParser.add_subparsers`` returned.
+
+    Examples
+    --------
+    >>> import argparse
+    >>> p = argparse.ArgumentParser(prog="linkage-sym")
+    >>> register(p.add_subparsers(dest="command"))
+    >>> a = p.parse_args(["centres", "s.json", "--deg", "30", "--polygons"])
+    >>> a.command, a.deg, a.step, a.polygons, a.func is cmd_centres
+    ('centres', 30.0, None, True, True)
+    """
     c = sub.add_parser(
         "centres", help="instant centres of a step, centrodes, velocity and acceleration polygons",
         description="Print the instant centres of one step (numbered as in the textbook chapter "
@@ -209,7 +224,19 @@ def _problems_at(scene, args):
 
 
 def cmd_centres(args) -> int:
-    """Run ``linkage-sym centres`` (see the module docstring); returns the exit status."""
+    """Run ``linkage-sym centres`` (see the module docstring); returns the exit status.
+
+    Examples
+    --------
+    >>> import contextlib, io
+    >>> from linkage_sym.cli import main
+    >>> from linkage_sym.examples import example_path
+    >>> out = io.StringIO()
+    >>> with contextlib.redirect_stdout(out):
+    ...     status = main(["centres", str(example_path("crank_rocker")), "--step", "30"])
+    >>> status, out.getvalue().splitlines()[3]
+    (0, '  P13  ground-coupler  (73.092, 42.2) mm  three-centre lines P12-P23 and P14-P34')
+    """
     from linkage_sym.centres import centrodes, floating_links, instant_centres, polygon_quantities
     from linkage_sym.cli import OptionError, _check_outputs, _load, _write
     from linkage_sym.numeric.plan import compile_plan

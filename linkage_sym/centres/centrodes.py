@@ -40,7 +40,24 @@ class Centrode:
     moving: np.ndarray
 
     def moving_at(self, analysis, step: int) -> np.ndarray:
-        """The moving centrode carried by the link to its position at ``step`` (N, 2)."""
+        """The moving centrode carried by the link to its position at ``step`` (N, 2).
+
+        Parameters
+        ----------
+        analysis : Analysis
+            Where the link is (any analysis of the scene: a sweep, or one step).
+        step : int
+
+        Examples
+        --------
+        >>> import numpy as np, linkage_sym
+        >>> from linkage_sym.centres import instant_centres
+        >>> scene = linkage_sym.load_example("slider_crank_offset")
+        >>> res = linkage_sym.analyze(scene)
+        >>> c = centrodes(scene, res, instant_centres(scene, res))["connecting_rod"]
+        >>> bool(np.allclose(c.moving_at(res, 0)[0], c.fixed[0], rtol=0, atol=1e-15))
+        True
+        """
         lk = analysis.links[self.link]
         th = float(lk.rotation[step])
         c, s = np.cos(th), np.sin(th)

@@ -124,14 +124,34 @@ class Polygons:
     sliding: list = field(default_factory=list)
 
     def point(self, label: str) -> PointMotion:
-        """The point whose vertex label is ``label``."""
+        """The point whose vertex label is ``label``.
+
+        Examples
+        --------
+        >>> import linkage_sym
+        >>> scene = linkage_sym.load_example("crank_rocker")
+        >>> pq = polygon_quantities(scene, linkage_sym.analyze(scene), 0)
+        >>> [p.label for p in pq.points]
+        ['A', 'B2', 'B3', 'C3', 'P', 'C4', 'D']
+        >>> pq.point("B2").link, round(float(pq.point("B2").velocity[1]), 6)
+        ('crank', 0.24)
+        """
         for p in self.points:
             if p.label == label:
                 return p
         raise KeyError(label)
 
     def to_dict(self) -> dict:
-        """JSON-ready: vectors as ``[x, y]`` lists (SI units)."""
+        """JSON-ready: vectors as ``[x, y]`` lists (SI units).
+
+        Examples
+        --------
+        >>> import linkage_sym
+        >>> scene = linkage_sym.load_example("guide_bar_quick_return")
+        >>> d = polygon_quantities(scene, linkage_sym.analyze(scene), 0).to_dict()
+        >>> sorted(d), sorted(d["sliding"][0])
+        (['alpha', 'omega', 'points', 'relative', 'sliding', 'step'], ['axis', 'coriolis', 'guide', 'joint', 'point', 'slider', 'slip_acceleration', 'slip_rate', 'slip_speed', 'slip_velocity'])
+        """
         vec = lambda v: [float(v[0]) + 0.0, float(v[1]) + 0.0]  # noqa: E731
         return {
             "step": self.step,

@@ -80,7 +80,16 @@ class InstantCentres:
     kennedy: object
 
     def index(self, a: str, b: str) -> int:
-        """Index into :attr:`pairs` of the unordered pair ``{a, b}``."""
+        """Index into :attr:`pairs` of the unordered pair ``{a, b}``.
+
+        Examples
+        --------
+        >>> import linkage_sym
+        >>> scene = linkage_sym.load_example("crank_rocker")
+        >>> ic = instant_centres(scene, linkage_sym.analyze(scene))
+        >>> ic.pairs[ic.index("rocker", "crank")]
+        ('crank', 'rocker')
+        """
         i, j = sorted((self.links.index(a), self.links.index(b)))
         n = len(self.links)
         return i * n - i * (i + 1) // 2 + (j - i - 1)

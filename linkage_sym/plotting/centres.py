@@ -69,6 +69,17 @@ def centres_figure(scene, analysis, centres, step, out_file):
     Returns
     -------
     pathlib.Path
+
+    Examples
+    --------
+    >>> import tempfile, linkage_sym
+    >>> from linkage_sym.centres import instant_centres
+    >>> scene = linkage_sym.load_example("crank_rocker")
+    >>> res = linkage_sym.analyze(scene)
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     path = centres_figure(scene, res, instant_centres(scene, res), 40, f"{d}/c.png")
+    ...     path.name, path.read_bytes()[:4]
+    ('c.png', b'\\x89PNG')
     """
     unit, scale = style.length_unit(scene)
     mid, L = _middle(scene, analysis, step)
@@ -225,6 +236,18 @@ def centrodes_figure(scene, analysis, centres, step, centrodes, out_file):
     Returns
     -------
     pathlib.Path
+
+    Examples
+    --------
+    >>> import tempfile, linkage_sym
+    >>> from linkage_sym.centres import centrodes, instant_centres
+    >>> scene = linkage_sym.load_example("crank_rocker")
+    >>> res = linkage_sym.analyze(scene)
+    >>> ic = instant_centres(scene, res)
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     path = centrodes_figure(scene, res, ic, 40, centrodes(scene, res, ic), f"{d}/c.png")
+    ...     path.read_bytes()[:4]
+    b'\\x89PNG'
     """
     unit, scale = style.length_unit(scene)
     mid, L = _middle(scene, analysis, step)
@@ -308,6 +331,16 @@ def polygons_figure(scene, polygons, out_file):
     Returns
     -------
     pathlib.Path
+
+    Examples
+    --------
+    >>> import tempfile, linkage_sym
+    >>> from linkage_sym.centres import polygon_quantities
+    >>> scene = linkage_sym.load_example("guide_bar_quick_return")
+    >>> pq = polygon_quantities(scene, linkage_sym.analyze(scene), 0)
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     polygons_figure(scene, pq, f"{d}/p.png").read_bytes()[:4]
+    b'\\x89PNG'
     """
     colors = style.link_colors(scene)
     fig = style.new_figure(13.0, 6.6)
