@@ -138,6 +138,7 @@ def centres_figure(scene, analysis, centres, step, out_file):
             ax.plot(seg[:, 0], seg[:, 1], color="#d62728", lw=0.7, ls=(0, (5, 3)), alpha=0.55,
                     zorder=2)
 
+    labels = []  # [position, [labels], colour]
     for k in range(len(centres.pairs)):
         label = centres.label(k)
         a, b = centres.pairs[k]
@@ -165,8 +166,15 @@ def centres_figure(scene, analysis, centres, step, out_file):
             continue
         st = KIND_STYLE[kind]
         ax.plot([p[0] * scale], [p[1] * scale], ls="none", zorder=8, **st)
-        ax.annotate(label, (p[0] * scale, p[1] * scale), xytext=(6, -12), textcoords="offset points",
-                    fontsize=9, color=st["mec"], zorder=9,
+        for group in labels:  # centres close together share one label
+            if np.hypot(*(group[0] - p)) <= 0.03 * L:
+                group[1].append(label)
+                break
+        else:
+            labels.append([p, [label], st["mec"]])
+    for p, names_here, color in labels:
+        ax.annotate(", ".join(names_here), (p[0] * scale, p[1] * scale), xytext=(6, -12),
+                    textcoords="offset points", fontsize=9, color=color, zorder=9,
                     bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none", "alpha": 0.7})
 
     from matplotlib.lines import Line2D
