@@ -15,10 +15,21 @@ linkage_sym's ``reactions[j]`` is the force of ``links[0]`` on ``links[1]``:
 joint D is (lever, rocker), so R34 = reactions["D"]; joint F is (lever,
 slider), so R53 = -reactions["F"].
 
-R53n is not an independent check: the reconstruction took the 451 N printing
-force from it (paper_repro/printing_mechanism.py).  R34t and R53t are.
+R53n is not an independent check of the force analysis: it is the slider's x
+balance, R53n = F5x + F'5 cos 20 deg, and the reading of the printed 451 N as
+the printing force F'5 came from it (paper_repro/printing_mechanism.py; with
+the paper's g = 9.8 it closes to 450.995 N).  R34t and R53t are.
 
-Rounding spread.  The paper prints its inputs rounded.  ``ROUNDING`` lists
+The paper's route.  The paper removes the rocker 4 and makes the slider the
+hypothetical input (choice PAPER_CHOICE = 3 of ``linkage-sym structure``),
+with the unknown R34t at D.  ``paper_quantities`` solves that disconnection
+with linkage_sym and, from ``superposition_terms``, rewrites the solver's
+runs (whose unknown is the force on the rocker at E) in R34t: R34n, the
+constants of eqs. 13-14, (R53n)', (R53t)', F_x, (R53n)'', (R53t)'', K.
+``items()`` compares each with the printed value (python -m paper_repro).
+
+Rounding spread.  The paper prints its inputs rounded.  ``ROUNDING`` (from
+printing_mechanism.py) lists
 every printed number that the reconstruction reads, with half a unit of its
 last printed digit:
 
@@ -52,7 +63,7 @@ change.
 ``printing_mechanism.scene_dict`` from ``samples`` printed-input sets drawn
 uniformly within those half-units (a seeded Monte Carlo), runs linkage_sym on
 each and returns, per component, the largest deviation from the nominal
-result.  ``linear_bound`` gives the worst corner of the same box to first
+result, for every quantity of ``paper_quantities``.  ``linear_bound`` gives the worst corner of the same box to first
 order (sum over the inputs of |d output / d input| * half-unit, from central
 differences), an upper bound for the Monte-Carlo maximum.
 
@@ -76,49 +87,20 @@ import printing_mechanism as pm  # noqa: E402
 
 import linkage_sym  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
+from linkage_sym.numeric.superposition import superposition_terms  # noqa: E402
 
 COMPONENTS = ("R34n", "R34t", "R53n", "R53t")
 PRINTED_R = {k: pm.PRINTED["results"][k] for k in COMPONENTS}
 
-LENGTH_HALF = 0.00005  # half-unit of the lengths and of E: 0.1 mm, as the printed coordinates (see above)
+# the paper's route (section 4, way 2): remove the rocker 4 (joints D, E), the slider 5 is the
+# hypothetical input sliding along its guide, dyad (coupler 2, lever 3); as `linkage-sym structure`
+# lists the choices of the printing mechanism's class-III group
+PAPER_CHOICE = 3
+
+LENGTH_HALF = pm.LENGTH_HALF
 LENGTH_HALF_AS_PRINTED = 0.0005  # 1 mm, the last digit of 0.294, 0.248, 0.187
-
-# (path into PRINTED, half a unit of the last printed digit); the first 9 are the lengths and E
-ROUNDING = [(("lengths", k), LENGTH_HALF) for k in ("AB", "BC", "CD", "DF", "ED (printed l_AE)", "FF'", "AH")]
-ROUNDING += [(("E", 0), LENGTH_HALF), (("E", 1), LENGTH_HALF)]
-N_LENGTHS = 9
-ROUNDING += [(("S_printed", s, i), 0.00005) for s in ("S1", "S3") for i in (0, 1)]
-ROUNDING += [(("S_printed", "S4", 0), 0.00005), (("S_printed", "S4", 1), 0.0005)]
-ROUNDING += [(("weights", 1), 0.5), (("weights", 2), 0.005), (("weights", 3), 0.005), (("weights", 4), 0.005),
-             (("weights", 5), 0.05)]
-ROUNDING += [(("inertia_printed", "M_E1"), 0.00005), (("inertia_printed", "M_E2"), 0.0005),
-             (("inertia_printed", "M_E3"), 0.0005), (("inertia_printed", "F_S4x"), 0.5)]
-
-
-def _get(d, path):
-    for k in path:
-        d = d[k]
-    return d
-
-
-def _set(d, path, value):
-    *head, last = path
-    parent = _get(d, head)
-    if isinstance(parent, tuple):
-        items = list(parent)
-        items[last] = value
-        _set(d, head, tuple(items))
-    else:
-        parent[last] = value
-
-
-def perturbed(deltas, printed=pm.PRINTED):
-    """A copy of ``printed`` with ``deltas[i]`` added to the input ``ROUNDING[i]``."""
-    out = copy.deepcopy(printed)
-    for (path, _), dv in zip(ROUNDING, deltas):
-        _set(out, path, _get(out, path) + dv)
-    return out
-
+ROUNDING, N_LENGTHS, perturbed, half_units = pm.ROUNDING, pm.N_LENGTHS, pm.perturbed, pm.half_units
+_get, _set = pm._get, pm._set
 
 def one_step(printed=pm.PRINTED):
     """The scene dict for ``printed``, restricted to the one step theta1 (300 deg)."""
@@ -142,30 +124,70 @@ def run(scene_dict, method="dyad", disconnection=None):
     return compile_plan(linkage_sym.load_scene(scene_dict), disconnection=disconnection).run(method=method)
 
 
+def paper_quantities(printed=pm.PRINTED, scene=None) -> dict:
+    """The reactions and Dang and Zhang's intermediates with the unknown where the paper puts it.
+
+    linkage_sym solves the one step at the paper's disconnection (PAPER_CHOICE) and
+    ``superposition_terms`` gives its runs.  The solver's unknown is the force on the rocker at
+    E along D->E; the paper's is R34t, the force of the lever on the rocker at D along D->E.
+    Both are linear in each other (R34t = p + u X_E, p and u from the runs' reactions at D), so
+    the residual M_bar + K X_E and every reaction R' + R'' X_E are rewritten in R34t.  The
+    paper's sum of x forces on the slider is minus the solver's residual along the guide, so
+    F_x = -M_bar and K = -K (eq. 12: sum F_x = F_x + K R34t).
+    """
+    d = one_step(printed) if scene is None else scene
+    plan = compile_plan(linkage_sym.load_scene(d), disconnection=PAPER_CHOICE)
+    a = plan.run()
+    t = superposition_terms(plan, a, PAPER_CHOICE)
+    P = {j: a.joints[j].position[0] for j in "BCDEF"}
+    et = (P["E"] - P["D"]) / np.linalg.norm(P["E"] - P["D"])
+    en = np.array([-et[1], et[0]])
+
+    def vec(parts, j):
+        return np.array([parts[j][0][0], parts[j][1][0]])
+
+    Rp, Ru = t.particular, t.units[0]
+    p, u = float(vec(Rp, "D") @ et), float(vec(Ru, "D") @ et)
+    K_E, M_E = float(t.coefficients[0, 0, 0]), float(t.residual[0, 0])
+    K_D, M_D = K_E / u, M_E - K_E * p / u
+    r53p = -(vec(Rp, "F") - vec(Ru, "F") * p / u)  # slider on lever at F, R34t = 0
+    r53u = -vec(Ru, "F") / u  # per unit R34t
+    fb, fc = P["F"] - P["B"], P["F"] - P["C"]
+    out = components(a)
+    r34n = float(vec(Rp, "D") @ en)
+    out.update({
+        "R34n_x": r34n * en[0], "R34n_y": r34n * en[1],
+        "eq13_n": fb[1], "eq13_t": -fb[0], "eq14_n": fc[1], "eq14_t": -fc[0],
+        "eq13_c": fb[1] * r53p[0] - fb[0] * r53p[1], "eq14_c": fc[1] * r53p[0] - fc[0] * r53p[1],
+        "R53n'": r53p[0], "R53t'": r53p[1], "Fx_bar": -M_D, "R53n''": r53u[0], "R53t''": r53u[1], "K": -K_D,
+        "X_E": float(t.X[0, 0]), "M_E": M_E, "K_E": K_E,
+        "R34t_superposed": -(-M_D) / (-K_D),
+    })
+    return {k: float(v) for k, v in out.items()}
+
+
 def reactions_of(printed):
     return components(run(one_step(printed)))
 
 
-def half_units(length_half=LENGTH_HALF):
-    half = np.array([h for _, h in ROUNDING])
-    half[:N_LENGTHS] = length_half
-    return half
-
-
 def rounding_spread(samples=200, seed=0, length_half=LENGTH_HALF):
-    """Largest |deviation| of each component over a seeded Monte Carlo of the printed rounding.
+    """Largest |deviation| of every paper quantity over a seeded Monte Carlo of the printed rounding.
 
-    Returns (spread, nominal, deviations) with deviations an array (samples, 4).
+    Each sample draws every printed input of ``ROUNDING`` uniformly within its half unit
+    (lengths and E: ``length_half``), rebuilds the scene and solves it at the paper's
+    disconnection.  Returns (spread, nominal, deviations): dicts over the quantities of
+    ``paper_quantities`` and an array (samples, 4) of the four reactions' deviations.
     """
     rng = np.random.default_rng(seed)
     half = half_units(length_half)
-    nominal = reactions_of(pm.PRINTED)
-    dev = np.empty((samples, len(COMPONENTS)))
+    nominal = paper_quantities()
+    keys = list(nominal)
+    dev = np.empty((samples, len(keys)))
     for i in range(samples):
-        got = reactions_of(perturbed(rng.uniform(-half, half)))
-        dev[i] = [got[k] - nominal[k] for k in COMPONENTS]
-    spread = dict(zip(COMPONENTS, np.abs(dev).max(axis=0)))
-    return spread, nominal, dev
+        got = paper_quantities(perturbed(rng.uniform(-half, half)))
+        dev[i] = [got[k] - nominal[k] for k in keys]
+    spread = dict(zip(keys, np.abs(dev).max(axis=0)))
+    return spread, nominal, dev[:, [keys.index(k) for k in COMPONENTS]]
 
 
 def linear_bound(length_half=LENGTH_HALF):
@@ -229,6 +251,71 @@ def k_factor(pts):
     return -float(np.linalg.solve(m, rhs)[1])
 
 
+DEFAULT_CHOICE = 0  # the solver's default disconnection of this group (remove the coupler)
+
+# (key of paper_quantities, name, as printed) in the paper's order
+PAPER_STEPS = (
+    ("R34n", "R34n (eq. 1, about E)", "47.219"),
+    ("R34n_x", "R34n, x component", "-29.1176"),
+    ("R34n_y", "R34n, y component", "37.1728"),
+    ("eq13_n", "eq. 13, coeff. of (R53n)'", "0.3762"),
+    ("eq13_t", "eq. 13, coeff. of (R53t)'", "0.9436"),
+    ("eq13_c", "eq. 13, constant", "312.3463"),
+    ("eq14_n", "eq. 14, coeff. of (R53n)'", "0.325"),
+    ("eq14_t", "eq. 14, coeff. of (R53t)'", "-0.025"),
+    ("eq14_c", "eq. 14, constant", "13.0601"),
+    ("R53n'", "(R53n)'", "63.69"),
+    ("R53t'", "(R53t)'", "305.60"),
+    ("Fx_bar", "F_x (eq. 12, R34t = 0)", "-573.40"),
+    ("R53n''", "(R53n)'' (R34t = 1)", "-0.6139"),
+    ("R53t''", "(R53t)'' (R34t = 1)", "0.6906"),
+    ("K", "K = -(R53n)''", "0.6139"),
+    ("R34t", "R34t = -F_x/K", "934.03"),
+    ("R53n", "R53n", "-509.71"),
+    ("R53t", "R53t", "950.64"),
+)
+
+
+def items(samples=200, seed=0):
+    """Dang and Zhang's superposition, step by step, against linkage_sym (paper_repro/items.py).
+
+    Every intermediate of section 4 with the unknown R34t at D, as the paper has it, from
+    linkage_sym's solver at the paper's disconnection (paper_quantities), and the final
+    reactions.  Status: reproduced when the value rounds to the printed one; else within input
+    rounding when inside the Monte-Carlo spread of ``samples`` seeded samples of the printed
+    inputs (rounding_spread; 200 by default); else not reproducible.
+    """
+    from items import NOT_REPRODUCIBLE, REPRODUCED, ROUNDING as ROUND, Item, half_unit
+
+    spread, q, _ = rounding_spread(samples, seed)
+    why_mc = (f"linkage_sym at the paper's disconnection, unknown at D; tolerance: the largest deviation over "
+              f"{samples} seeded samples of the printed inputs within their rounding (lengths and E +-0.05 mm)")
+    t1, qa = pm.assembly()
+    k_exact = k_factor(pm.points(qa, t1))
+    k_printed = k_factor({**pm.PRINTED["points"], "E": pm.PRINTED["E"]})
+    notes = {
+        "R34t": f"the paper's K = 0.6139 is what its rounded coordinates give ({k_printed:.5f}); the exact "
+                f"assembly gives {k_exact:.5f}, which alone accounts for {q['R34t'] * (1 - k_exact / k_printed):+.2f} N",
+        "eq14_c": "the paper's coefficient -0.025 is -0.0251 rounded",
+        "R53n": "not independent of the 451 N: that force's reading (at 20 deg to the guide) came from this value",
+    }
+    out = []
+    for key, name, printed in PAPER_STEPS:
+        d = abs(q[key] - float(printed))
+        where = "sec. 4, superposition at D"
+        note = notes.get(key, "")
+        if d <= half_unit(printed):
+            out.append(Item(1, where, name, printed, q[key], REPRODUCED, why=note or
+                            "linkage_sym at the paper's disconnection, unknown at D"))
+        elif d <= spread[key]:
+            out.append(Item(1, where, name, printed, q[key], ROUND, tol=spread[key],
+                            why=why_mc + ("; " + note if note else "")))
+        else:
+            out.append(Item(1, where, name, printed, q[key], NOT_REPRODUCIBLE,
+                            why=f"off by {d:.3g}, beyond the rounding spread {spread[key]:.3g}"))
+    return out
+
+
 def _shipped_one_step():
     from linkage_sym.examples import example_dict
     d = example_dict("printing_mechanism")
@@ -258,7 +345,21 @@ def report(samples=200, seed=0):
                f" (lengths and E: +-{LENGTH_HALF * 1e3:g} mm);\n   3 sigma of the same samples; lin. bound = worst"
                f" corner of the same box to first order.")
     out.append(f"   with lengths and E to +-{LENGTH_HALF_AS_PRINTED * 1e3:g} mm instead, the MC spread would be "
-               + ", ".join(f"{k} {v:.3f}" for k, v in wide.items()))
+               + ", ".join(f"{k} {wide[k]:.3f}" for k in COMPONENTS))
+    out.append(f"== the superposition at the paper's disconnection ({PAPER_CHOICE}: remove the rocker at D and E; the"
+               " slider is the hypothetical input along its guide; dyad (coupler, lever)), unknown R34t at D")
+    out.append(f"   {'':24s} {'linkage_sym':>12s} {'printed':>10s} {'difference':>11s} {'MC spread':>10s}")
+    q = paper_quantities()
+    for key, name, printed in PAPER_STEPS:
+        out.append(f"   {name:24s} {q[key]:12.5f} {printed:>10s} {q[key] - float(printed):+11.5f} {spread[key]:10.5f}")
+    out.append(f"   the solver's own unknown there is the force on the rocker at E along D->E: X_E = {q['X_E']:.3f} N, "
+               f"M_bar = {q['M_E']:.4f} N, K = {q['K_E']:.5f}")
+    a0 = run(one_step())
+    plan0 = compile_plan(linkage_sym.load_scene(one_step()))
+    t0 = superposition_terms(plan0, a0, DEFAULT_CHOICE)
+    out.append(f"   at the solver's default disconnection ({DEFAULT_CHOICE}: {t0.choice.describe()}): unknown = "
+               f"{t0.unknowns[0]}: X = {t0.X[0, 0]:.3f} N, M_bar = {t0.residual[0, 0]:.4f} N m, "
+               f"K = {t0.coefficients[0, 0, 0]:.5f} m; the same reactions to 1e-9")
     out.append("== largest contributions to the first-order bound (N)")
     for k in ("R34t", "R53t", "R34n"):
         top = sorted(terms, key=lambda t: -t[2][k])[:4]
@@ -271,11 +372,10 @@ def report(samples=200, seed=0):
     out.append("   the paper's printed inertia forces instead of the computed ones (extra loads "
                + ", ".join(f"{e['link']} ({e['force'][0]:+.3f}, {e['force'][1]:+.3f})" for e in extra) + "): "
                + ", ".join(f"{k} {v:+.3f}" for k, v in pe.items()))
-    p = copy.deepcopy(pm.PRINTED)
-    p["inertia_printed"]["F_S4x"] = 451.09
-    f09 = reactions_of(p)
-    out.append("   with |F'5| = 451.09 N (the value that reproduces the printed R53n): "
-               + ", ".join(f"{k} {f09[k]:.3f} ({f09[k] - PRINTED_R[k]:+.3f})" for k in COMPONENTS))
+    th1 = pm.PRINTED["theta_deg"][1]
+    f981 = components(run(pm.scene_dict(start_deg=th1, stop_deg=th1, steps=1, g=9.81)))
+    out.append("   with g = 9.81 instead of the paper's 9.8 (masses G/9.81): "
+               + ", ".join(f"{k} {f981[k]:.3f} ({f981[k] - PRINTED_R[k]:+.3f})" for k in COMPONENTS))
     t1, q = pm.assembly()
     k_exact = k_factor(pm.points(q, t1))
     k_printed = k_factor({**pm.PRINTED["points"], "E": pm.PRINTED["E"]})

@@ -41,9 +41,13 @@ Reconstruction (each step is checked below):
   uniformly with its centre of mass on its axis (no inertia force, no inertia
   moment), and "F_S1, M_E1" are link 2's, "F_S2, M_E2" link 3's, "F_S3, M_E3"
   link 4's -- their magnitudes are reproduced below from the kinematics.
-* "F_S4x = 451" is not the slider's inertia force (that is m5 a5 = 85.8 N):
+* g = 9.8, as the paper uses: every printed weight is a round mass times 9.8 (294 N = 30 kg,
+  139.65 N = 14.25 kg, 167.58 N = 17.1 kg, 110.25 N = 11.25 kg, 1719.9 N = 175.5 kg).  With it
+  the lever's inertia force, the rocker's y component and the printing force come out to their
+  last printed digit (``items()``); with 9.81 they do not.
+* "F_S4x = 451" is not the slider's inertia force (that is m5 a5 = 85.9 N):
   the force balance (12) along x closes with -R53x + F5x + F'5 cos 20deg with
-  F'5 = 451 N exactly when F5x is the slider's computed inertia force.  So 451 N
+  F'5 = 451 N (450.995) exactly when F5x is the slider's computed inertia force.  So 451 N
   is the force F'5 acting on the slider at 20 deg to the guide (printing
   resistance); its sign of y and point of application are not determined by
   anything printed.
@@ -55,7 +59,7 @@ import math
 
 import numpy as np
 
-G_ACC = 9.81
+G_ACC = 9.8  # the paper's: every printed weight is a round mass times 9.8 (294 N = 30 kg)
 OMEGA1 = 30 * 2 * math.pi / 60  # 30 rpm = pi rad/s
 
 PRINTED = {
@@ -214,9 +218,9 @@ def centres(pts, printed=PRINTED):
 LINK_NAMES = ["crank", "coupler", "lever", "rocker", "slider"]
 
 
-def masses(printed=PRINTED):
-    """Masses G/g of links 1-5 (kg)."""
-    return {name: printed["weights"][k] / G_ACC for k, name in enumerate(LINK_NAMES, start=1)}
+def masses(printed=PRINTED, g=G_ACC):
+    """Masses G/g of links 1-5 (kg): 30, 14.25, 17.1, 11.25 and 175.5 kg with the paper's g = 9.8."""
+    return {name: printed["weights"][k] / g for k, name in enumerate(LINK_NAMES, start=1)}
 
 
 MASSES = masses()
@@ -226,7 +230,7 @@ J_ASSUMED = {"crank": 0.6, "slider": 3.104644}  # not printed; neither matters (
 INERTIA_KEYS = {"coupler": "M_E1", "lever": "M_E2", "rocker": "M_E3"}  # shifted labels, see module doc
 
 
-def scene_dict(printed=PRINTED, start_deg=None, stop_deg=None, steps=361):
+def scene_dict(printed=PRINTED, start_deg=None, stop_deg=None, steps=361, g=G_ACC):
     """The scene (a dict in the scene format) that the reconstruction gives for ``printed``.
 
     ``printed`` is shaped like PRINTED; what is read from it: the lengths, E,
@@ -239,7 +243,8 @@ def scene_dict(printed=PRINTED, start_deg=None, stop_deg=None, steps=361):
     its point matters for the reactions at D and F (the guide takes them).
 
     The driver sweeps start_deg..stop_deg (default theta1..theta1 + 360) in
-    ``steps`` steps at pi rad/s.  With PRINTED this is the shipped
+    ``steps`` steps at pi rad/s; masses G/g and gravity g (default the paper's 9.8).  With
+    PRINTED this is the shipped
     linkage_sym/examples/printing_mechanism.json, up to the rounding of the
     numbers in that file.  Plain dicts and floats: no linkage_sym import.
     """
@@ -248,7 +253,7 @@ def scene_dict(printed=PRINTED, start_deg=None, stop_deg=None, steps=361):
     pts = points(q, t1, dims)
     qd, qdd = rates(q, t1, OMEGA1, dims)
     cen = centres(pts, printed)
-    mass = masses(printed)
+    mass = masses(printed, g)
     alpha = {"coupler": qdd[0], "lever": qdd[1], "rocker": qdd[2]}
     inertia = dict(J_ASSUMED)
     for link, key in INERTIA_KEYS.items():
@@ -270,7 +275,7 @@ def scene_dict(printed=PRINTED, start_deg=None, stop_deg=None, steps=361):
                      "stop_deg": th1 + 360.0 if stop_deg is None else stop_deg, "steps": steps,
                      "speed": OMEGA1, "acceleration": 0.0}],
         "loads": [{"link": "slider", "force": [f5 * math.cos(phi), f5 * math.sin(phi)], "at": xy(cen["slider"])}],
-        "effects": {"inertia": True, "gravity": [0.0, -G_ACC], "loads": True},
+        "effects": {"inertia": True, "gravity": [0.0, -g], "loads": True},
         "outputs": ["kinematics", "reactions", "driving", "frame"],
     }
 
@@ -440,6 +445,241 @@ def report():
     for k, v in cen.items():
         out.append(f"  com {k:8s} ({v[0]:+.6f}, {v[1]:+.6f})  mass {MASSES[k]:.4f} kg")
     return "\n".join(out)
+
+
+# --------------------------------------------------------------------------- rounding of the inputs
+LENGTH_HALF = 0.00005  # lengths and E to 0.1 mm, as the printed coordinates (see printing_forces.py)
+
+# (path into PRINTED, half a unit of the last printed digit); the first 9 are the lengths and E
+ROUNDING = [(("lengths", k), LENGTH_HALF) for k in ("AB", "BC", "CD", "DF", "ED (printed l_AE)", "FF'", "AH")]
+ROUNDING += [(("E", 0), LENGTH_HALF), (("E", 1), LENGTH_HALF)]
+N_LENGTHS = 9
+ROUNDING += [(("S_printed", s, i), 0.00005) for s in ("S1", "S3") for i in (0, 1)]
+ROUNDING += [(("S_printed", "S4", 0), 0.00005), (("S_printed", "S4", 1), 0.0005)]
+ROUNDING += [(("weights", 1), 0.5), (("weights", 2), 0.005), (("weights", 3), 0.005), (("weights", 4), 0.005),
+             (("weights", 5), 0.05)]
+ROUNDING += [(("inertia_printed", "M_E1"), 0.00005), (("inertia_printed", "M_E2"), 0.0005),
+             (("inertia_printed", "M_E3"), 0.0005), (("inertia_printed", "F_S4x"), 0.5)]
+
+
+def _get(d, path):
+    for k in path:
+        d = d[k]
+    return d
+
+
+def _set(d, path, value):
+    *head, last = path
+    parent = _get(d, head)
+    if isinstance(parent, tuple):
+        items_ = list(parent)
+        items_[last] = value
+        _set(d, head, tuple(items_))
+    else:
+        parent[last] = value
+
+
+def perturbed(deltas, printed=PRINTED):
+    """A copy of ``printed`` with ``deltas[i]`` added to the input ``ROUNDING[i]``."""
+    import copy
+
+    out = copy.deepcopy(printed)
+    for (path, _), dv in zip(ROUNDING, deltas):
+        _set(out, path, _get(out, path) + dv)
+    return out
+
+
+def half_units(length_half=LENGTH_HALF):
+    half = np.array([h for _, h in ROUNDING])
+    half[:N_LENGTHS] = length_half
+    return half
+
+
+# --------------------------------------------------------------------------- items
+def kinematic_values(printed=PRINTED, g=G_ACC) -> dict:
+    """What the reconstruction computes for the printed position (no force analysis).
+
+    Coordinates of B, C, D, F and the angles theta2-4 of the exact assembly; the midpoint of BC
+    (the printed "S1"); the inertia forces -m a of links 2, 3, 4 at their centres of mass, with
+    m = G/g (the printed magnitudes carry the labels F_S1-F_S3); the slider's -m5 a5 along x;
+    and the printing force |F'5| that closes the slider's x balance (12) with the printed
+    R53n: R53n = F5x + F'5 cos 20 deg.
+    """
+    dims = dims_from(printed)
+    t1, q = assembly(printed)
+    pts = points(q, t1, dims)
+    qd, qdd = rates(q, t1, OMEGA1, dims)
+    cen = centres(pts, printed)
+    m = masses(printed, g)
+    out = {}
+    for k in "BCDF":
+        out[f"x_{k}"], out[f"y_{k}"] = (float(v) for v in pts[k])
+    for i, name in ((0, "theta2"), (1, "theta3"), (2, "theta4")):
+        out[name] = math.degrees(q[i]) % 360.0
+    mid = (pts["B"] + pts["C"]) / 2
+    out["x_S1"], out["y_S1"] = float(mid[0]), float(mid[1])
+    a_b = -dims["AB"] * u(t1) * OMEGA1**2
+    a_d = point_acc(np.zeros(2), dims["E"], pts["D"], qd[2], qdd[2])
+    acc = {"coupler": point_acc(a_b, pts["B"], cen["coupler"], qd[0], qdd[0]),
+           "lever": point_acc(a_d, pts["D"], cen["lever"], qd[1], qdd[1]),
+           "rocker": point_acc(np.zeros(2), dims["E"], cen["rocker"], qd[2], qdd[2])}
+    for link, key in (("coupler", "F_S1"), ("lever", "F_S2"), ("rocker", "F_S3")):
+        f = -m[link] * acc[link]
+        out[f"{key}x"], out[f"{key}y"] = abs(float(f[0])), abs(float(f[1]))
+    et = (dims["E"] - pts["D"]) / np.linalg.norm(dims["E"] - pts["D"])
+    out["R43t_x"], out["R43t_y"] = (float(v) for v in -et)  # unit force of the rocker on the lever, along E->D
+    out["F5x"] = float(-m["slider"] * qdd[3])
+    out["F'5"] = abs((printed["results"]["R53n"] - out["F5x"]) / math.cos(math.radians(printed["F5_angle_deg"])))
+    return out
+
+
+def kinematic_spread(samples=200, seed=0) -> dict:
+    """Largest |deviation| of each kinematic_values entry over a seeded Monte Carlo of the printed
+    inputs, each uniform within half a unit of its last printed digit (lengths and E: +-0.05 mm)."""
+    rng = np.random.default_rng(seed)
+    half = half_units()
+    nominal = kinematic_values()
+    dev = {k: 0.0 for k in nominal}
+    for _ in range(samples):
+        got = kinematic_values(perturbed(rng.uniform(-half, half)))
+        for k in dev:
+            dev[k] = max(dev[k], abs(got[k] - nominal[k]))
+    return dev
+
+
+def _eq_13_14_bound():
+    """First-order worst change of the solution of the printed eqs. 13-14 when each printed
+    coefficient and constant moves by half a unit of its last digit."""
+    res = PRINTED["results"]
+    (a, b, c), (d, e, f) = res["eq13"], res["eq14"]
+    base = np.linalg.solve([[a, b], [d, e]], [c, f])
+    halves = (0.00005, 0.00005, 0.00005, 0.0005, 0.0005, 0.00005)
+    total = np.zeros(2)
+    for i, h in enumerate(halves):
+        v = [a, b, c, d, e, f]
+        v[i] += h
+        got = np.linalg.solve([[v[0], v[1]], [v[3], v[4]]], [v[2], v[5]])
+        total += np.abs(got - base)
+    return base, total
+
+
+def items(samples=200, seed=0):
+    """Dang and Zhang's printed geometry, inertia forces, printing force and their own arithmetic
+    (paper_repro/items.py), from the reconstruction with the paper's g = 9.8 (no linkage_sym).
+
+    Tolerances: half a unit of the printed last digit ("reproduced"), else the Monte-Carlo spread
+    of ``samples`` seeded samples of the printed inputs within their rounding (kinematic_spread;
+    lengths and E to 0.1 mm, as the printed coordinates show).  The paper's own arithmetic
+    (eqs. 13-14 solved, R34t = -F_x/K, ...) is redone from its printed intermediates; where that
+    misses the last digit, the tolerance is the first-order effect of the rounding of the printed
+    coefficients it starts from.
+    """
+    from items import ERRATUM, NOT_REPRODUCIBLE, REPRODUCED, ROUNDING as ROUND, Item
+
+    pr = PRINTED
+    val = kinematic_values()
+    spread = kinematic_spread(samples, seed)
+    mc = (f"spread of {samples} seeded samples of the printed inputs within their rounding "
+          f"(lengths and E +-0.05 mm, centres of mass 0.1 mm, weights, M_E1-3 and 451 N to their last digit)")
+    out = []
+
+    def graded(where, name, printed, key, unit, why_round=mc, extra=""):
+        got = val[key]
+        d = abs(got - float(printed))
+        from items import half_unit
+
+        if d <= half_unit(printed):
+            out.append(Item(1, where, name, printed, got, REPRODUCED, unit=unit, why=extra))
+        elif d <= spread[key]:
+            out.append(Item(1, where, name, printed, got, ROUND, tol=spread[key], why=why_round, unit=unit))
+        else:
+            out.append(Item(1, where, name, printed, got, NOT_REPRODUCIBLE, unit=unit,
+                            why=f"off by {d:.3g}, {d / max(spread[key], 1e-300):.1f} times the {mc}" + extra))
+
+    pts_text = {"B": ("0.1", "-0.1732"), "C": ("-0.8687", "-0.122"), "D": ("-0.8913", "-0.4152"),
+                "F": ("-0.8436", "0.203")}
+    for k, (tx, ty) in pts_text.items():
+        graded("sec. 4, coordinates", f"x_{k}", tx, f"x_{k}", "m")
+        graded("sec. 4, coordinates", f"y_{k}", ty, f"y_{k}", "m")
+    for name, text in (("theta2", "176.98"), ("theta3", "85.59"), ("theta4", "218.07")):
+        graded("sec. 4, angles", name, text, name, "deg")
+    graded("sec. 4, 'S1' = S2", "x of the midpoint of BC", "-0.3843", "x_S1", "m")
+    graded("sec. 4, 'S1' = S2", "y of the midpoint of BC", "-0.1476", "y_S1", "m")
+    g_note = ("m = G/9.8, the paper's g (294 N is 30 kg, 1719.9 N is 175.5 kg); with g = 9.81 every inertia "
+              "force is 0.1 % smaller and F_S2x, F_S2y, F_S3y miss their last digit")
+    for key, link in (("F_S1", "coupler"), ("F_S2", "lever"), ("F_S3", "rocker")):
+        for i, ax in enumerate("xy"):
+            extra = ""
+            if key == "F_S2" and ax == "x":
+                extra = g_note
+            elif key == "F_S1" and ax == "x":
+                extra = ("; every other component comes within the rounding (a typo for 13.63 would fit, but "
+                         "nothing else printed shows it)")
+            graded("sec. 4, inertia forces", f"{key}{ax} (|{ax}| of -m a, {link})",
+                   f"{pr['inertia_printed'][key][i]:g}" if key != "F_S3" or ax != "y" else "13.40",
+                   f"{key}{ax}", "N", extra=extra)
+    f5_981 = abs((pr["results"]["R53n"] - val["F5x"] * G_ACC / 9.81) / math.cos(math.radians(20)))
+    out.append(Item(1, "sec. 4, 'F_S4x'", "|F'5| from R53n = F5x + F'5 cos 20 deg", "451", val["F'5"], REPRODUCED,
+                    unit="N", why=f"F5x = -m5 a5 = {val['F5x']:.3f} N with m5 = 1719.9/9.8 = 175.5 kg; with g = "
+                                  f"9.81 it would be {f5_981:.2f} N"))
+
+    # errata of the printed data, each shown by the reconstruction
+    P = {k: np.array(v) for k, v in pr["points"].items()}
+    ed, ae = float(np.linalg.norm(P["D"] - E)), float(np.linalg.norm(E - A))
+    out.append(Item(1, "sec. 4, lengths", "l_AE", "0.37", ae, ERRATUM, corrected="l_ED = 0.37",
+                    holds=abs(ed - 0.37) < 1e-4 < 0.1 < abs(ae - 0.37), unit="m",
+                    why=f"|AE| = {ae:.4f} from the printed E; |ED| = {ed:.5f} from the printed coordinates"))
+    s3 = np.array(pr["S_printed"]["S3"])
+    s3f = np.array([-s3[0], s3[1]])
+    off = abs(cross(P["D"] - E, s3f - E)) / ed
+    far = min(np.linalg.norm(s3 - p) for p in (*P.values(), E, A))
+    out.append(Item(1, "sec. 4, centres of mass", "x_S3", "0.7204", float(s3f[0]), ERRATUM, corrected="-0.7204",
+                    holds=off < 1e-4 and far > 0.5, unit="m",
+                    why=f"(0.7204, -0.2813) is {far:.2f} m from the nearest joint, off every link; (-0.7204, -0.2813) lies on ED "
+                        f"({off:.1e} m off the line): the rocker's centre"))
+    mid_ok = abs(val["x_S1"] - (-0.3843)) < 1e-4 and abs(val["y_S1"] - (-0.1476)) < 1e-4
+    out.append(Item(1, "sec. 4, centres of mass and inertia forces", "labels S1-S4, F_S1-F_S3, M_E1-M_E3",
+                    "link 1-4", "link 2-5", ERRATUM, corrected="S2-S5, F_S2-F_S4, M_E2-M_E4 (shifted by one link)",
+                    holds=mid_ok and off < 1e-4,
+                    why="printed S1 is the midpoint of BC (link 2), S2 = C is on the lever 3, S3 on the rocker 4, S4 "
+                        "near the slider 5; the crank turns uniformly about its centre and has no inertia load"))
+    out.append(Item(1, "sec. 4, inertia forces", "F_S4x labelled an inertia force", "451", val["F5x"], ERRATUM,
+                    corrected="F'5 = 451 N, the printing force at 20 deg to the guide (eq. 12's F'5x cos 20)",
+                    holds=abs(val["F'5"] - 451) <= 0.5 and abs(abs(val["F5x"]) - 451) > 100, unit="N",
+                    why="the slider's inertia force is -m5 a5 (computed); 451 N at 20 deg closes eq. 12 with the "
+                        "printed R53n"))
+    for key in ("M_E1", "M_E2", "M_E3"):
+        out.append(Item(1, "sec. 4, inertia moments", key, f"{pr['inertia_printed'][key]:g}", "(input)",
+                        NOT_REPRODUCIBLE, unit="N m",
+                        why="the paper prints no moments of inertia: J = M/|alpha| is derived from these, so they "
+                            "are inputs, not checks"))
+
+    # the paper's own arithmetic, from its printed intermediates
+    res = pr["results"]
+    base, bound = _eq_13_14_bound()
+    why_c = ("the printed coefficients of eqs. 13-14 are rounded (0.025 stands for 0.0251); the tolerance is "
+             "the first-order effect of half a unit of each printed coefficient and constant")
+    for i, (name, text) in enumerate((("(R53n)'", "63.69"), ("(R53t)'", "305.60"))):
+        d = abs(base[i] - float(text))
+        st = REPRODUCED if d <= 0.005 else ROUND
+        out.append(Item(1, "sec. 4, eqs. 13-14 solved", name, text, float(base[i]), st, unit="N",
+                        tol=None if st == REPRODUCED else float(bound[i]), why="" if st == REPRODUCED else why_c))
+    fx = -res["R53n'"] + val["F5x"] + (-pr["inertia_printed"]["F_S4x"] * math.cos(math.radians(20)))
+    out.append(Item(1, "sec. 4, eq. 12", "F_x = -(R53n)' + F5x + F'5x cos 20", "-573.40", fx, REPRODUCED, unit="N",
+                    why="printed (R53n)' = 63.69, computed F5x (g = 9.8) and F'5 = 451 N"))
+    th4 = math.radians(pr["theta_deg"][4])
+    unit_note = (f"the printed pair is not a unit vector to its digits (x^2 + y^2 = {0.7872**2 + 0.6166**2:.5f}); "
+                 f"cos, sin of the printed theta4 give ({math.cos(th4):.5f}, {math.sin(th4):.5f}), the printed "
+                 f"coordinates D, E ({-(E - P['D'])[0] / ed:.5f}, {-(E - P['D'])[1] / ed:.5f})")
+    graded("sec. 4, unit run", "R43t_x for R34t = 1 (-(E - D)/|ED|)", "-0.7872", "R43t_x", "")
+    graded("sec. 4, unit run", "R43t_y for R34t = 1 (-(E - D)/|ED|)", "-0.6166", "R43t_y", "", why_round=mc + "; " + unit_note)
+    out.append(Item(1, "sec. 4, eq. 12", "R34t = -F_x / K", "934.03", -res["Fx_bar"] / res["K"], REPRODUCED,
+                    unit="N", why="printed F_x = -573.40 and K = 0.6139"))
+    out.append(Item(1, "sec. 4, eq. 7", "R53n = (R53n)' + (R53n)'' R34t", "-509.71",
+                    res["R53n'"] + res["R53n''"] * res["R34t"], REPRODUCED, unit="N", why="printed intermediates"))
+    out.append(Item(1, "sec. 4, eq. 7", "R53t = (R53t)' + (R53t)'' R34t", "950.64",
+                    res["R53t'"] + res["R53t''"] * res["R34t"], REPRODUCED, unit="N", why="printed intermediates"))
+    return out
 
 
 if __name__ == "__main__":

@@ -45,6 +45,8 @@ Result (run the script):  l6 = 0.275 m, l6' = 0.575 m.
   vE over th1 = 0..20 deg gives dvE/dt ~ -0.105 at 10 deg, not -0.134).
   So Table 3-1's aE column is wrong; the geometry is not.
 
+``items()`` gives every entry of the table as a row of ``python -m paper_repro``.
+
 Run:  python3 paper_repro/shaper_distances.py      (plain python3 + numpy)
 """
 
@@ -195,6 +197,62 @@ def report():
                f"|l6' - l3 sin th3| <= {max(abs(l6p - L3 * math.sin(math.radians(90 + lo))), abs(l6p - L3)):.4f} m < l4, "
                f"so the crank turns fully; stroke-time ratio K = {(180 + 2 * lo) / (180 - 2 * lo):.4f}")
     return "\n".join(out)
+
+
+UNITS = ("deg", "deg", "m", "rad/s", "rad/s", "m/s", "rad/s^2", "rad/s^2", "m/s^2")
+
+
+def items():
+    """Table 3-1 entry by entry (paper_repro/items.py), computed with l6 = 0.275 m, l6' = 0.575 m.
+
+    Statuses: reproduced to the printed last digit (th4 to its fourth decimal: its fifth is 0 in
+    every row); th3 within 1e-4 deg, because l6 is not printed and th3 moves 5.7e-5 deg per
+    0.7 um of it (the least-squares l6 = 0.2750007 m reproduces every th3 and moves other last
+    digits by one unit); two last-digit misfits within one unit (the table's own numerical
+    tolerance: its rows th1 = 0 and 360, one position, print alpha4 = 0.29266 and 0.29267);
+    th4 of rows 0 and 360 and the aE column are errata.
+    """
+    from items import ERRATUM, REPRODUCED, ROUNDING, Item
+
+    l6, l6p = 0.275, 0.575
+    rows = {th1: row(th1, l6, l6p) for th1 in TABLE}
+    # aE: the printed vE column's own central difference at 10 deg against both aE values
+    h = math.radians(10.0) / OMEGA1
+    dvE = (TABLE[20][5] - TABLE[0][5]) / (2 * h)
+    ae_holds = abs(dvE - rows[10][8]) < 0.2 * abs(dvE - TABLE[10][8])
+    out = []
+    for th1, pr in TABLE.items():
+        where = f"Table 3-1, th1 = {th1} deg"
+        for k, (col, d, unit) in enumerate(zip(COLUMNS, DECIMALS, UNITS)):
+            got, p = float(rows[th1][k]), pr[k]
+            text = f"{p:.5f}"
+            kw = dict(source=4, where=where, name=col, printed=text, computed=got, unit=unit)
+            if col == "th4_deg" and th1 in (0, 360):
+                fixed = p - 1.0
+                out.append(Item(**kw, status=ERRATUM, corrected=f"{fixed:.4f}",
+                                holds=abs(got - fixed) <= 5e-5 and abs(got - p) > 0.5,
+                                why="a one-digit typo (169 for 168): the same row's sE, omega4, vE and alpha4 fit "
+                                    "l6' = 0.575 m, which gives 168.93822; the printed value would need l6' = 0.57243"))
+            elif col == "aE":
+                out.append(Item(**kw, status=ERRATUM, corrected=f"{got:.5f}",
+                                holds=ae_holds and abs(got - p) > 100 * 0.5 * 10.0**-d,
+                                why=f"the aE column follows neither from the loop equations nor from the printed vE "
+                                    f"column: vE's own central difference over th1 = 0..20 deg gives dvE/dt = "
+                                    f"{dvE:.4f} at 10 deg (computed {rows[10][8]:.5f}, printed {TABLE[10][8]})"))
+            elif col == "th4_deg":
+                out.append(Item(**kw, status=REPRODUCED, tol=5e-5,
+                                why="to 4 decimals: th4's fifth printed decimal is 0 in every row"))
+            elif col == "th3_deg":
+                out.append(Item(**kw, status=ROUNDING, tol=1e-4,
+                                why="l6 is not printed (Fig. 3-13 missing): th3 moves 5.7e-5 deg per 0.7 um of it, and "
+                                    "l6 = 0.2750007 m (least squares over the table) reproduces every th3"))
+            elif abs(got - p) <= 0.5 * 10.0**-d:
+                out.append(Item(**kw, status=REPRODUCED))
+            else:
+                out.append(Item(**kw, status=ROUNDING, tol=10.0**-d,
+                                why="one unit of the last digit: the table's own tolerance (its rows th1 = 0 and "
+                                    "360, one position, print alpha4 = 0.29266 and 0.29267)"))
+    return out
 
 
 if __name__ == "__main__":

@@ -508,15 +508,17 @@ def test_printing_mechanism_matches_printed_coordinates():
 
 
 def test_printing_mechanism_masses_and_centres():
-    """Masses G/9.81; centres as printed with the labels moved back by one link
-    (printed S1 -> coupler, S2 = C -> lever, S3 with x sign restored -> rocker,
+    """Masses G/9.8, the paper's g (every printed weight is a round mass times 9.8: 30, 14.25,
+    17.1, 11.25, 175.5 kg) and gravity 9.8; centres as printed with the labels moved back by
+    one link (printed S1 -> coupler, S2 = C -> lever, S3 with x sign restored -> rocker,
     S4 -> slider); the crank's centre is on its axis."""
     scene = example_dict("printing_mechanism")
     links = {lk["name"]: lk for lk in scene["links"]}
     j = {x["name"]: np.array(x["at"]) for x in scene["joints"]}
     weights = {"crank": 294.0, "coupler": 139.65, "lever": 167.58, "rocker": 110.25, "slider": 1719.9}
     for name, g in weights.items():
-        assert links[name]["mass"] == pytest.approx(g / 9.81, rel=1e-6)
+        assert links[name]["mass"] == pytest.approx(g / 9.8, rel=1e-12)
+    assert scene["effects"]["gravity"] == [0.0, -9.8]
     assert np.allclose(links["crank"]["com"], j["A"])
     assert np.allclose(links["coupler"]["com"], [-0.3843, -0.1476])
     assert np.allclose(links["lever"]["com"], j["C"])

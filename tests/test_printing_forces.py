@@ -1,6 +1,6 @@
-"""linkage_sym against the reactions printed by seed 000 for its printing mechanism.
+"""linkage_sym against the reactions printed by Dang and Zhang for their printing mechanism.
 
-Seed 000 (Dang Zuqi, Zhang Qixian), section 4, analyses the semi-automatic
+Dang Zuqi, Zhang Qixian ([1] of the README's Sources), section 4, analyses the semi-automatic
 printing mechanism at one position, theta1 = 300 deg, omega1 = pi rad/s, and
 prints the reactions at D and F:
 
@@ -39,26 +39,26 @@ by several tenths of a mm is ruled out.  Taking them to 1 mm gives spreads
 ten times larger (R34t 34 N, R53t 22 N, R34n 0.28 N), which would make the
 comparison empty.
 
-Values (seed 0, 200 samples, about 1 s):
+Values (seed 0, 200 samples, about 3 s), with the paper's g = 9.8:
 
 =====  ===========  ========  ==========  ======  ==========================
        linkage_sym  printed   difference  spread  first-order worst corner
-R34n   47.210       47.219    -0.009      0.036   0.063
-R34t   934.272      934.030   +0.242      3.53    6.36
-R53n   -509.627     -509.710  +0.083      1.43    2.36
-R53t   950.835      950.640   +0.195      2.42    4.23
+R34n   47.217       47.219    -0.002      0.037   0.063
+R34t   934.427      934.030   +0.397      3.53    6.36
+R53n   -509.715     -509.710  -0.005      1.43    2.37
+R53t   950.984      950.640   +0.344      2.42    4.24
 =====  ===========  ========  ==========  ======  ==========================
 
 Geometry dominates the spread (BC, x_E, ED, CD, AB contribute about 1 N each
-to R34t): the 175 kg slider's small acceleration (0.49 m/s^2) and the lever's
+to R34t): the 175.5 kg slider's small acceleration (0.49 m/s^2) and the lever's
 force ratio K are sensitive to it.  The residuals are 6-25 % of the spread.
 The residual of R34t is the coordinate rounding at work: the paper's
 K = 0.6139 is what its rounded printed coordinates give (0.61395), while the
 exact assembly gives 0.61372, and R34t = -F_x/K.  Using the paper's printed
-inertia forces instead of the computed ones (they differ by up to 0.05 N)
-changes the results by at most 0.06 N; a printing force of 451.09 N (the
-value that reproduces the printed R53n exactly) moves R34t to 934.41 and
-R53t to 950.93, still well inside.
+inertia forces instead of the computed ones (they differ by up to 0.04 N)
+changes the results by at most 0.01 N.  With g = 9.81 (masses G/9.81) the
+printing force that closes the printed R53n would be 451.09 N, not the
+printed 451; with 9.8 it is 450.995.
 """
 
 from __future__ import annotations
