@@ -70,6 +70,7 @@ import numpy as np
 from linkage_sym import cli_centres
 from linkage_sym._version import __version__
 from linkage_sym.errors import BalanceError, SceneError
+from linkage_sym.synthesis import cli as synthesis_cli
 
 DEMO_EXAMPLES = ("crank_rocker", "shaper")
 
@@ -622,6 +623,7 @@ def build_parser() -> argparse.ArgumentParser:
     d.set_defaults(func=cmd_demo)
     e = sub.add_parser("examples", help="list the shipped example scenes")
     e.set_defaults(func=cmd_examples)
+    synthesis_cli.register(sub)
     cli_centres.register(sub)
     return p
 
