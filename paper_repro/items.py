@@ -164,9 +164,9 @@ def _fmt(x, printed: str = "") -> str:
     if n is None or isinstance(x, str):
         return str(x)
     d = _decimals(printed)
-    if d is not None and abs(n) < 1e6:
+    if d is not None and (n == 0 or 10.0 ** -(d + 2) <= abs(n) < 1e6):
         return f"{n:.{d + 2}f}"
-    return f"{n:.6g}"
+    return f"{n:.3g}" if abs(n) < 1e-3 else f"{n:.6g}"
 
 
 CELL = 40  # widest cell; longer text (formulas) goes on the lines below the row
