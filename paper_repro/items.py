@@ -199,7 +199,7 @@ def table(items: list[Item]) -> str:
             cells.append((it.where, it.name + (f" [{it.unit}]" if it.unit else ""), printed, computed,
                           "" if d is None else f"{d:+.3g}", "" if t is None else f"{t:.2g}", status))
             notes.append(note)
-        w = [min(CELL, max(len(h), *(len(c[i]) for c in cells))) for i, h in enumerate(head)]
+        w = [min(CELL + 6 * (i == 1), max(len(h), *(len(c[i]) for c in cells))) for i, h in enumerate(head)]
 
         def line(c):
             return "  " + "  ".join(str(v)[:w[i]].ljust(w[i]) for i, v in enumerate(c)).rstrip()

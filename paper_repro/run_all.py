@@ -11,7 +11,8 @@ not reproducible, with the reason below the row); see items.py for what each sta
 The exit status is 1 if any item drifted (a reproduced or within-rounding item beyond its
 tolerance, or an erratum its derivation no longer shows), else 0.
 
-Each script contributes through ``items()``; SCRIPTS lists them in the order they run.
+Each script contributes through ``items()`` (or, for a script that has none, the adapter of
+adapters.py); SCRIPTS lists them in the order they run.
 ``--samples`` is passed to the scripts whose ``items`` take it (Monte-Carlo spreads).
 """
 
@@ -29,6 +30,7 @@ for _p in (str(HERE), str(HERE.parent)):
     if _p not in sys.path:
         sys.path.insert(0, _p)
 
+from adapters import ADAPTERS  # noqa: E402
 from items import STATUSES, table  # noqa: E402
 
 SCRIPTS = (
@@ -37,6 +39,8 @@ SCRIPTS = (
     "shaper_distances",  # [4] example 3-7, Table 3-1
     "song_wang_errata",  # [3] every erratum, by the derivation
     "song_wang_designs",  # [3] the three designs, simulated
+    "four_bar_design",  # [2] design by K, examples 2-9 and 2-10 (items from adapters.py)
+    "chapter3_polygons_exercises",  # [4] example 3-1's polygons, exercises (items from adapters.py)
 )
 
 
@@ -45,11 +49,12 @@ def collect(scripts=SCRIPTS, samples: int | None = None, timings: dict | None = 
     out = []
     for name in scripts:
         mod = importlib.import_module(name)
+        get = getattr(mod, "items", None) or ADAPTERS[name]  # a script's own items() first
         kwargs = {}
-        if samples is not None and "samples" in inspect.signature(mod.items).parameters:
+        if samples is not None and "samples" in inspect.signature(get).parameters:
             kwargs["samples"] = samples
         t0 = time.perf_counter()
-        got = list(mod.items(**kwargs))
+        got = list(get(**kwargs))
         if timings is not None:
             timings[name] = time.perf_counter() - t0
         out += got
