@@ -53,7 +53,7 @@ import sys
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
 import linkage_sym
@@ -214,16 +214,26 @@ def test_count_on_every_step(name):
 
 def test_reachability_of_the_examples():
     """The five-bar's secondary centres (two degrees of freedom) are filled from the
-    velocities; every 1-DOF example is reached by Kennedy at every step."""
+    velocities; every 1-DOF example's are Kennedy's at every step but two of the shaper's:
+    at 90 and 270 deg the guide bar is vertical, the connecting link turns at ~1e-9 of the
+    crank's rate, and every pair of lines left through P(crank, connecting_link) and
+    P(crank, ram) is one line but for rounding (checked: refused, not guessed)."""
     for name in example_names():
         scene = linkage_sym.load_example(name)
-        k = kennedy_centres(scene, linkage_sym.analyze(scene))
+        res = linkage_sym.analyze(scene)
+        k = kennedy_centres(scene, res)
         unreachable = [p for p, s in zip(k.pairs, k.source) if s == "unreachable"]
+        missed = ~k.reached & (res.status == "ok")[:, None]
         if name == "fivebar":
             assert len(unreachable) == 5
+            continue
+        assert unreachable == [], name
+        if name == "shaper":
+            steps, pairs = np.nonzero(missed)
+            assert set(steps) == {90, 270}
+            assert {k.pairs[p] for p in pairs} == {("crank", "connecting_link"), ("crank", "ram")}
         else:
-            assert unreachable == [], name
-            assert k.reached.all(), name
+            assert not missed.any(), name
 
 
 def test_compound_pin_of_the_song_wang_sixbar():
@@ -326,8 +336,14 @@ def test_random_guide_bars(l4, f, g, gamma, sg, start, rot, sc, w):
        e_len=st.floats(0.3, 1.5), e_ang=st.floats(30.0, 330.0), gx=st.floats(-3.0, 6.0),
        gy=st.floats(-4.0, 4.0), spread=st.floats(0.1, 0.8), reach=st.floats(0.1, 0.5),
        start=angle, w=rate)
+@example(l2=1.0, l3=1.0, l4=1.0, f=0.5, sg=1, sg2=1, e_len=1.0, e_ang=30.0, gx=1e-7, gy=0.0,
+         spread=0.5, reach=0.5, start=0.0, w=1.0)
 def test_random_watt_sixbars(l2, l3, l4, f, sg, sg2, e_len, e_ang, gx, gy, spread, reach,
                              start, w):
+    """The example: G 1e-7 of the size from A, so that at some steps the three-centre lines
+    through P(crank, link6) are all one line (the x-axis) but for rounding; their "meeting" far
+    away on it once fed garbage to every centre built on it.  Nearly parallel lines now meet at
+    infinity only when they are well apart, and a meeting known to worse than 1e-3 is not used."""
     l1 = _crank_rocker(l2, l3, l4, f)
     assume(l1 is not None)
     e = e_len * l3

@@ -63,6 +63,15 @@ ROUNDING = 8 * float(np.finfo(float).eps)
 global origin (at least one mechanism size); of a slide's direction, relative to
 its angle (at least 1 rad)."""
 
+DISTINCT = 1e3
+"""Two nearly parallel three-centre lines meet at infinity only if they lie this many times
+their possible offsets apart; closer, they may be one line, and they meet nowhere in
+particular (the intersection is not used)."""
+
+UNCERTAIN = 1e-3
+"""An intersection whose estimated error exceeds this fraction of its distance (at least one
+mechanism size) is not used: the lines are too nearly one."""
+
 COINCIDENT = 1e-9
 """``R`` joints on a common link closer than this fraction of the mechanism's
 size in the assembly configuration are one pin (the validator's tolerance for
@@ -210,7 +219,11 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
     centres may be off by their errors, tilted by their sum over their
     distance, and an intersection is off by the lines' offsets there over the
     sine of their angle.  Lines through centres that coincide at that step,
-    or through a centre not found at that step, are skipped.  Once every
+    or through a centre not found at that step, are skipped; so is a meeting
+    whose estimated error exceeds ``UNCERTAIN`` of its distance, and a meeting
+    at infinity of two lines that are not ``DISTINCT`` (they may be one line
+    for all their errors): where no pair of lines is left, the centre is not
+    reached at that step rather than guessed.  Once every
     reachable pair is known, every derived centre is intersected again with
     all the lines there are (later centres give lines through earlier ones)
     until no estimate improves.
@@ -463,7 +476,18 @@ def _intersect_best(H, E, i, j, ks):
                        + eb + sb * np.linalg.norm(X - qb, axis=-1))
                 err = np.where(h[:, 2] != 0.0, off / sin,
                                np.where(ia, sb, np.where(ib, sa, np.maximum(sa, sb))))
-            r = np.where(valid, _relative(h, err), np.inf)
+                # Nearly parallel lines meet far away (at infinity after the snap) only if they
+                # are two lines: apart, near the mechanism, by much more than either may be off
+                # there.  Lines that one may be for all their errors meet anywhere.
+                na = np.linalg.norm(la[:, :2], axis=-1)
+                nb = np.linalg.norm(lb[:, :2], axis=-1)
+                same_sense = np.sign(np.sum(la[:, :2] * lb[:, :2], axis=-1))
+                apart = np.abs(la[:, 2] / na - same_sense * lb[:, 2] / nb)
+                slack = (ea + sa * np.linalg.norm(qa, axis=-1) + eb + sb * np.linalg.norm(qb, axis=-1))
+                two_lines = ia | ib | (apart > DISTINCT * slack)
+            rel = _relative(h, err)
+            valid &= np.where(h[:, 2] == 0.0, two_lines, rel <= UNCERTAIN)
+            r = np.where(valid, rel, np.inf)
             better = r < best_r
             if not better.any():
                 continue
