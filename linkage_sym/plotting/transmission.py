@@ -48,6 +48,14 @@ def transmission_figure(scene: Scene, analysis: Analysis):
     ------
     ValueError
         If the analysis has no transmission angles (no RRR dyad).
+
+    Examples
+    --------
+    >>> import linkage_sym
+    >>> scene = linkage_sym.load_example("watt_sixbar")
+    >>> fig = transmission_figure(scene, linkage_sym.analyze(scene))
+    >>> [line.get_label().split(chr(10))[0] for line in fig.axes[0].get_lines()[1::2]]
+    ['γ at C', 'γ at E']
     """
     angles = analysis.transmission_angles
     if not angles:
@@ -100,5 +108,13 @@ def transmission_angles(scene: Scene, analysis: Analysis, path) -> Path:
     -------
     pathlib.Path
         ``path``.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, linkage_sym
+    >>> scene = linkage_sym.load_example("crank_rocker")
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "t.png"
+    >>> transmission_angles(scene, linkage_sym.analyze(scene), out).read_bytes()[:4]
+    b'\x89PNG'
     """
     return style.save(transmission_figure(scene, analysis), path)

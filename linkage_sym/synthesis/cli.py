@@ -30,7 +30,13 @@ import sys
 from linkage_sym.synthesis.common import SynthesisError
 
 def _option(field: str) -> str:
-    """The command-line option of an API parameter named in a :class:`SynthesisError`."""
+    """The command-line option of an API parameter named in a :class:`SynthesisError`.
+
+    Examples
+    --------
+    >>> _option("swing_deg"), _option("positions[1][2]")
+    ('--swing-deg', '--positions [1][2]')
+    """
     base, _, index = field.partition("[")
     opt = "--" + base.replace("_", "-")
     return f"{opt} [{index}" if index else opt
