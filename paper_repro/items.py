@@ -107,6 +107,8 @@ class Item:
     unit: str = ""
 
     def __post_init__(self):
+        if self.holds is not None:  # a NumPy bool from a derivation becomes a plain one
+            object.__setattr__(self, "holds", bool(self.holds))
         if self.status not in STATUSES:
             raise ValueError(f"status: {self.status!r} is not one of {STATUSES}")
         if self.source not in SOURCES:
