@@ -41,6 +41,7 @@ from linkage_sym.codegen import cache
 from linkage_sym.codegen.compile import build_artifact, compile_mechanism
 from linkage_sym.codegen.runtime import CompiledMechanism
 from linkage_sym.model import GROUND, Scene
+from linkage_sym.numeric import accuracy
 from linkage_sym.numeric.result import OK, SINGULAR, UNASSEMBLABLE, GroupForces
 from linkage_sym.structure.parameters import ident
 
@@ -344,6 +345,7 @@ class PreciseMechanism:
         if q is None:
             q, qd, qdd = cm.sweep()
         base = cm.run(q, qd, qdd)
+        base_accuracy = base.accuracy
         names = art["q"]
         Qs = np.array([np.asarray(q[n], float) for n in names])
         QDs = np.array([np.asarray(qd[n], float) for n in names])
@@ -380,7 +382,21 @@ class PreciseMechanism:
         base.status = status
         base.messages = messages
         analysis = self._round_into(base, records, stages)
+        analysis.accuracy = self._accuracy(analysis, base_accuracy, stages)
         return PreciseResult(analysis, self.digits, records, list(art["x"]))
+
+    def _accuracy(self, res, base_accuracy, stages) -> dict:
+        """The float64 run's ``K`` with ``10^-digits`` for eps, plus the rounding to float64
+        (coordinates: half an ulp of the largest one, over the mechanism's size)."""
+        K = accuracy.condition_of(base_accuracy)
+        L = self.cm.L
+        big = np.zeros(len(res.status))
+        for jk in res.joints.values():
+            big = np.fmax(big, np.nanmax(np.abs(jk.position), axis=1))
+        floor = {"position": accuracy.EPS * np.fmax(1.0, big / L), "velocity": accuracy.EPS,
+                 "acceleration": accuracy.EPS, "forces": accuracy.EPS}
+        return accuracy.accuracy(K, res.status == OK, stages, unit=10.0 ** (-self.digits),
+                                 floor=floor)
 
     def _record(self, s, stages) -> dict:
         """The step's values by name (mpf), as in :attr:`PreciseResult.steps`."""

@@ -24,8 +24,10 @@ import numpy as np
 
 from linkage_sym.codegen import cache
 from linkage_sym.errors import SceneError
-from linkage_sym.numeric import continuation
-from linkage_sym.model import Scene
+from linkage_sym.numeric import accuracy, continuation
+from linkage_sym.numeric.constraints import jacobian, scene_constraints
+from linkage_sym.numeric.state import LinkState
+from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.result import (
     OK,
     SINGULAR,
@@ -178,6 +180,9 @@ class CompiledMechanism:
             (g["rows"][0], g["rows"][1], g["cols"][0], g["cols"][-1] + 1) for g in art["groups"]
         ]
         self._choose_branches()
+        self._pose_constraints = None
+        self._calibration = None  # accuracy: (G,) from the own sweep (see _accuracy)
+        self._calibrating = False
 
     # -- positions -----------------------------------------------------------------
     def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, P=None,
@@ -354,6 +359,47 @@ class CompiledMechanism:
         with np.errstate(divide="ignore"):
             return sv[:, 0] / sv[:, -1]
 
+    def pose_condition(self, res, steps) -> np.ndarray:
+        """Condition number of the dimensionless pose Jacobian (every link's ``dx, dy,
+        theta``; the numeric solver's) at ``steps`` of a result, for its accuracy."""
+        if self._pose_constraints is None:
+            self._pose_constraints = [c for rows in scene_constraints(self.scene, self.q0).values()
+                                      for c in rows]
+        S = {GROUND: LinkState()}
+        for n in self.scene.link_names:
+            lk = res.links[n]
+            S[n] = LinkState(lk.rotation[steps], lk.origin[steps, 0], lk.origin[steps, 1])
+        J = jacobian(self._pose_constraints, S, list(self.scene.link_names), len(steps), self.L)
+        sv = np.linalg.svd(J, compute_uv=False)
+        with np.errstate(divide="ignore"):
+            return sv[:, 0] / sv[:, -1]
+
+    def _accuracy(self, res, indicator) -> dict | None:
+        """Each ok step's relative accuracies (as ``Plan._accuracy``): ``K`` of the pose
+        Jacobian where a block was screened, else ``G / indicator`` with ``G`` calibrated
+        once on the scene's own sweep (:func:`accuracy.calibration_steps`)."""
+        ok = res.status == OK
+        flagged = np.flatnonzero(ok & np.isfinite(res.condition))
+        pose_k = np.full(len(ok), np.nan)
+        if len(flagged):
+            pose_k[flagged] = self.pose_condition(res, flagged)
+        if self._calibrating:
+            good = np.flatnonzero(ok)
+            pose_k[good] = self.pose_condition(res, good)
+            self._calibration_data = (pose_k, ok, indicator)
+            return None
+        if self._calibration is None:
+            q, qd, qdd = self.sweep()
+            idx = accuracy.calibration_steps(len(next(iter(q.values()))))
+            self._calibrating = True
+            try:
+                self.run(*({k: np.asarray(v)[idx] for k, v in d.items()} for d in (q, qd, qdd)))
+            finally:
+                self._calibrating = False
+            self._calibration = (accuracy.calibration(*self._calibration_data),)
+        K = accuracy.condition_estimate(pose_k, ok, indicator, self._calibration[0])
+        return accuracy.accuracy(K, ok, tuple(self.art["stages"]))
+
     def run(self, q=None, qd=None, qdd=None, exact_condition=False) -> Analysis:
         """Evaluate the compiled mechanism over a sweep (the scene's by default)."""
         art = self.art
@@ -393,6 +439,7 @@ class CompiledMechanism:
         # singular steps: a block's Hadamard ratio screens, the exact condition number decides
         condition = np.full(N, np.nan)
         screen = np.ones(len(idx), bool) if exact_condition else np.zeros(len(idx), bool)
+        ratio_min = np.full(len(idx), np.inf)  # the blocks' indicators, for the accuracy
         for r0, r1, c0, c1 in self.blocks:
             if c1 - c0 < 2:
                 continue
@@ -416,6 +463,7 @@ class CompiledMechanism:
                         det / np.prod(np.linalg.norm(M, axis=1), axis=1),
                     )
             screen |= ~(ratio >= SCREEN)
+            ratio_min = np.fmin(ratio_min, ratio)
         if screen.any():
             cond = self.condition_numbers(A[screen])
             condition[idx[screen]] = cond
@@ -454,6 +502,11 @@ class CompiledMechanism:
             forces = self._forces(pts, Xk, CS, rate_ok, idx, N)
         res = self._analysis(X, XD, XDD, pts, idx, status, messages, condition, forces, q, qd, qdd)
         res.warnings[:0] = continuation.step_warnings(self.newton_notes, out)
+        # accuracy (numeric.accuracy): K of the pose Jacobian (the numeric solver's), exact
+        # where a block was screened, else from the blocks' ratios calibrated on it
+        indicator = np.full(N, np.inf)
+        indicator[idx] = ratio_min
+        res.accuracy = self._accuracy(res, indicator)
         return res
 
     def _get(self, pts, key):

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric import continuation
+from linkage_sym.numeric import accuracy, continuation
 from linkage_sym.numeric.closed_form import DyadSolver, InputSolver
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
 from linkage_sym.numeric.kinetostatics import ForcePlan, check_method
@@ -234,6 +234,8 @@ class Plan:
         self.stages = needed_stages(scene)
         self.layout = _Layout(scene, self.stages)
         self._own_sweep = None
+        self._calibration = None  # accuracy: (G,), the indicator-to-condition ratio (own sweep)
+        self._calibrating = False
         # links whose rotation may come wrapped to one turn (atan2 in a dyad, or
         # copied or offset from such a link) and is unwrapped along the path;
         # Newton groups move continuously from the assembly configuration, and an
@@ -339,12 +341,14 @@ class Plan:
             if ind is not None:
                 ind_min = np.fmin(ind_min, ind[out])
         condition = np.full(N, np.nan)
+        ok = failed < 0  # status == OK, kept as a mask (comparing strings costs)
         check = (failed < 0) & (np.ones(N, bool) if exact_condition else ind_min < SCREEN)
         if check.any():
             idx = np.flatnonzero(check)
             condition[idx] = self.condition_numbers(S, idx)
             sing = idx[~(condition[idx] <= SINGULAR_COND)]
             status[sing] = SINGULAR
+            ok[sing] = False
             for i in sing:
                 messages[i] = (
                     f"singular position: condition number {condition[i]:.3g} of the "
@@ -369,17 +373,40 @@ class Plan:
             S[link.name].fill_rates()
         forces = None
         if self.force_plan is not None:
-            forces = self.force_plan.run(S, status == OK, method)
+            forces = self.force_plan.run(S, ok, method)
         res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
         res.warnings.extend(continuation.step_warnings(
             [n for sv in self.solvers for n in sv.notes], path_index))
         res.warnings.extend(run_warnings(res))
         res.transmission_angles = transmission_angles(self.scene, res, self.decomposition)
+        res.accuracy = self._accuracy(res, ok, ind_min)
         if "instant_centres" in self.scene.outputs:  # an extension of the format
             from linkage_sym.centres import instant_centres
 
             res.instant_centres = instant_centres(self.scene, res)
         return res
+
+    def _accuracy(self, res, ok, ind_min) -> dict | None:
+        """Each ok step's relative accuracies (:mod:`linkage_sym.numeric.accuracy`): ``K``
+        exact where computed, else from the indicators with the plan's calibration ``G``,
+        computed once (on the first run) by a run of the scene's own sweep at
+        :func:`accuracy.calibration_steps` with exact condition numbers -- the same for
+        every run, whole or in chunks."""
+        if self._calibrating:
+            self._calibration_data = (res.condition, ok, ind_min)
+            return None
+        if self._calibration is None:
+            q, qd, qdd, _ = self._scene_sweep()
+            idx = accuracy.calibration_steps(len(next(iter(q.values()))))
+            self._calibrating = True
+            try:
+                self.run(*({k: np.asarray(v)[idx] for k, v in d.items()} for d in (q, qd, qdd)),
+                         exact_condition=True)
+            finally:
+                self._calibrating = False
+            self._calibration = (accuracy.calibration(*self._calibration_data),)
+        K = accuracy.condition_estimate(res.condition, ok, ind_min, self._calibration[0])
+        return accuracy.accuracy(K, ok, self.stages, accuracy.amplification_of(res.forces))
 
     def condition_numbers(self, S, idx) -> np.ndarray:
         """Exact dimensionless condition number of the full constraint Jacobian at steps ``idx``."""

@@ -199,6 +199,11 @@ class Analysis:
         by its inner joint (an extension of the format, written with the
         kinematics; see :mod:`linkage_sym.numeric.transmission`), NaN where a
         step has no positions.
+    accuracy : dict or None
+        Estimated relative accuracy of each ``ok`` step (an extension of the
+        format): ``{"position", "velocity", "acceleration", "forces"}`` (those
+        of the stages that ran), arrays (N,), NaN at the other steps; bounds
+        from the condition numbers (see :mod:`linkage_sym.numeric.accuracy`).
     instant_centres : InstantCentres or None
         Every pair's instant centre at every step, when the scene lists the
         ``instant_centres`` output (an extension of the format; see
@@ -219,6 +224,7 @@ class Analysis:
     p_joints: tuple[str, ...] = ()
     points: dict = field(default_factory=dict)
     transmission_angles: dict = field(default_factory=dict)
+    accuracy: dict | None = None
     instant_centres: object = None
 
     @property
@@ -304,6 +310,8 @@ class Analysis:
                 rec["acceleration"] = acc[i]
             return rec
 
+        # extension: each ok step's estimated relative accuracy (numeric.accuracy)
+        accuracy = {k: rows(v) for k, v in self.accuracy.items()} if self.accuracy else None
         centres = self.instant_centres if "instant_centres" in self.outputs else None
         # only these records can hold a value of a column to leave out; keys of a record
         # that no column covers are checked at every step
@@ -352,6 +360,8 @@ class Analysis:
                     step["driving"] = {k: v[i] for k, v in driving.items()}
                 if "frame" in self.outputs:
                     step["frame"] = {"force": frame_force[i], "moment": frame_moment[i]}
+            if rates and accuracy is not None:
+                step["accuracy"] = {k: v[i] for k, v in accuracy.items()}
             if rates and centres is not None:  # extension: every pair's instant centre
                 step["instant_centres"] = centres.records(a + i)
             if suspect[i]:
@@ -463,7 +473,7 @@ class Analysis:
         record: ``status`` (strings), ``message`` (a list of str or None),
         ``drivers.*``, ``joints.*`` (motion, then ``reaction``,
         ``reaction_moment``), ``links.*``, ``points.*``, ``driving.*``,
-        ``frame.*``.  Numeric columns are (N,) float arrays (views of the
+        ``frame.*``, ``accuracy.*``.  Numeric columns are (N,) float arrays (views of the
         result, NaN where the JSON leaves the value out because it was not
         computed).  ``when`` says at which steps the JSON holds the value:
         ``"always"``, ``"positions"`` (``ok`` and ``singular`` steps) or
@@ -524,6 +534,8 @@ class Analysis:
             if "frame" in self.outputs:
                 out += vec("frame.force", forces.frame_force)
                 out.append(("frame.moment", forces.frame_moment, "ok"))
+        if self.accuracy:  # extension: each ok step's estimated relative accuracy
+            out += [(f"accuracy.{k}", v, "ok") for k, v in self.accuracy.items()]
         return out
 
 
