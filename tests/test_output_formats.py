@@ -773,3 +773,21 @@ def test_progress_bar_only_on_a_terminal(monkeypatch):
     bar.close()
     monkeypatch.setitem(sys.modules, "tqdm", None)  # the optional extra is not installed
     assert output._progress_bar(100, True) is None
+
+
+def test_the_numeric_core_loads_neither_tqdm_nor_pyarrow():
+    """Only linkage_sym.output (the writers) uses the optional extras, and only when asked:
+    an analysis, and writing it as JSON in chunks, imports neither."""
+    import subprocess
+
+    code = (
+        "import io, sys, linkage_sym\n"
+        "from linkage_sym import output\n"
+        "plan = linkage_sym.compile_plan(linkage_sym.load_example('crank_rocker'))\n"
+        "plan.run()\n"
+        "output.write_sweep(output.plan_sweep(plan), stream=io.StringIO(), chunk=50)\n"
+        "print(','.join(m for m in ('tqdm', 'pyarrow') if m in sys.modules))\n"
+    )
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == ""
