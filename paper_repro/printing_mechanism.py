@@ -638,7 +638,7 @@ def items(samples=200, seed=0):
                     why=f"(0.7204, -0.2813) is {far:.2f} m from the nearest joint, off every link; (-0.7204, -0.2813) lies on ED "
                         f"({off:.1e} m off the line): the rocker's centre"))
     mid_ok = abs(val["x_S1"] - (-0.3843)) < 1e-4 and abs(val["y_S1"] - (-0.1476)) < 1e-4
-    out.append(Item(1, "sec. 4, centres of mass and inertia forces", "labels S1-S4, F_S1-F_S3, M_E1-M_E3",
+    out.append(Item(1, "sec. 4, labels", "S1-S4, F_S1-F_S3, M_E1-M_E3",
                     "link 1-4", "link 2-5", ERRATUM, corrected="S2-S5, F_S2-F_S4, M_E2-M_E4 (shifted by one link)",
                     holds=mid_ok and off < 1e-4,
                     why="printed S1 is the midpoint of BC (link 2), S2 = C is on the lever 3, S3 on the rocker 4, S4 "

@@ -72,7 +72,7 @@ EXPECTED = [
     (1, "sec. 4, 'F_S4x'", "|F'5| from R53n = F5x + F'5 cos 20 deg", '451', REPRODUCED, LAST, LAST_DIGIT),
     (1, 'sec. 4, lengths', 'l_AE', '0.37', ERRATUM, None, DERIVED),
     (1, 'sec. 4, centres of mass', 'x_S3', '0.7204', ERRATUM, None, DERIVED),
-    (1, 'sec. 4, centres of mass and inertia forces', 'labels S1-S4, F_S1-F_S3, M_E1-M_E3', 'link 1-4', ERRATUM, None, DERIVED),
+    (1, 'sec. 4, labels', 'S1-S4, F_S1-F_S3, M_E1-M_E3', 'link 1-4', ERRATUM, None, DERIVED),
     (1, 'sec. 4, inertia forces', 'F_S4x labelled an inertia force', '451', ERRATUM, None, DERIVED),
     (1, 'sec. 4, inertia moments', 'M_E1', '0.2432', NOT_REPRODUCIBLE, None, WHY),
     (1, 'sec. 4, inertia moments', 'M_E2', '3.679', NOT_REPRODUCIBLE, None, WHY),
