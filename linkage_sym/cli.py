@@ -4,6 +4,7 @@ Commands
 --------
 analyze SCENE.json [-o RESULT.json | -o -] [--format json|csv|npz|parquet]
         [--method dyad|global|symbolic] [--disconnection K] [--plots DIR]
+        [--precision double|DIGITS] [--extremes]
     Solve the scene's sweep and write the result of the contract: kinematics,
     joint reactions, driver efforts and frame loads, as the scene asks; with
     ``--plots`` also its pictures.  The console gets a summary (statuses
@@ -14,7 +15,9 @@ analyze SCENE.json [-o RESULT.json | -o -] [--format json|csv|npz|parquet]
     written in chunks of steps (``linkage_sym.output``), so memory does not
     grow with its length.  ``symbolic`` evaluates the SymPy-derived, lambdified equations
     (compiled once per topology and cached) instead of the numeric dyad
-    solver.
+    solver.  The summary ends with the worst step's estimated accuracy;
+    ``--precision DIGITS`` evaluates the derived equations in mpmath and
+    ``--extremes`` locates the sweep's extremes (``linkage_sym.cli_accuracy``).
 derive SCENE.json [--latex] [--numeric] [-o FILE]
     Derive the scene's equations with SymPy (loops, closed forms, velocity,
     acceleration and force equations) and print them as SymPy text, or with
@@ -67,7 +70,7 @@ from pathlib import Path
 
 import numpy as np
 
-from linkage_sym import cli_centres
+from linkage_sym import cli_accuracy, cli_centres
 from linkage_sym._version import __version__
 from linkage_sym.errors import BalanceError, SceneError
 from linkage_sym.synthesis import cli as synthesis_cli
@@ -273,6 +276,7 @@ def cmd_analyze(args) -> int:
         ):
             print("note: --disconnection ignored: the mechanism has no complex group", file=sys.stderr)
         sweep = output.plan_sweep(plan, args.method)
+    sweep, report = cli_accuracy.prepare(scene, sweep, args)  # --precision, --extremes
     to_stdout = args.output == "-"
     try:
         stats = output.write_sweep(
@@ -288,11 +292,13 @@ def cmd_analyze(args) -> int:
     if to_stdout:  # the result for a pipe; what a person reads goes to standard error
         for w in stats.warnings:
             print(f"warning: {w}", file=sys.stderr)
+        for line in report.lines():
+            print(line, file=sys.stderr)
         notes = sys.stderr
     else:
         if args.output:
             print(f"wrote {args.output}")
-        print("\n".join(summary(scene, stats)))
+        print("\n".join(summary(scene, stats) + report.lines()))
         if not args.output:
             print("(the result JSON: -o FILE, or -o - for standard output)")
         notes = sys.stdout
@@ -580,6 +586,7 @@ def build_parser() -> argparse.ArgumentParser:
         "curves; driving effort, reaction hodographs and frame loads when forces ran); none "
         f"when no step could be assembled (exit {NO_STEP_ASSEMBLED})",
     )
+    cli_accuracy.add_analyze_options(a)  # --precision, --extremes
     a.set_defaults(func=cmd_analyze)
     v = sub.add_parser("derive", help="derive the scene's equations with SymPy (text or LaTeX)")
     v.add_argument("scene", help="scene JSON file")

@@ -297,3 +297,26 @@ def test_bounds_random_class_three_triads(j):
 
 def test_print_random_tally():
     print(TALLY)
+
+
+def test_analyze_prints_the_worst_steps_accuracy(tmp_path, capsys):
+    """The summary's accuracy line gives each field's largest estimate over the sweep (the
+    step it is at), the same whether the sweep is written whole or streamed to stdout."""
+    from linkage_sym.cli import main
+
+    path = tmp_path / "s.json"
+    scene_dict = scenes.change_point_fourbar("cli accuracy", 10.0, 3.0)
+    path.write_text(__import__("json").dumps(scene_dict))
+    res = linkage_sym.analyze(load_scene(scene_dict))
+    assert main(["analyze", str(path)]) == 0
+    out = capsys.readouterr().out
+    (line,) = [ln for ln in out.splitlines() if ln.startswith("accuracy (estimated relative error")]
+    for name in ("position", "velocity", "acceleration"):
+        v = res.accuracy[name]
+        i = int(np.nanargmax(v))
+        assert f"{name} {v[i]:.2g} (step {i})" in line
+    digits = int(-math.log10(np.nanmax(res.accuracy["acceleration"])))
+    assert line.endswith(f"at least {digits} significant digits everywhere")
+    assert main(["analyze", str(path), "-o", "-"]) == 0
+    captured = capsys.readouterr()
+    assert line in captured.err and "accuracy" in captured.out  # the JSON's steps carry it

@@ -281,3 +281,33 @@ def test_class_three_group_extremes_are_stationary():
         else:
             assert np.all(side >= e.value - scale), (key, kind, e.value, side)
     assert len(checks) >= 20
+
+
+def test_analyze_extremes_option(tmp_path, capsys):
+    """``analyze --extremes`` prints the limit positions and effort extremes and writes the
+    extremes into the result (whole JSON and the one streamed to standard output alike)."""
+    import json
+
+    from linkage_sym.cli import main
+
+    d, _ = scenes.slider_crank(0.05, 0.2, 0.02, start_deg=3.1, stop_deg=363.1, steps=37,
+                               speed=50.0, name="cli extremes")
+    d["outputs"] = ["kinematics", "reactions", "driving", "frame"]
+    d["effects"] = {"inertia": True, "gravity": [0.0, -9.81]}
+    for link in d["links"]:
+        link.update(mass=0.5, inertia=1e-3, com=[0.0, 0.0])
+    path = tmp_path / "s.json"
+    path.write_text(json.dumps(d))
+    out = tmp_path / "r.json"
+    assert main(["analyze", str(path), "-o", str(out), "--extremes"]) == 0
+    text = capsys.readouterr().out
+    assert "limit position of the dyad RRP (rod, slider): slide of S max" in text
+    assert "driving effort at A max" in text
+    result = json.loads(out.read_text())
+    scene = load_scene(d)
+    plan = compile_plan(scene)
+    ext = find_extremes(scene, plan, plan.run()).to_dict()
+    assert result["extremes"] == json.loads(json.dumps(ext))
+    assert result["extremes"]["slides"]["S"]["slide"]["max"]["located"] == "rate root"
+    assert main(["analyze", str(path), "-o", "-", "--extremes"]) == 0
+    assert json.loads(capsys.readouterr().out)["extremes"] == result["extremes"]

@@ -204,6 +204,10 @@ class Analysis:
         format): ``{"position", "velocity", "acceleration", "forces"}`` (those
         of the stages that ran), arrays (N,), NaN at the other steps; bounds
         from the condition numbers (see :mod:`linkage_sym.numeric.accuracy`).
+    extremes : dict or None
+        The sweep's located extremes (``analyze --extremes``; an extension of
+        the format, see :mod:`linkage_sym.numeric.extremes`), written after
+        ``warnings`` as ``"extremes"``.
     instant_centres : InstantCentres or None
         Every pair's instant centre at every step, when the scene lists the
         ``instant_centres`` output (an extension of the format; see
@@ -225,6 +229,7 @@ class Analysis:
     points: dict = field(default_factory=dict)
     transmission_angles: dict = field(default_factory=dict)
     accuracy: dict | None = None
+    extremes: dict | None = None
     instant_centres: object = None
 
     @property
@@ -448,6 +453,8 @@ class Analysis:
             warnings.append(dropped.warning())
         if warnings:
             out["warnings"] = warnings
+        if self.extremes is not None:  # extension: analyze --extremes
+            out["extremes"] = self.extremes
         return out
 
     def to_dict(self) -> dict:
