@@ -338,14 +338,25 @@ def test_random_guide_bars(l4, f, g, gamma, sg, start, rot, sc, w):
        start=angle, w=rate)
 @example(l2=1.0, l3=1.0, l4=1.0, f=0.5, sg=1, sg2=1, e_len=1.0, e_ang=30.0, gx=1e-7, gy=0.0,
          spread=0.5, reach=0.5, start=0.0, w=1.0)
+@example(l2=1.0, l3=1.0, l4=1.0, f=0.5, sg=1, sg2=-1, e_len=1.0, e_ang=30.0, gx=0.0,
+         gy=5.506717292648199e-07, spread=0.5, reach=0.5, start=0.0, w=1.0)
+@example(l2=1.0, l3=1.0, l4=1.0, f=0.5, sg=1, sg2=1, e_len=1.0, e_ang=30.0, gx=0.0, gy=1e-10,
+         spread=0.5, reach=0.5, start=0.0, w=1.0)
 def test_random_watt_sixbars(l2, l3, l4, f, sg, sg2, e_len, e_ang, gx, gy, spread, reach,
                              start, w):
-    """The example: G 1e-7 of the size from A, so that at some steps the three-centre lines
-    through P(crank, link6) are all one line (the x-axis) but for rounding; their "meeting" far
-    away on it once fed garbage to every centre built on it.  Nearly parallel lines now meet at
-    infinity only when they are well apart, and a meeting known to worse than 1e-3 is not used."""
+    """The examples: G 1e-7, 5.5e-7 and 1e-10 of the size from A.  In the first, at some steps the
+    three-centre lines through P(crank, link6) are all one line (the x-axis) but for rounding;
+    their "meeting" far away on it once fed garbage to every centre built on it: nearly
+    parallel lines now meet at infinity only when they are well apart, and a meeting known to
+    worse than 1e-3 is not used.  In the second, the line through A and G took its direction
+    from shifted coordinates, 1e7 times their rounding: lines now take it from the centres'
+    own coordinates.  The third (G 1e-10 from A) was taken for one pin with A, within the
+    validator's coincidence tolerance: only pins at exactly one point are one pin now.  G near
+    D is left out: links 5 and 6 then hardly move relative to the
+    rocker, and the velocity method has nothing to divide by."""
     l1 = _crank_rocker(l2, l3, l4, f)
     assume(l1 is not None)
+    assume(math.hypot(gx - l4, gy) > 0.05)
     e = e_len * l3
     th = np.linspace(0, 2 * np.pi, 721)
     _, th3 = ref.fourbar_position(l1, l2, l3, l4, th, sg)

@@ -5,9 +5,9 @@ eq. 3-5) finds the centres of a linkage in two steps:
 
 1. *Primary centres* come from the joints: an ``R`` joint is the centre of
    its two links (at the pin), a ``P`` joint's centre lies at infinity normal
-   to the slide.  A pin shared by three or more links (written as several
-   ``R`` joints at one point of a common link) is the centre of every pair of
-   them.
+   to the slide.  A pin shared by three or more links (written, as the format
+   says, as several ``R`` joints at the same point of a common link) is the
+   centre of every pair of them.
 2. Every other centre ``P_ij`` lies on the line through ``P_ik`` and
    ``P_kj`` for every third link ``k`` (Kennedy's, or the Kennedy-Aronhold,
    three-centre theorem).  Two such lines meet at ``P_ij``.  Which pairs can
@@ -71,12 +71,6 @@ particular (the intersection is not used)."""
 UNCERTAIN = 1e-3
 """An intersection whose estimated error exceeds this fraction of its distance (at least one
 mechanism size) is not used: the lines are too nearly one."""
-
-COINCIDENT = 1e-9
-"""``R`` joints on a common link closer than this fraction of the mechanism's
-size in the assembly configuration are one pin (the validator's tolerance for
-coincident joints)."""
-
 
 @dataclass
 class KennedyCentres:
@@ -151,7 +145,7 @@ class KennedyCentres:
 def _unit(h):
     """Homogeneous vectors (..., 3) scaled to unit length (zero vectors become NaN)."""
     norm = np.linalg.norm(h, axis=-1, keepdims=True)
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         return np.where(norm > 0.0, h / norm, np.nan)
 
 
@@ -165,8 +159,9 @@ def _snap(h):
     return _unit(h)
 
 
-def _joint_pins(scene, L):
-    """Groups of ``R`` joints that are one pin: on a common link and at one assembly point."""
+def _joint_pins(scene):
+    """Groups of ``R`` joints that are one pin: on a common link (or the ground) and at one
+    assembly point."""
     rj = [j for j in scene.joints if j.type == "R"]
     parent = list(range(len(rj)))
 
@@ -180,7 +175,9 @@ def _joint_pins(scene, L):
         for b in range(a + 1, len(rj)):
             ja, jb = rj[a], rj[b]
             shared = (set(ja.links) & set(jb.links)) - {GROUND}
-            close = np.hypot(ja.at[0] - jb.at[0], ja.at[1] - jb.at[1]) <= COINCIDENT * L
+            # at one point exactly, as the format writes a shared pin: two pins apart by
+            # however little are two points, whose relative centre lies on their line
+            close = tuple(ja.at) == tuple(jb.at)
             # on the ground two pivots at one point are one pin as well
             if close and (shared or (GROUND in ja.links and GROUND in jb.links)):
                 parent[root(a)] = root(b)
@@ -262,6 +259,7 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
     L = scene.characteristic_length() or 1.0
 
     H = np.full((n, n, N, 3), np.nan)  # unit homogeneous centres, scaled frame, symmetric
+    PG = np.full((n, n, N, 2), np.nan)  # the finite ones in global coordinates (m)
     E = np.full((n, n, N), np.nan)  # error estimate: scaled length (finite), rad (at infinity)
     known = np.zeros((n, n), dtype=bool)
     ang = np.full((n, n, N), np.nan)
@@ -269,14 +267,14 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
     via = np.full((n, n, N, 2), -1, dtype=int)
     source: dict = {}
 
-    def put(a, b, h, err, what):
+    def put(a, b, h, err, what, at=None):
         weak[a, b] = weak[b, a] = np.where(np.all(np.isfinite(h), axis=-1), np.pi / 2, np.nan)
         H[a, b] = H[b, a] = h
+        if at is not None:
+            PG[a, b] = PG[b, a] = at
         E[a, b] = E[b, a] = err
         known[a, b] = known[b, a] = True
         source[min(a, b), max(a, b)] = what
-
-    exact = {}  # pins: their positions as solved, not through the scaled frame and back
 
     def finite(p):
         p = np.asarray(p, dtype=float)
@@ -287,8 +285,8 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
         if joint.type == "R":
             a, b = idx[joint.links[0]], idx[joint.links[1]]
             if not known[a, b]:
-                exact[min(a, b), max(a, b)] = analysis.joints[joint.name].position
-                put(a, b, *finite(analysis.joints[joint.name].position), f"joint {joint.name}")
+                at = np.asarray(analysis.joints[joint.name].position, dtype=float)
+                put(a, b, *finite(at), f"joint {joint.name}", at)
     for joint in scene.joints:
         if joint.type == "P":
             a, b = idx[joint.links[0]], idx[joint.links[1]]
@@ -299,15 +297,15 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
             th = joint.axis + turn + np.zeros(N)
             put(a, b, np.stack([-np.sin(th), np.cos(th), np.zeros(N)], axis=-1),
                 ROUNDING * (1.0 + np.abs(th)), f"joint {joint.name} (slide)")
-    for group in _joint_pins(scene, L):
+    for group in _joint_pins(scene):
         members = sorted({idx[x] for j in group for x in j.links})
-        where = finite(analysis.joints[group[0].name].position)
+        at = np.asarray(analysis.joints[group[0].name].position, dtype=float)
+        where = finite(at)
         label = f"pin of joints {', '.join(j.name for j in group)}"
         for a in members:
             for b in members:
                 if a < b and not known[a, b]:
-                    exact[a, b] = analysis.joints[group[0].name].position
-                    put(a, b, *where, label)
+                    put(a, b, *where, label, at)
 
     steps = np.arange(N)
 
@@ -336,8 +334,9 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
         if not found:
             break
         for i, j, ks in found:
-            h, err, a, v = _intersect_best(H, E, i, j, ks)
+            h, err, a, v = _intersect_best(H, PG, E, i, j, ks, c, L)
             H[i, j] = H[j, i] = h
+            PG[i, j] = PG[j, i] = _global(h, c, L)
             E[i, j] = E[j, i] = err
             ang[i, j] = ang[j, i] = a
             via[i, j] = via[j, i] = v
@@ -352,12 +351,13 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
     for _ in range(n):
         improved = False
         for i, j in derived:
-            h, err, a, v = _intersect_best(H, E, i, j, lines_through(i, j))
+            h, err, a, v = _intersect_best(H, PG, E, i, j, lines_through(i, j), c, L)
             better = np.isfinite(err) & ~(_relative(h, err) >= _relative(H[i, j], E[i, j]))
             better &= ~np.isclose(err, E[i, j], rtol=1e-3, atol=0.0)  # no churn on ties
             if better.any():
                 improved = True
                 H[i, j] = H[j, i] = np.where(better[:, None], h, H[i, j])
+                PG[i, j] = PG[j, i] = np.where(better[:, None], _global(h, c, L), PG[i, j])
                 E[i, j] = E[j, i] = np.where(better, err, E[i, j])
                 ang[i, j] = ang[j, i] = np.where(better, a, ang[i, j])
                 via[i, j] = via[j, i] = np.where(better[:, None], v, via[i, j])
@@ -379,12 +379,9 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
     reached = np.all(np.isfinite(h), axis=-1)
     inf = reached & (h[..., 2] == 0.0)
     fin = reached & ~inf
-    with np.errstate(invalid="ignore", divide="ignore"):
-        pos = c + L * h[..., :2] / h[..., 2:3]
+    pos = np.stack([PG[i, j] for i, j in P], axis=1)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         d = h[..., :2] / np.linalg.norm(h[..., :2], axis=-1, keepdims=True)
-    for k, ij in enumerate(P):
-        if ij in exact:
-            pos[:, k] = exact[ij]
     return KennedyCentres(
         links=names,
         pairs=tuple(pairs),
@@ -403,23 +400,55 @@ def _relative(h, err):
     """Error relative to a centre's distance (at least one size); angular error at infinity."""
     w = np.abs(h[..., 2])
     xy = np.linalg.norm(h[..., :2], axis=-1)
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         return np.where(w > 0.0, err / np.maximum(1.0, xy / w), err)
 
 
-def _line_error(ha, ea, hb, eb):
-    """How far a three-centre line through centres ``ha``, ``hb`` may be off.
+def _global(h, c, L):
+    """Global position (N, 2) of unit homogeneous points of the scaled frame; NaN at infinity."""
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        return np.where((h[:, 2] != 0.0)[:, None], c + L * h[:, :2] / h[:, 2:3], np.nan)
 
-    Returns ``(q, e0, slope, at_inf)``: the line may be displaced by
-    ``e0 + slope * |X - q|`` at a point ``X`` (scaled frame); ``at_inf`` marks
-    the line at infinity (both centres at infinity), for which ``slope`` is the
-    directions' error.
+
+def _line(ha, pa, hb, pb, c, L):
+    """The three-centre line through two centres, in the scaled frame (N, 3).
+
+    ``(n, c0)`` with ``|n| = 1`` for the line ``n . x + c0 = 0``, ``(0, 0, 1)`` for the
+    line at infinity (through two centres at infinity), NaN where the two centres
+    span no line (they coincide, or one is missing).  The direction comes from the
+    difference of the global positions (or is a centre's direction at infinity),
+    never from a difference of shifted coordinates: two pins 1e-7 of the size apart
+    give their line to rounding of their own coordinates, not 1e7 times that.
     """
-    wa, wb = ha[..., 2], hb[..., 2]
-    fa, fb = wa != 0.0, wb != 0.0
-    with np.errstate(invalid="ignore", divide="ignore"):
-        pa = ha[..., :2] / wa[..., None]
-        pb = hb[..., :2] / wb[..., None]
+    fa = np.all(np.isfinite(pa), axis=-1)
+    fb = np.all(np.isfinite(pb), axis=-1)
+    ia = np.all(np.isfinite(ha), axis=-1) & ~fa
+    ib = np.all(np.isfinite(hb), axis=-1) & ~fb
+    d = np.where((fa & fb)[:, None], pb - pa, np.where(fa[:, None], hb[:, :2], ha[:, :2]))
+    span = np.linalg.norm(d, axis=-1)
+    anchor = np.where(fa[:, None], pa, pb)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        nrm = np.stack([-d[:, 1], d[:, 0]], axis=-1) / span[:, None]
+        c0 = -np.sum(nrm * (anchor - c), axis=-1) / L
+    line = np.concatenate([nrm, c0[:, None]], axis=-1)
+    finite_line = (fa & fb & (span > DEGENERATE * L)) | (fa & ib) | (ia & fb)
+    apart = np.abs(ha[:, 0] * hb[:, 1] - ha[:, 1] * hb[:, 0]) > DEGENERATE
+    at_inf = ia & ib & apart
+    return np.where(finite_line[:, None], line,
+                    np.where(at_inf[:, None], np.array([0.0, 0.0, 1.0]), np.nan))
+
+
+def _line_error(pa, ea, pb, eb):
+    """How far a three-centre line through centres at ``pa``, ``pb`` (scaled frame) may be off.
+
+    ``pa``, ``pb`` are NaN for a centre at infinity, whose ``e`` is then the error of
+    its direction (rad).  Returns ``(q, e0, slope, at_inf)``: the line may be displaced
+    by ``e0 + slope * |X - q|`` at a point ``X``; ``at_inf`` marks the line at infinity
+    (both centres at infinity), for which ``slope`` is the directions' error.
+    """
+    fa = np.all(np.isfinite(pa), axis=-1)
+    fb = np.all(np.isfinite(pb), axis=-1)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         span = np.linalg.norm(pa - pb, axis=-1)
         slope_ff = (ea + eb) / span
     q = np.where(fa[..., None], pa, pb)
@@ -428,7 +457,7 @@ def _line_error(ha, ea, hb, eb):
     return q, e0, slope, ~fa & ~fb
 
 
-def _intersect_best(H, E, i, j, ks):
+def _intersect_best(H, PG, E, i, j, ks, c, L):
     """Centre ``P_ij`` from the best pair of three-centre lines through it.
 
     For every step, of the lines ``P_ik P_kj`` (``k`` in ``ks``) the pair whose
@@ -439,7 +468,7 @@ def _intersect_best(H, E, i, j, ks):
     Returns
     -------
     h : ndarray (N, 3)
-        Unit homogeneous centre (NaN where no pair of lines meets).
+        Unit homogeneous centre, scaled frame (NaN where no pair of lines meets).
     err : ndarray (N,)
         Its error estimate: scaled length, or rad for a centre at infinity.
     angle : ndarray (N,)
@@ -447,11 +476,8 @@ def _intersect_best(H, E, i, j, ks):
     via : ndarray of int (N, 2)
         Their third links ``k``, ``l``.
     """
-    lines = np.cross(H[i, ks], H[ks, j])  # (K, N, 3)
-    norm = np.linalg.norm(lines, axis=-1, keepdims=True)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        lines = np.where(norm > DEGENERATE, lines / norm, np.nan)  # coincident centres: no line
-    model = [_line_error(H[i, k], E[i, k], H[k, j], E[k, j]) for k in ks]
+    lines = np.stack([_line(H[i, k], PG[i, k], H[k, j], PG[k, j], c, L) for k in ks])
+    model = [_line_error((PG[i, k] - c) / L, E[i, k], (PG[k, j] - c) / L, E[k, j]) for k in ks]
     K, N = lines.shape[:2]
     best_r = np.full(N, np.inf)
     best = np.full((N, 3), np.nan)
@@ -467,7 +493,7 @@ def _intersect_best(H, E, i, j, ks):
             # one line twice (or a line through a centre missing at that step) meets nothing
             valid = np.linalg.norm(meet, axis=-1) > DEGENERATE  # False for NaN too
             h = _snap(meet)
-            with np.errstate(invalid="ignore", divide="ignore"):
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
                 sin = np.abs(la[:, 0] * lb[:, 1] - la[:, 1] * lb[:, 0]) / (
                     np.linalg.norm(la[:, :2], axis=-1) * np.linalg.norm(lb[:, :2], axis=-1))
                 sin = np.minimum(np.where(ia | ib, 1.0, sin), 1.0)

@@ -130,7 +130,7 @@ def velocity_centres(analysis) -> VelocityCentres:
             dv_norm = np.linalg.norm(dv, axis=-1)
             still = np.abs(dw) * L + dv_norm <= REST * speed
             far = ~still & (np.abs(dw) * L * FAR <= dv_norm)
-            with np.errstate(invalid="ignore", divide="ignore"):
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
                 # v_j(p) - v_i(p) = dv + dw J (p - c) = 0  =>  p = c + J dv / dw
                 p = c + np.stack([-dv[:, 1], dv[:, 0]], axis=-1) / dw[:, None]
                 u = np.stack([-dv[:, 1], dv[:, 0]], axis=-1) / dv_norm[:, None]
