@@ -260,7 +260,7 @@ class Sweep:
         waypoints for them, nor where the sweep starts at the assembly
         configuration.
         """
-        if a <= 0 or not self.heads or all(float(self.q[k][0]) == v for k, v in self.q0.items()):
+        if a <= 0 or not self.heads or self._straight(a):
             return np.zeros(0, dtype=np.intp)
         m = math.inf
         for k, v in self.q.items():
@@ -269,6 +269,17 @@ class Sweep:
                 m = min(m, self.limits[k] / h)
         m = 1 if not math.isfinite(m) else max(1, int(m))
         return np.arange(0, a, m, dtype=np.intp)
+
+    def _straight(self, a: int) -> bool:
+        """Whether the straight path from the assembly configuration to step ``a`` is the
+        sweep's route: the sweep starts at the assembly configuration (to a millionth of a
+        path increment), or its one driver starts between the assembly value and step ``a``."""
+        if all(abs(float(self.q[k][0]) - v) <= 1e-6 * self.limits[k] for k, v in self.q0.items()):
+            return True
+        if len(self.q) == 1:
+            (k, v), = self.q.items()
+            return (float(v[0]) - self.q0[k]) * (float(v[a]) - float(v[0])) >= 0
+        return False
 
     def most_waypoints(self) -> int:
         """The most waypoints of any chunk (the last)."""
