@@ -215,7 +215,8 @@ def test_the_named_positions_are_the_closed_forms(name):
         defs[s] = e.xreplace(defs)
     nested = eqs.nested_closed_forms()
     res = linkage_sym.analyze(scene)
-    steps = np.flatnonzero(res.status == "ok")[::40]
+    ok = np.flatnonzero(res.status == "ok")
+    steps = ok[:: max(1, len(ok) // 3)][:3]  # three solved steps spread over the sweep
     values = eqs.parameter_values()
     rng = np.random.default_rng(7)
     for s, e in eqs.closed_forms:
