@@ -279,14 +279,16 @@ def test_massless_links_add_no_inertia_work():
     # inertia asked for, but nothing has mass: no rates are computed
     assert a.stages == ("position", "forces")
     step = a.to_dict()["steps"][3]
-    assert set(step) == {"status", "drivers", "driving"}
+    # besides the step's estimated accuracy (an extension of the format): position and forces
+    assert set(step) == {"status", "drivers", "driving", "accuracy"}
+    assert set(step["accuracy"]) == {"position", "forces"}
 
 
 def test_outputs_select_the_json_fields():
     d = well_conditioned(lambda s: loop_scene("RRP", seed=s, outputs=["reactions"]), 4)
     a = compile_plan(linkage_sym.load_scene(d)).run()
     step = a.to_dict()["steps"][0]
-    assert set(step) == {"status", "drivers", "joints"}
+    assert set(step) == {"status", "drivers", "joints", "accuracy"}  # accuracy: an extension
     assert set(step["joints"]["C"]) == {"reaction"}
     assert set(step["joints"]["D"]) == {"reaction", "reaction_moment"}  # a P joint
 
