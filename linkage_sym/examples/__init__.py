@@ -1,6 +1,6 @@
 """Example scenes shipped with linkage_sym.
 
-Each example is a JSON file in the scene format (``shared/spec/scene-format.md``)
+Each example is a JSON file in the scene format (``docs/scene-format.md``)
 in this package; ``README.md`` beside them says what each one is, where it
 comes from and how its dimensions were obtained.
 

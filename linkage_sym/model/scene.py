@@ -1,4 +1,4 @@
-"""Plain data classes for a scene (see ``shared/spec/scene-format.md``).
+"""Plain data classes for a scene (see ``docs/scene-format.md``).
 
 Nothing here computes: these classes are what :func:`linkage_sym.scene.load_scene`
 produces after validation, and what every solver reads.  Angles are stored in

@@ -1,6 +1,6 @@
 """Scenes in and out: loading and validating scene files, and writing them back.
 
-The layout is the contract of ``shared/spec/scene-format.md``; the result is
+The layout is the contract of ``docs/scene-format.md``; the result is
 the plain data of :mod:`linkage_sym.model.scene`.
 
 - :func:`load_scene` -- a JSON file path or a parsed mapping to a validated

@@ -2,7 +2,7 @@
 
 :func:`load_scene` reads JSON (a path) or takes an already-parsed mapping and
 hands it to :func:`~linkage_sym.scene.validate.parse_scene`; :func:`dump_scene`
-is its inverse, back to the file layout of ``shared/spec/scene-format.md``.
+is its inverse, back to the file layout of ``docs/scene-format.md``.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Validation of a scene mapping into the plain :mod:`linkage_sym.model` classes.
 
-One pass over the mapping (the layout of ``shared/spec/scene-format.md``)
+One pass over the mapping (the layout of ``docs/scene-format.md``)
 collects *every* problem, each as ``"field.path: reason"``, and raises a
 single :class:`~linkage_sym.errors.SceneError` listing them all.  Objects of
 :mod:`linkage_sym.model.scene` are only built for entries without problems,
