@@ -325,3 +325,65 @@ def assert_close(actual, expected, rtol, what, scale=None, atol=None):
         raise AssertionError(
             f"{what}: {int(bad.sum())} value(s) off; worst at index {idx}: "
             f"got {a[idx]!r}, expected {e[idx]!r}, |err| = {err[idx]:.3e} > tol {tol[idx]:.3e}")
+
+
+# -- Newton groups (tests/test_newton_groups.py, tests/test_output_formats.py) ----------------
+
+def knee_scene(K, A, G, start_deg=-60.0, stop_deg=120.0, steps=37):
+    """Knee linkage: hip H at the origin, knee K, ankle A, rocker pivot G; the knee driven."""
+    H = (0.0, 0.0)
+    return {
+        "name": "knee",
+        "links": [
+            {"name": "thigh", "mass": 1.0, "com": [K[0] / 2, K[1] / 2], "inertia": 0.01},
+            {"name": "shin", "mass": 1.0, "com": [(K[0] + A[0]) / 2, (K[1] + A[1]) / 2],
+             "inertia": 0.01},
+            {"name": "rocker", "mass": 0.5, "com": [(A[0] + G[0]) / 2, (A[1] + G[1]) / 2],
+             "inertia": 0.005},
+        ],
+        "joints": [
+            {"name": "H", "type": "R", "links": ["ground", "thigh"], "at": list(H)},
+            {"name": "K", "type": "R", "links": ["thigh", "shin"], "at": list(K)},
+            {"name": "A", "type": "R", "links": ["shin", "rocker"], "at": list(A)},
+            {"name": "G", "type": "R", "links": ["rocker", "ground"], "at": list(G)},
+        ],
+        "drivers": [{"joint": "K", "toward": "A", "start_deg": start_deg, "stop_deg": stop_deg,
+                     "steps": steps, "speed": 1.0, "acceleration": 0.5}],
+        "effects": {"inertia": True, "gravity": [0.0, -9.81], "loads": True},
+        "outputs": ["kinematics", "reactions", "driving", "frame"],
+    }
+
+
+def triad_scene(P, steps=37):
+    """The shipped class-III six-bar's topology with joints at ``P``."""
+    links = [("crank", "B"), ("link_BC", "C"), ("lever", "D"), ("rocker_DE", "E"),
+             ("rocker_FG", "F")]
+    return {
+        "name": "triad",
+        "links": [{"name": n, "mass": 0.2, "com": list(P[c]), "inertia": 1e-4} for n, c in links],
+        "joints": [
+            {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
+            {"name": "B", "type": "R", "links": ["crank", "link_BC"], "at": list(P["B"])},
+            {"name": "C", "type": "R", "links": ["link_BC", "lever"], "at": list(P["C"])},
+            {"name": "D", "type": "R", "links": ["lever", "rocker_DE"], "at": list(P["D"])},
+            {"name": "E", "type": "R", "links": ["rocker_DE", "ground"], "at": list(P["E"])},
+            {"name": "F", "type": "R", "links": ["lever", "rocker_FG"], "at": list(P["F"])},
+            {"name": "G", "type": "R", "links": ["rocker_FG", "ground"], "at": list(P["G"])},
+        ],
+        "drivers": [{"joint": "A", "toward": "B", "start_deg": 0, "stop_deg": 360,
+                     "steps": steps, "speed": 10.0, "acceleration": 1.0}],
+        "effects": {"inertia": True, "gravity": [0.0, -9.81], "loads": True},
+        "outputs": ["kinematics", "reactions", "driving", "frame"],
+    }
+
+
+TRIAD_BASE = {"B": (0.0, 0.05), "C": (0.187, 0.12), "D": (0.127, 0.03), "E": (0.12, -0.09),
+              "F": (0.257, 0.03), "G": (0.265, -0.1)}
+
+
+def triad_jump():
+    """A random triad whose branch ends at a limit at step 14 and goes on in another
+    configuration of the same determinant sign (both runtimes warn; found by a search over seeds)."""
+    rng = np.random.default_rng(19)
+    P = {k: tuple(np.array(v) + rng.normal(0, 0.03, 2)) for k, v in TRIAD_BASE.items()}
+    return triad_scene(P, steps=73)

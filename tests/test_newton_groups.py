@@ -42,10 +42,11 @@ from hypothesis import strategies as st
 sys.path.insert(0, os.path.dirname(__file__))
 
 import reference_kinematics as ref  # noqa: E402
+import scenes  # noqa: E402
 
 import linkage_sym  # noqa: E402
 from linkage_sym.errors import SceneError  # noqa: E402
-from linkage_sym.examples import example_names, load_example  # noqa: E402
+from linkage_sym.examples import example_names  # noqa: E402
 
 TOL = 1e-9
 SETTINGS = dict(max_examples=12, deadline=None, derandomize=True, database=None,
@@ -53,31 +54,6 @@ SETTINGS = dict(max_examples=12, deadline=None, derandomize=True, database=None,
 
 
 # -- scenes ----------------------------------------------------------------------------------
-
-def knee_scene(K, A, G, start_deg=-60.0, stop_deg=120.0, steps=37):
-    """Knee linkage: hip H at the origin, knee K, ankle A, rocker pivot G; the knee driven."""
-    H = (0.0, 0.0)
-    return {
-        "name": "knee",
-        "links": [
-            {"name": "thigh", "mass": 1.0, "com": [K[0] / 2, K[1] / 2], "inertia": 0.01},
-            {"name": "shin", "mass": 1.0, "com": [(K[0] + A[0]) / 2, (K[1] + A[1]) / 2],
-             "inertia": 0.01},
-            {"name": "rocker", "mass": 0.5, "com": [(A[0] + G[0]) / 2, (A[1] + G[1]) / 2],
-             "inertia": 0.005},
-        ],
-        "joints": [
-            {"name": "H", "type": "R", "links": ["ground", "thigh"], "at": list(H)},
-            {"name": "K", "type": "R", "links": ["thigh", "shin"], "at": list(K)},
-            {"name": "A", "type": "R", "links": ["shin", "rocker"], "at": list(A)},
-            {"name": "G", "type": "R", "links": ["rocker", "ground"], "at": list(G)},
-        ],
-        "drivers": [{"joint": "K", "toward": "A", "start_deg": start_deg, "stop_deg": stop_deg,
-                     "steps": steps, "speed": 1.0, "acceleration": 0.5}],
-        "effects": {"inertia": True, "gravity": [0.0, -9.81], "loads": True},
-        "outputs": ["kinematics", "reactions", "driving", "frame"],
-    }
-
 
 def knee_truth(d):
     """Closed form of the knee linkage at its steps: (assemblable, ankle position, hip-ankle
@@ -101,31 +77,8 @@ def knee_truth(d):
     return ok, ankle, dHA, (abs(HG - lr), HG + lr), (lt, ls, th_t)
 
 
-def triad_scene(P, steps=37):
-    """The shipped class-III six-bar's topology with joints at ``P``."""
-    links = [("crank", "B"), ("link_BC", "C"), ("lever", "D"), ("rocker_DE", "E"),
-             ("rocker_FG", "F")]
-    return {
-        "name": "triad",
-        "links": [{"name": n, "mass": 0.2, "com": list(P[c]), "inertia": 1e-4} for n, c in links],
-        "joints": [
-            {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
-            {"name": "B", "type": "R", "links": ["crank", "link_BC"], "at": list(P["B"])},
-            {"name": "C", "type": "R", "links": ["link_BC", "lever"], "at": list(P["C"])},
-            {"name": "D", "type": "R", "links": ["lever", "rocker_DE"], "at": list(P["D"])},
-            {"name": "E", "type": "R", "links": ["rocker_DE", "ground"], "at": list(P["E"])},
-            {"name": "F", "type": "R", "links": ["lever", "rocker_FG"], "at": list(P["F"])},
-            {"name": "G", "type": "R", "links": ["rocker_FG", "ground"], "at": list(P["G"])},
-        ],
-        "drivers": [{"joint": "A", "toward": "B", "start_deg": 0, "stop_deg": 360,
-                     "steps": steps, "speed": 10.0, "acceleration": 1.0}],
-        "effects": {"inertia": True, "gravity": [0.0, -9.81], "loads": True},
-        "outputs": ["kinematics", "reactions", "driving", "frame"],
-    }
 
-
-TRIAD_BASE = {"B": (0.0, 0.05), "C": (0.187, 0.12), "D": (0.127, 0.03), "E": (0.12, -0.09),
-              "F": (0.257, 0.03), "G": (0.265, -0.1)}
+knee_scene, triad_scene, TRIAD_BASE = scenes.knee_scene, scenes.triad_scene, scenes.TRIAD_BASE
 
 jitter = st.floats(-0.03, 0.03, allow_nan=False)
 knee_points = st.tuples(*[st.floats(-0.12, 0.12, allow_nan=False)] * 6)
@@ -330,10 +283,7 @@ def test_a_triad_that_jumps_past_a_limit_says_so_and_names_an_ambiguous_mode():
     """A random triad whose branch ends at a limit position and which goes on in another
     configuration of the same determinant sign: both runtimes warn, naming the limit's
     driver value and the number of solutions of that sign (the mode is ambiguous)."""
-    rng = np.random.default_rng(19)  # found by a search over seeds: the jump is at step 14
-    P = {k: tuple(np.array(v) + rng.normal(0, 0.03, 2)) for k, v in TRIAD_BASE.items()}
-    d = triad_scene(P, steps=73)
-    scene = linkage_sym.load_scene(d)
+    scene = linkage_sym.load_scene(scenes.triad_jump())  # the jump is at step 14
     for m in ("dyad", "symbolic"):
         res = linkage_sym.analyze(scene, method=m)
         w = [x for x in res.warnings if "ambiguous" in x]

@@ -199,31 +199,7 @@ def _slider_with_gap():
     }
 
 
-def _triad_jump():
-    """A random triad whose branch ends at a limit at step 14 and goes on (both warned)."""
-    rng = np.random.default_rng(19)
-    base = {"B": (0.0, 0.05), "C": (0.187, 0.12), "D": (0.127, 0.03), "E": (0.12, -0.09),
-            "F": (0.257, 0.03), "G": (0.265, -0.1)}
-    P = {k: tuple(np.array(v) + rng.normal(0, 0.03, 2)) for k, v in base.items()}
-    links = [("crank", "B"), ("link_BC", "C"), ("lever", "D"), ("rocker_DE", "E"),
-             ("rocker_FG", "F")]
-    return {
-        "name": "triad",
-        "links": [{"name": n, "mass": 0.2, "com": list(P[c]), "inertia": 1e-4} for n, c in links],
-        "joints": [
-            {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
-            {"name": "B", "type": "R", "links": ["crank", "link_BC"], "at": list(P["B"])},
-            {"name": "C", "type": "R", "links": ["link_BC", "lever"], "at": list(P["C"])},
-            {"name": "D", "type": "R", "links": ["lever", "rocker_DE"], "at": list(P["D"])},
-            {"name": "E", "type": "R", "links": ["rocker_DE", "ground"], "at": list(P["E"])},
-            {"name": "F", "type": "R", "links": ["lever", "rocker_FG"], "at": list(P["F"])},
-            {"name": "G", "type": "R", "links": ["rocker_FG", "ground"], "at": list(P["G"])},
-        ],
-        "drivers": [{"joint": "A", "toward": "B", "start_deg": 0, "stop_deg": 360,
-                     "steps": 73, "speed": 10.0, "acceleration": 1.0}],
-        "effects": {"inertia": True, "gravity": [0.0, -9.81], "loads": True},
-        "outputs": ["kinematics", "reactions", "driving", "frame"],
-    }
+_triad_jump = scenes.triad_jump
 
 
 def _ill_conditioned_fourbar():
