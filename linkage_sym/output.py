@@ -53,7 +53,7 @@ from typing import Callable
 
 import numpy as np
 
-from linkage_sym.numeric.plan import WARN_COND, run_warnings
+from linkage_sym.numeric.sweep import WARN_COND, run_warnings
 from linkage_sym.numeric.result import OK, UNASSEMBLABLE, Analysis, LeftOut
 from linkage_sym.numeric.superposition import AMPLIFICATION_LIMIT
 
@@ -219,7 +219,7 @@ class Sweep:
     (``"triad (b1, t, b2, b3)"``), in the order a run lists their warnings.
     ``q0`` is each driver's value in the assembly configuration and
     ``limits`` its largest increment along a solving path (see
-    :func:`linkage_sym.numeric.plan.solving_path`): with them,
+    :func:`linkage_sym.numeric.sweep.solving_path`): with them,
     :meth:`waypoints` lets a chunk's path take the whole sweep's route.
     """
 
@@ -287,7 +287,7 @@ class Sweep:
 
 
 def _limits(scene, L) -> dict:
-    from linkage_sym.numeric.plan import MAX_ANGLE_STEP, MAX_SLIDE_STEP
+    from linkage_sym.numeric.sweep import MAX_ANGLE_STEP, MAX_SLIDE_STEP
 
     return {d.joint: MAX_ANGLE_STEP if scene.joint(d.joint).type == "R" else MAX_SLIDE_STEP * L
             for d in scene.drivers}

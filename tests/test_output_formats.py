@@ -29,7 +29,8 @@ import linkage_sym
 from linkage_sym import output
 from linkage_sym.cli import main
 from linkage_sym.examples import example_dict, example_names
-from linkage_sym.numeric.plan import compile_plan, run_warnings
+from linkage_sym.numeric.plan import compile_plan
+from linkage_sym.numeric.sweep import run_warnings
 from linkage_sym.numeric.result import Analysis
 
 import scenes  # the tests' scene builders (tests/scenes.py)

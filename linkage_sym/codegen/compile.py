@@ -32,7 +32,7 @@ import sympy as sp
 from linkage_sym.codegen import cache
 from linkage_sym.codegen.runtime import CompiledMechanism, load_compiled
 from linkage_sym.model import Scene
-from linkage_sym.numeric.plan import needed_stages
+from linkage_sym.numeric.sweep import needed_stages
 from linkage_sym.symbolic.mechanism import MechanismEquations
 
 ARGS = ("X", "XD", "XDD", "Q", "QD", "QDD", "FORCES", "P", "CX", "SX")

@@ -38,7 +38,7 @@ from linkage_sym.numeric.result import (
     JointKinematics,
     LinkKinematics,
 )
-from linkage_sym.numeric.plan import SINGULAR_COND, run_warnings, scene_sweep, solving_path
+from linkage_sym.numeric.sweep import SINGULAR_COND, run_warnings, scene_sweep, singular_message, solving_path
 from linkage_sym.numeric.transmission import transmission_angles
 from linkage_sym.structure.parameters import driver_q0, evaluate, ident, link_frames
 
@@ -469,11 +469,7 @@ class CompiledMechanism:
             condition[idx[screen]] = cond
             for i in idx[screen][~(cond <= SINGULAR_COND)]:
                 status[i] = SINGULAR
-                messages[i] = (
-                    f"singular position: condition number {condition[i]:.3g} of the "
-                    f"dimensionless loop-closure Jacobian exceeds {SINGULAR_COND:.0e}; "
-                    "velocities and accelerations have no unique solution"
-                )
+                messages[i] = singular_message(condition[i])
         ok = status == OK
         rate_ok = ok[idx]
         stages = tuple(art["stages"])
