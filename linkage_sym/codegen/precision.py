@@ -341,22 +341,12 @@ class PreciseMechanism:
     # -- the sweep ------------------------------------------------------------------
     def run(self, q=None, qd=None, qdd=None) -> PreciseResult:
         """Every step of a sweep (the scene's unless given) in mpmath; see the module docstring."""
-        cm, art, scene = self.cm, self.art, self.scene
+        cm, art = self.cm, self.art
         if q is None:
             q, qd, qdd = cm.sweep()
         base = cm.run(q, qd, qdd)
         base_accuracy = base.accuracy
-        names = art["q"]
-        Qs = np.array([np.asarray(q[n], float) for n in names])
-        QDs = np.array([np.asarray(qd[n], float) for n in names])
-        QDDs = np.array([np.asarray(qdd[n], float) for n in names])
-        Qpath, out = cm._path(Qs)
-        Xp, failed_p = cm.positions(Qpath)
-        valid = failed_p < 0
-        for c in np.flatnonzero(cm.is_angle):
-            th = np.unwrap(Xp[c, valid])
-            Xp[c, valid] = th - 2 * np.pi * np.round((th[0] - cm.x0[c]) / (2 * np.pi))
-        Xf = Xp[:, out]
+        Qs, QDs, QDDs, Xf, _, _ = cm.step_positions(q, qd, qdd)
         status = base.status.copy()
         messages = list(base.messages)
         stages = tuple(art["stages"])

@@ -400,16 +400,18 @@ class CompiledMechanism:
         K = accuracy.condition_estimate(pose_k, ok, indicator, self._calibration[0])
         return accuracy.accuracy(K, ok, tuple(self.art["stages"]))
 
-    def run(self, q=None, qd=None, qdd=None, exact_condition=False) -> Analysis:
-        """Evaluate the compiled mechanism over a sweep (the scene's by default)."""
-        art = self.art
-        if q is None:
-            q, qd, qdd = self.sweep()
-        names = art["q"]
+    def step_positions(self, q, qd, qdd):
+        """Positions at the steps, solved along the path from the assembly configuration.
+
+        Returns ``(Q, QD, QDD, X, failed, out)``: the driver arrays (D, N) in the
+        order of ``artifact["q"]``, the coordinates (m, N) with angles continuous
+        from the assembly configuration, the first failing group at each step
+        (-1 where solved) and the path index of each step.
+        """
+        names = self.art["q"]
         Qs = np.array([np.asarray(q[n], float) for n in names])
         QDs = np.array([np.asarray(qd[n], float) for n in names])
         QDDs = np.array([np.asarray(qdd[n], float) for n in names])
-        N = Qs.shape[1]
         Qpath, out = self._path(Qs)
         Xp, failed_p = self.positions(Qpath)
         valid = failed_p < 0
@@ -417,8 +419,15 @@ class CompiledMechanism:
             th = np.unwrap(Xp[c, valid])
             # continuous from the assembly configuration (path point 0)
             Xp[c, valid] = th - 2 * np.pi * np.round((th[0] - self.x0[c]) / (2 * np.pi))
-        X = Xp[:, out]
-        failed = failed_p[out]
+        return Qs, QDs, QDDs, Xp[:, out], failed_p[out], out
+
+    def run(self, q=None, qd=None, qdd=None, exact_condition=False) -> Analysis:
+        """Evaluate the compiled mechanism over a sweep (the scene's by default)."""
+        art = self.art
+        if q is None:
+            q, qd, qdd = self.sweep()
+        Qs, QDs, QDDs, X, failed, out = self.step_positions(q, qd, qdd)
+        N = Qs.shape[1]
         status = np.full(N, OK, dtype="<U13")
         status[failed >= 0] = UNASSEMBLABLE
         messages: list = [None] * N
