@@ -30,7 +30,6 @@ from linkage_sym.numeric.state import LinkState
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.result import (
     OK,
-    SINGULAR,
     UNASSEMBLABLE,
     Analysis,
     Forces,
@@ -38,8 +37,15 @@ from linkage_sym.numeric.result import (
     JointKinematics,
     LinkKinematics,
 )
-from linkage_sym.numeric.sweep import SINGULAR_COND, run_warnings, scene_sweep, singular_message, solving_path
-from linkage_sym.numeric.transmission import transmission_angles
+from linkage_sym.numeric.sweep import (
+    Calibration,
+    finish,
+    mark_singular,
+    new_analysis,
+    scene_sweep,
+    solving_path,
+    step_status,
+)
 from linkage_sym.structure.parameters import driver_q0, evaluate, ident, link_frames
 
 SCREEN = 1e-3
@@ -181,8 +187,7 @@ class CompiledMechanism:
         ]
         self._choose_branches()
         self._pose_constraints = None
-        self._calibration = None  # accuracy: (G,) from the own sweep (see _accuracy)
-        self._calibrating = False
+        self._calibration = Calibration()  # accuracy: the indicator-to-condition ratio
 
     # -- positions -----------------------------------------------------------------
     def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, P=None,
@@ -375,30 +380,22 @@ class CompiledMechanism:
             return sv[:, 0] / sv[:, -1]
 
     def _accuracy(self, res, indicator) -> dict | None:
-        """Each ok step's relative accuracies (as ``Plan._accuracy``): ``K`` of the pose
+        """Each ok step's relative accuracies (as the numeric plan's): ``K`` of the pose
         Jacobian where a block was screened, else ``G / indicator`` with ``G`` calibrated
-        once on the scene's own sweep (:func:`accuracy.calibration_steps`)."""
+        once on the scene's own sweep (:class:`~linkage_sym.numeric.sweep.Calibration`)."""
         ok = res.status == OK
         flagged = np.flatnonzero(ok & np.isfinite(res.condition))
         pose_k = np.full(len(ok), np.nan)
         if len(flagged):
             pose_k[flagged] = self.pose_condition(res, flagged)
-        if self._calibrating:
+        if self._calibration.active:
             good = np.flatnonzero(ok)
             pose_k[good] = self.pose_condition(res, good)
-            self._calibration_data = (pose_k, ok, indicator)
+            self._calibration.record(pose_k, ok, indicator)
             return None
-        if self._calibration is None:
-            q, qd, qdd = self.sweep()
-            idx = accuracy.calibration_steps(len(next(iter(q.values()))))
-            self._calibrating = True
-            try:
-                self.run(*({k: np.asarray(v)[idx] for k, v in d.items()} for d in (q, qd, qdd)))
-            finally:
-                self._calibrating = False
-            self._calibration = (accuracy.calibration(*self._calibration_data),)
-        K = accuracy.condition_estimate(pose_k, ok, indicator, self._calibration[0])
-        return accuracy.accuracy(K, ok, tuple(self.art["stages"]))
+        G = self._calibration.ratio(self.sweep, self.run)
+        K = accuracy.condition_estimate(pose_k, ok, indicator, G)
+        return accuracy.accuracy(K, ok, tuple(self.art["stages"]), accuracy.amplification_of(res.forces))
 
     def step_positions(self, q, qd, qdd):
         """Positions at the steps, solved along the path from the assembly configuration.
@@ -428,17 +425,16 @@ class CompiledMechanism:
             q, qd, qdd = self.sweep()
         Qs, QDs, QDDs, X, failed, out = self.step_positions(q, qd, qdd)
         N = Qs.shape[1]
-        status = np.full(N, OK, dtype="<U13")
-        status[failed >= 0] = UNASSEMBLABLE
-        messages: list = [None] * N
         groups = {g["index"]: g for g in art["groups"]}
-        for i in np.flatnonzero(failed >= 0):
+
+        def message_of(i):
             g = groups[int(failed[i])]
             if g["closed"]:
-                messages[i] = (f"{g['label']} ({', '.join(g['links'])}) cannot be assembled: "
-                               "its closed form has no real solution")
-            else:
-                messages[i] = self.newton_messages[int(out[i])]
+                return (f"{g['label']} ({', '.join(g['links'])}) cannot be assembled: "
+                        "its closed form has no real solution")
+            return self.newton_messages[int(out[i])]
+
+        status, messages = step_status(failed, message_of)
         pos_ok = failed < 0
         idx = np.flatnonzero(pos_ok)
         Xk = X[:, idx]
@@ -474,11 +470,7 @@ class CompiledMechanism:
             screen |= ~(ratio >= SCREEN)
             ratio_min = np.fmin(ratio_min, ratio)
         if screen.any():
-            cond = self.condition_numbers(A[screen])
-            condition[idx[screen]] = cond
-            for i in idx[screen][~(cond <= SINGULAR_COND)]:
-                status[i] = SINGULAR
-                messages[i] = singular_message(condition[i])
+            mark_singular(status, messages, condition, idx[screen], self.condition_numbers(A[screen]))
         ok = status == OK
         rate_ok = ok[idx]
         stages = tuple(art["stages"])
@@ -506,7 +498,7 @@ class CompiledMechanism:
         if "forces" in stages:
             forces = self._forces(pts, Xk, CS, rate_ok, idx, N)
         res = self._analysis(X, XD, XDD, pts, idx, status, messages, condition, forces, q, qd, qdd)
-        res.warnings[:0] = continuation.step_warnings(self.newton_notes, out)
+        finish(res, self.scene, self.newton_notes, out)
         # accuracy (numeric.accuracy): K of the pose Jacobian (the numeric solver's), exact
         # where a block was screened, else from the blocks' ratios calibrated on it
         indicator = np.full(N, np.inf)
@@ -637,10 +629,6 @@ class CompiledMechanism:
                 if 2 in levels:
                     lk.com_acceleration = vec(self._get(pts, f"com:{link.name}:2"), rate_ok)
             links[link.name] = lk
-        drivers = {
-            k: {"q": np.asarray(q[k], float), "qd": np.asarray(qd[k], float), "qdd": np.asarray(qdd[k], float)}
-            for k in art["q"]
-        }
         # traced points (the format's ``points`` extension): rigid with their link, from its
         # rotation and origin motion (not part of the generated code)
         points = {}
@@ -652,27 +640,8 @@ class CompiledMechanism:
             if 2 in levels:
                 pk.acceleration = lk.point_acceleration(pt.at)
             points[pt.name] = pk
-        res = Analysis(
-            scene=scene.name,
-            stages=stages,
-            status=status,
-            messages=messages,
-            drivers=drivers,
-            joints=joints,
-            links=links,
-            condition=condition,
-            outputs=tuple(scene.outputs),
-            forces=forces,
-            p_joints=tuple(j.name for j in scene.joints if j.type == "P"),
-            points=points,
-        )
-        res.warnings.extend(run_warnings(res))
-        res.transmission_angles = transmission_angles(scene, res)
-        if "instant_centres" in scene.outputs:  # an extension of the format
-            from linkage_sym.centres import instant_centres
-
-            res.instant_centres = instant_centres(scene, res)
-        return res
+        return new_analysis(scene, stages, status, messages, {k: q[k] for k in art["q"]}, qd, qdd,
+                            joints, links, points, condition, forces)
 
 
 def load_compiled(scene: Scene) -> CompiledMechanism | None:

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric import accuracy, continuation
+from linkage_sym.numeric import accuracy
 from linkage_sym.numeric.closed_form import DyadSolver, InputSolver
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
 from linkage_sym.numeric.kinetostatics import ForcePlan, check_method
@@ -35,7 +35,6 @@ from linkage_sym.numeric.newton import NewtonSolver
 from linkage_sym.numeric.result import (
     OK,
     SINGULAR,
-    UNASSEMBLABLE,
     Analysis,
     JointKinematics,
     LinkKinematics,
@@ -43,15 +42,16 @@ from linkage_sym.numeric.result import (
 from linkage_sym.numeric.state import LinkState
 from linkage_sym.numeric.sweep import (
     SCREEN,
-    SINGULAR_COND,
+    Calibration,
     _unwrap,
+    finish,
+    mark_singular,
     needed_stages,
-    run_warnings,
+    new_analysis,
     scene_sweep,
-    singular_message,
     solving_path,
+    step_status,
 )
-from linkage_sym.numeric.transmission import transmission_angles
 from linkage_sym.structure import Decomposition, decompose
 from linkage_sym.structure.parameters import driver_q0
 
@@ -146,8 +146,7 @@ class Plan:
         self.stages = needed_stages(scene)
         self.layout = _Layout(scene, self.stages)
         self._own_sweep = None
-        self._calibration = None  # accuracy: (G,), the indicator-to-condition ratio (own sweep)
-        self._calibrating = False
+        self._calibration = Calibration()  # accuracy: the indicator-to-condition ratio
         # links whose rotation may come wrapped to one turn (atan2 in a dyad, or
         # copied or offset from such a link) and is unwrapped along the path;
         # Newton groups move continuously from the assembly configuration, and an
@@ -240,13 +239,10 @@ class Plan:
             st.th = th
         out = path.out
         failed = failed_at[out]
-        messages = [None] * N
         path_index = np.arange(npath)[out]
-        for i in np.flatnonzero(failed >= 0):
-            messages[i] = self.solvers[failed[i]].failure(S, int(path_index[i]))
+        status, messages = step_status(
+            failed, lambda i: self.solvers[failed[i]].failure(S, int(path_index[i])))
         S = {n: (st.take(out) if n != GROUND else st) for n, st in S.items()}
-        status = np.full(N, OK, dtype="<U13")
-        status[failed >= 0] = UNASSEMBLABLE
         # --- singularity: exact condition number where an indicator is small
         ind_min = np.full(N, np.inf)
         for ind in inds:
@@ -257,12 +253,8 @@ class Plan:
         check = (failed < 0) & (np.ones(N, bool) if exact_condition else ind_min < SCREEN)
         if check.any():
             idx = np.flatnonzero(check)
-            condition[idx] = self.condition_numbers(S, idx)
-            sing = idx[~(condition[idx] <= SINGULAR_COND)]
-            status[sing] = SINGULAR
+            sing = mark_singular(status, messages, condition, idx, self.condition_numbers(S, idx))
             ok[sing] = False
-            for i in sing:
-                messages[i] = singular_message(condition[i])
         qd = {k: np.asarray(v, dtype=float) for k, v in qd.items()}
         qdd = {k: np.asarray(v, dtype=float) for k, v in qdd.items()}
         # one block holds every result array; the solvers write rates straight into it
@@ -283,38 +275,21 @@ class Plan:
         if self.force_plan is not None:
             forces = self.force_plan.run(S, ok, method)
         res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
-        res.warnings.extend(continuation.step_warnings(
-            [n for sv in self.solvers for n in sv.notes], path_index))
-        res.warnings.extend(run_warnings(res))
-        res.transmission_angles = transmission_angles(self.scene, res, self.decomposition)
-        res.accuracy = self._accuracy(res, ok, ind_min)
-        if "instant_centres" in self.scene.outputs:  # an extension of the format
-            from linkage_sym.centres import instant_centres
-
-            res.instant_centres = instant_centres(self.scene, res)
+        finish(res, self.scene, [n for sv in self.solvers for n in sv.notes], path_index,
+               self.decomposition)
+        if self._calibration.active:
+            self._calibration.record(res.condition, ok, ind_min)
+        else:
+            # each ok step's relative accuracies (numeric.accuracy): K exact where computed,
+            # else from the indicators with the calibration ratio G
+            G = self._calibration.ratio(
+                self._sweep_values, lambda *d: self.run(*d, exact_condition=True))
+            K = accuracy.condition_estimate(res.condition, ok, ind_min, G)
+            res.accuracy = accuracy.accuracy(K, ok, self.stages, accuracy.amplification_of(res.forces))
         return res
 
-    def _accuracy(self, res, ok, ind_min) -> dict | None:
-        """Each ok step's relative accuracies (:mod:`linkage_sym.numeric.accuracy`): ``K``
-        exact where computed, else from the indicators with the plan's calibration ``G``,
-        computed once (on the first run) by a run of the scene's own sweep at
-        :func:`accuracy.calibration_steps` with exact condition numbers -- the same for
-        every run, whole or in chunks."""
-        if self._calibrating:
-            self._calibration_data = (res.condition, ok, ind_min)
-            return None
-        if self._calibration is None:
-            q, qd, qdd, _ = self._scene_sweep()
-            idx = accuracy.calibration_steps(len(next(iter(q.values()))))
-            self._calibrating = True
-            try:
-                self.run(*({k: np.asarray(v)[idx] for k, v in d.items()} for d in (q, qd, qdd)),
-                         exact_condition=True)
-            finally:
-                self._calibrating = False
-            self._calibration = (accuracy.calibration(*self._calibration_data),)
-        K = accuracy.condition_estimate(res.condition, ok, ind_min, self._calibration[0])
-        return accuracy.accuracy(K, ok, self.stages, accuracy.amplification_of(res.forces))
+    def _sweep_values(self):
+        return self._scene_sweep()[:3]
 
     def condition_numbers(self, S, idx) -> np.ndarray:
         """Exact dimensionless condition number of the full constraint Jacobian at steps ``idx``."""
@@ -397,24 +372,8 @@ class Plan:
             # a singular step keeps its positions; no step without a solution keeps rates
             block[: lay.n_pos, bad & (status != SINGULAR)] = np.nan
             block[lay.n_pos :, bad] = np.nan
-        drivers = {
-            k: {"q": np.asarray(q[k], float), "qd": np.asarray(qd[k], float), "qdd": np.asarray(qdd[k], float)}
-            for k in q
-        }
-        return Analysis(
-            scene=self.scene.name,
-            stages=self.stages,
-            status=status,
-            messages=messages,
-            drivers=drivers,
-            joints=joints,
-            links=links,
-            condition=condition,
-            outputs=tuple(self.scene.outputs),
-            forces=forces,
-            p_joints=tuple(j.name for j in self.scene.joints if j.type == "P"),
-            points=points,
-        )
+        return new_analysis(self.scene, self.stages, status, messages, q, qd, qdd, joints,
+                            links, points, condition, forces)
 
 
 def compile_plan(scene: Scene, disconnection=None) -> Plan:

@@ -9,8 +9,14 @@ follow are one thing, kept here:
 * the solving path from the assembly configuration through the steps, and the
   unwrapping of angles along it;
 * the singularity threshold of the scene format and its message;
-* the warnings of a finished run (``ok`` steps that lose digits, force
-  superpositions that cancel).
+* the statuses and messages of the steps (:func:`step_status`), the
+  singularity decision on screened steps (:func:`mark_singular`);
+* the result (:func:`new_analysis`) and what every run adds to it whatever
+  solved it (:func:`finish`: the warnings of the run -- ``ok`` steps that
+  lose digits, force superpositions that cancel, assembly-mode jumps --, the
+  transmission angles, the instant centres), so a new output kind is added
+  here once;
+* the accuracy calibration run, made once per runtime (:class:`Calibration`).
 
 The Newton continuation policy both runtimes use lives beside it, in
 :mod:`linkage_sym.numeric.continuation`.
@@ -23,8 +29,10 @@ import math
 import numpy as np
 
 from linkage_sym.model import Scene
-from linkage_sym.numeric.result import OK, Analysis
+from linkage_sym.numeric import accuracy, continuation
+from linkage_sym.numeric.result import OK, SINGULAR, UNASSEMBLABLE, Analysis
 from linkage_sym.numeric.superposition import AMPLIFICATION_LIMIT
+from linkage_sym.numeric.transmission import transmission_angles
 
 SINGULAR_COND = 1e10
 """Spec: a step is singular when the dimensionless condition number exceeds this."""
@@ -45,6 +53,114 @@ def singular_message(cond: float) -> str:
         f"Jacobian exceeds {SINGULAR_COND:.0e}; velocities and accelerations have no unique "
         "solution"
     )
+
+
+def step_status(failed: np.ndarray, message_of) -> tuple[np.ndarray, list]:
+    """Statuses and messages of the steps from the first failing group at each one.
+
+    ``failed`` (N,) holds that group's index, -1 where every group is solved;
+    ``message_of(i)`` words the failure at step ``i``.
+    """
+    N = len(failed)
+    status = np.full(N, OK, dtype="<U13")
+    bad = np.flatnonzero(failed >= 0)
+    status[bad] = UNASSEMBLABLE
+    messages: list = [None] * N
+    for i in bad:
+        messages[i] = message_of(int(i))
+    return status, messages
+
+
+def mark_singular(status, messages, condition, idx, cond) -> np.ndarray:
+    """Record the exact condition numbers ``cond`` of the screened steps ``idx``; the
+    ones above :data:`SINGULAR_COND` (or not finite) become ``singular``.  Returns them."""
+    condition[idx] = cond
+    sing = idx[~(cond <= SINGULAR_COND)]
+    status[sing] = SINGULAR
+    for i in sing:
+        messages[i] = singular_message(condition[i])
+    return sing
+
+
+def new_analysis(scene: Scene, stages, status, messages, q, qd, qdd, joints, links, points,
+                 condition, forces) -> Analysis:
+    """The :class:`Analysis` of a run, whichever runtime solved it."""
+    drivers = {
+        k: {"q": np.asarray(q[k], float), "qd": np.asarray(qd[k], float),
+            "qdd": np.asarray(qdd[k], float)}
+        for k in q
+    }
+    return Analysis(
+        scene=scene.name,
+        stages=tuple(stages),
+        status=status,
+        messages=messages,
+        drivers=drivers,
+        joints=joints,
+        links=links,
+        condition=condition,
+        outputs=tuple(scene.outputs),
+        forces=forces,
+        p_joints=tuple(j.name for j in scene.joints if j.type == "P"),
+        points=points,
+    )
+
+
+def finish(res: Analysis, scene: Scene, notes, step_points, decomposition=None) -> Analysis:
+    """What every run adds to its result, whichever runtime solved it.
+
+    The warnings (assembly-mode jumps and ambiguous modes of Newton groups
+    from their ``notes``, see :func:`continuation.step_warnings`; then
+    :func:`run_warnings`), the transmission angles, and the instant centres
+    when the scene asks for them.
+    """
+    res.warnings.extend(continuation.step_warnings(notes, step_points))
+    res.warnings.extend(run_warnings(res))
+    res.transmission_angles = transmission_angles(scene, res, decomposition)
+    if "instant_centres" in scene.outputs:  # an extension of the format
+        from linkage_sym.centres import instant_centres
+
+        res.instant_centres = instant_centres(scene, res)
+    return res
+
+
+class Calibration:
+    """The accuracy calibration of one runtime (see :mod:`linkage_sym.numeric.accuracy`).
+
+    The ratio ``G`` of the exact condition number to a runtime's cheap
+    indicator is measured once, by a run of the scene's own sweep at
+    :func:`accuracy.calibration_steps` with exact condition numbers, so every
+    later run -- whole or in chunks -- uses the same ``G``.  While that run is
+    under way, :attr:`active` is true and the run hands its data to
+    :meth:`record` instead of computing an accuracy.
+    """
+
+    def __init__(self):
+        self.active = False
+        self._data = None
+        self._G = None
+
+    @property
+    def G(self) -> float | None:
+        """The ratio once measured (``None`` before the first run)."""
+        return None if self._G is None else self._G[0]
+
+    def record(self, K, ok, indicator) -> None:
+        self._data = (K, ok, indicator)
+
+    def ratio(self, sweep, run):
+        """``G``, measured on the first call by ``run(q, qd, qdd)`` at the calibration steps
+        of ``sweep()``."""
+        if self._G is None:
+            q, qd, qdd = sweep()
+            idx = accuracy.calibration_steps(len(next(iter(q.values()))))
+            self.active = True
+            try:
+                run(*({k: np.asarray(v)[idx] for k, v in d.items()} for d in (q, qd, qdd)))
+            finally:
+                self.active = False
+            self._G = (accuracy.calibration(*self._data),)
+        return self._G[0]
 
 
 def _unwrap(th: np.ndarray) -> np.ndarray:
