@@ -25,18 +25,11 @@ import numpy as np
 from linkage_sym.codegen import cache
 from linkage_sym.errors import SceneError
 from linkage_sym.numeric import accuracy, continuation
+from linkage_sym.numeric.block import ResultLayout
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
 from linkage_sym.numeric.state import LinkState
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric.result import (
-    OK,
-    UNASSEMBLABLE,
-    Analysis,
-    Forces,
-    GroupForces,
-    JointKinematics,
-    LinkKinematics,
-)
+from linkage_sym.numeric.result import OK, Analysis, Forces, GroupForces
 from linkage_sym.numeric.sweep import (
     Calibration,
     finish,
@@ -188,6 +181,7 @@ class CompiledMechanism:
         self._choose_branches()
         self._pose_constraints = None
         self._calibration = Calibration()  # accuracy: the indicator-to-condition ratio
+        self._layout = None  # the result block's layout, made on the first run
 
     # -- positions -----------------------------------------------------------------
     def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, P=None,
@@ -570,76 +564,73 @@ class CompiledMechanism:
         )
 
     def _analysis(self, X, XD, XDD, pts, idx, status, messages, condition, forces, q, qd, qdd):
+        """Write the results into a result block (:class:`ResultLayout`, as the numeric
+        plan does): the values at the steps ``idx`` where positions were solved; the
+        layout blanks the steps without a solution."""
         scene, art = self.scene, self.art
         N = len(status)
         stages = tuple(art["stages"])
-        rate_ok = (status == OK)[idx]
-        pos_ok = status != UNASSEMBLABLE
-        pos_ok_k = pos_ok[idx]
+        has_v, has_a = "velocity" in stages, "acceleration" in stages
+        if self._layout is None:
+            self._layout = ResultLayout(scene, stages)
+        lay = self._layout
+        block = np.empty((lay.n_rows, N))
+        if len(idx) < N:
+            block[:] = np.nan
+        links, joints, points = lay.records(scene, block, stages)
+        every = len(idx) == N
 
-        every = len(idx) == N and bool(rate_ok.all())
+        def put(dest, v):  # a row (N,) or a pair of rows (2, N) at the solved steps
+            if every:
+                dest[...] = v
+            else:
+                dest[..., idx] = v
 
-        def full(v, mask_k):
-            if every:  # every step solved: the arrays as they are
-                return np.array(np.broadcast_to(v, (N,)), dtype=float)
-            out = np.full(N, np.nan)
-            out[idx[mask_k]] = np.asarray(v)[mask_k]
-            return out
-
-        def vec(pair, mask_k):
-            return np.stack([full(pair[0], mask_k), full(pair[1], mask_k)], axis=-1)
-
-        levels = [0] + ([1] if "velocity" in stages else []) + ([2] if "acceleration" in stages else [])
-        joints = {}
         for j in scene.joints:
-            jk = JointKinematics(position=vec(self._get(pts, f"joint:{j.name}:0"), pos_ok_k))
-            if 1 in levels:
-                jk.velocity = vec(self._get(pts, f"joint:{j.name}:1"), rate_ok)
-            if 2 in levels:
-                jk.acceleration = vec(self._get(pts, f"joint:{j.name}:2"), rate_ok)
-            joints[j.name] = jk
-        links = {}
+            rec = joints[j.name]
+            put(rec.position.T, self._get(pts, f"joint:{j.name}:0"))
+            if has_v:
+                put(rec.velocity.T, self._get(pts, f"joint:{j.name}:1"))
+            if has_a:
+                put(rec.acceleration.T, self._get(pts, f"joint:{j.name}:2"))
         for link in scene.links:
-            c = self.angle_of[link.name]
-            fr = self.frames[link.name]
+            n, lk = link.name, links[link.name]
+            c = self.angle_of[n]
+            fr = self.frames[n]
             rot = X[c] - fr.theta0
-            rot = np.where(pos_ok, rot, np.nan)
+            lk.rotation[...] = rot
             # the link point at the global origin in the assembly configuration
             cr, sr = np.cos(rot[idx]), np.sin(rot[idx])
             Ux, Uy = fr.origin
             dx, dy = -(cr * Ux - sr * Uy), -(sr * Ux + cr * Uy)
-            ux, uy = self._get(pts, f"origin:{link.name}:0")
-            lk = LinkKinematics(rotation=rot, origin=vec((ux + dx, uy + dy), pos_ok_k))
-            if 1 in levels:
+            ux, uy = self._get(pts, f"origin:{n}:0")
+            put(lk.origin.T, (ux + dx, uy + dy))
+            if has_v:
                 w = XD[c]
-                vx, vy = self._get(pts, f"origin:{link.name}:1")
-                lk.omega = full(w, rate_ok)
-                lk.origin_velocity = vec((vx - w * dy, vy + w * dx), rate_ok)
-            if 2 in levels:
+                vx, vy = self._get(pts, f"origin:{n}:1")
+                put(lk.omega, w)
+                put(lk.origin_velocity.T, (vx - w * dy, vy + w * dx))
+            if has_a:
                 w, al = XD[c], XDD[c]
-                ax, ay = self._get(pts, f"origin:{link.name}:2")
-                lk.alpha = full(al, rate_ok)
-                lk.origin_acceleration = vec(
-                    (ax - al * dy - w * w * dx, ay + al * dx - w * w * dy), rate_ok
-                )
+                ax, ay = self._get(pts, f"origin:{n}:2")
+                put(lk.alpha, al)
+                put(lk.origin_acceleration.T, (ax - al * dy - w * w * dx, ay + al * dx - w * w * dy))
             if link.com is not None:
-                lk.com = vec(self._get(pts, f"com:{link.name}:0"), pos_ok_k)
-                if 1 in levels:
-                    lk.com_velocity = vec(self._get(pts, f"com:{link.name}:1"), rate_ok)
-                if 2 in levels:
-                    lk.com_acceleration = vec(self._get(pts, f"com:{link.name}:2"), rate_ok)
-            links[link.name] = lk
+                put(lk.com.T, self._get(pts, f"com:{n}:0"))
+                if has_v:
+                    put(lk.com_velocity.T, self._get(pts, f"com:{n}:1"))
+                if has_a:
+                    put(lk.com_acceleration.T, self._get(pts, f"com:{n}:2"))
         # traced points (the format's ``points`` extension): rigid with their link, from its
         # rotation and origin motion (not part of the generated code)
-        points = {}
         for pt in scene.points:
-            lk = links[pt.link]
-            pk = JointKinematics(position=lk.point(pt.at))
-            if 1 in levels:
-                pk.velocity = lk.point_velocity(pt.at)
-            if 2 in levels:
-                pk.acceleration = lk.point_acceleration(pt.at)
-            points[pt.name] = pk
+            lk, rec = links[pt.link], points[pt.name]
+            rec.position[...] = lk.point(pt.at)
+            if has_v:
+                rec.velocity[...] = lk.point_velocity(pt.at)
+            if has_a:
+                rec.acceleration[...] = lk.point_acceleration(pt.at)
+        lay.invalidate(block, status)
         return new_analysis(scene, stages, status, messages, {k: q[k] for k in art["q"]}, qd, qdd,
                             joints, links, points, condition, forces)
 

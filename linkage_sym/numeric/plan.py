@@ -28,17 +28,12 @@ import numpy as np
 
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric import accuracy
+from linkage_sym.numeric.block import ResultLayout
 from linkage_sym.numeric.closed_form import DyadSolver, InputSolver
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
 from linkage_sym.numeric.kinetostatics import ForcePlan, check_method
 from linkage_sym.numeric.newton import NewtonSolver
-from linkage_sym.numeric.result import (
-    OK,
-    SINGULAR,
-    Analysis,
-    JointKinematics,
-    LinkKinematics,
-)
+from linkage_sym.numeric.result import Analysis
 from linkage_sym.numeric.state import LinkState
 from linkage_sym.numeric.sweep import (
     SCREEN,
@@ -61,70 +56,6 @@ class _Path:
     out: slice | np.ndarray  # where the steps are in the path
 
 
-class _Layout:
-    """Where each result array lives in a run's result block.
-
-    Every result array is a row (scalars over the steps) or a pair of rows
-    (vectors, handed out as the ``(N, 2)`` transposed view) of one
-    ``(n_rows, N)`` block: one allocation per run instead of one per array
-    and per temporary, which is most of the cost of a sweep once the groups
-    are solved.  Positional rows come first, so the steps without a
-    position (or without rates) are set to NaN in two operations.
-
-    ``rows`` maps ``(link, field)`` for ``rotation, origin, com, w, vx, al,
-    ax, com_velocity, com_acceleration``, ``(joint, field)`` and
-    ``("point", name, field)`` for ``position, velocity, acceleration`` to
-    the first row (``vx``/``ax`` start the pairs ``vx, vy`` / ``ax, ay``).
-    """
-
-    def __init__(self, scene: Scene, stages):
-        rows = {}
-        i = 0
-
-        def put(key, n):
-            nonlocal i
-            rows[key] = i
-            i += n
-
-        for link in scene.links:
-            put((link.name, "rotation"), 1)
-            put((link.name, "origin"), 2)
-            if link.com is not None:
-                put((link.name, "com"), 2)
-        for j in scene.joints:
-            put((j.name, "position"), 2)
-        for pt in scene.points:
-            put(("point", pt.name, "position"), 2)
-        self.n_pos = i
-        for stage, (rot, lin, name) in (
-            ("velocity", ("w", "vx", "velocity")),
-            ("acceleration", ("al", "ax", "acceleration")),
-        ):
-            if stage not in stages:
-                continue
-            for link in scene.links:
-                put((link.name, rot), 1)
-                put((link.name, lin), 2)
-                if link.com is not None:
-                    put((link.name, f"com_{name}"), 2)
-            for j in scene.joints:
-                put((j.name, name), 2)
-            for pt in scene.points:
-                put(("point", pt.name, name), 2)
-        self.rows = rows
-        self.n_rows = i
-
-    def rate_rows(self, block, link) -> dict:
-        """The rows of ``block`` a link's rate fields are bound to (see ``LinkState``)."""
-        out = {}
-        for rot, lin in (("w", "vx"), ("al", "ax")):
-            if (link, rot) in self.rows:
-                i = self.rows[link, lin]
-                out[rot] = block[self.rows[link, rot]]
-                out[lin], out[lin[0] + "y"] = block[i], block[i + 1]
-        return out
-
-
 class Plan:
     """A compiled solving plan; see :func:`compile_plan`."""
 
@@ -144,7 +75,7 @@ class Plan:
             else:
                 self.solvers.append(NewtonSolver(scene, g, self.constraints, self.L))
         self.stages = needed_stages(scene)
-        self.layout = _Layout(scene, self.stages)
+        self.layout = ResultLayout(scene, self.stages)
         self._own_sweep = None
         self._calibration = Calibration()  # accuracy: the indicator-to-condition ratio
         # links whose rotation may come wrapped to one turn (atan2 in a dyad, or
@@ -300,78 +231,49 @@ class Plan:
             return sv[:, 0] / sv[:, -1]
 
     def _analysis(self, S, block, q, qd, qdd, status, messages, condition, forces) -> Analysis:
-        """Assemble the result arrays in ``block`` (see :class:`_Layout`).
+        """Assemble the result arrays in ``block`` (see :class:`ResultLayout`).
 
         The rates of the links are there already (the solvers wrote them);
         positions are copied in, points of links are written in place.
         """
         N = len(status)
-        bad = status != OK
         lay = self.layout
         has_v = "velocity" in self.stages
         has_a = "acceleration" in self.stages
         tmp = np.empty(N) if has_a else None
-
-        def pair(key):
-            i = lay.rows[key]
-            return block[i : i + 2]
-
-        links = {}
+        links, joints, points = lay.records(self.scene, block, self.stages)
         for link in self.scene.links:
-            n, st = link.name, S[link.name]
-            r = block[lay.rows[n, "rotation"]]
-            r[...] = st.th
-            o = pair((n, "origin"))
+            n, st, lk = link.name, S[link.name], links[link.name]
+            lk.rotation[...] = st.th
+            o = lk.origin.T
             o[0] = st.dx
             o[1] = st.dy
-            lk = LinkKinematics(rotation=r, origin=o.T)
-            if has_v:
-                lk.omega = block[lay.rows[n, "w"]]
-                lk.origin_velocity = pair((n, "vx")).T
-            if has_a:
-                lk.alpha = block[lay.rows[n, "al"]]
-                lk.origin_acceleration = pair((n, "ax")).T
             if link.com is not None:
-                out = pair((n, "com"))
+                out = lk.com.T
                 st.point_into(link.com, out[0], out[1])
-                lk.com = out.T
                 if has_v:
-                    out = pair((n, "com_velocity"))
+                    out = lk.com_velocity.T
                     st.point_velocity_into(link.com, out[0], out[1])
-                    lk.com_velocity = out.T
-            links[n] = lk
-        # joints (their point on links[1]) and traced points: (layout key, link, point, record)
-        tracked = [((j.name,), j.links[1], j.at, JointKinematics(position=None))
-                   for j in self.scene.joints]
-        tracked += [(("point", pt.name), pt.link, pt.at, JointKinematics(position=None))
-                    for pt in self.scene.points]
-        for key, k, X, rec in tracked:
-            out = pair((*key, "position"))
+        # joints (their point on links[1]) and traced points: (link, point, record)
+        tracked = [(j.links[1], j.at, joints[j.name]) for j in self.scene.joints]
+        tracked += [(pt.link, pt.at, points[pt.name]) for pt in self.scene.points]
+        for k, X, rec in tracked:
+            out = rec.position.T
             S[k].point_into(X, out[0], out[1])
-            rec.position = out.T
             if has_v:
-                out = pair((*key, "velocity"))
+                out = rec.velocity.T
                 S[k].point_velocity_into(X, out[0], out[1])
-                rec.velocity = out.T
         if has_a:
             w2 = {n: np.multiply(st.w, st.w) for n, st in S.items()}
             for link in self.scene.links:
                 if link.com is not None:
                     n = link.name
-                    out = pair((n, "com_acceleration"))
+                    out = links[n].com_acceleration.T
                     S[n].point_acceleration_into(link.com, out[0], out[1], w2[n], tmp)
-                    links[n].com_acceleration = out.T
-            for key, k, X, rec in tracked:
-                out = pair((*key, "acceleration"))
+            for k, X, rec in tracked:
+                out = rec.acceleration.T
                 S[k].point_acceleration_into(X, out[0], out[1], w2[k], tmp)
-                rec.acceleration = out.T
-        joints = {j.name: rec for j, (_, _, _, rec) in zip(self.scene.joints, tracked)}
-        points = {pt.name: rec for pt, (_, _, _, rec) in
-                  zip(self.scene.points, tracked[len(self.scene.joints):])}
-        if bad.any():
-            # a singular step keeps its positions; no step without a solution keeps rates
-            block[: lay.n_pos, bad & (status != SINGULAR)] = np.nan
-            block[lay.n_pos :, bad] = np.nan
+        lay.invalidate(block, status)
         return new_analysis(self.scene, self.stages, status, messages, q, qd, qdd, joints,
                             links, points, condition, forces)
 
