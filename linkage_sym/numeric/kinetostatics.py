@@ -19,6 +19,9 @@ Methods
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from typing import Protocol
+
 import numpy as np
 
 from linkage_sym.model import GROUND, Scene
@@ -28,7 +31,7 @@ from linkage_sym.numeric.result import Forces, GroupForces
 from linkage_sym.numeric.statics import DyadForces, Geometry, InputForces, push
 from linkage_sym.numeric.superposition import SuperpositionForces
 from linkage_sym.structure.disconnection import usable_disconnections
-from linkage_sym.structure import Decomposition
+from linkage_sym.structure import Decomposition, Group
 
 METHODS = ("dyad", "global")
 
@@ -39,6 +42,86 @@ def check_method(method):
         raise ValueError(
             f"method: unknown force method {method!r} (use one of {', '.join(METHODS)})"
         )
+
+
+@dataclass
+class GroupSolution:
+    """What a force routine returns for its group over ``K`` steps."""
+
+    reactions: dict
+    """joint -> ``(fx, fy, m)``: the reaction the joint's ``links[0]`` exerts on ``links[1]``."""
+    efforts: dict
+    """driven joint -> driving force or torque."""
+    used: np.ndarray | None = None
+    """(K,) index of the disconnection used at each step (superposition only)."""
+    amplification: np.ndarray | None = None
+    """(K,) cancellation of the superposition (superposition only)."""
+
+
+class ForceRoutine(Protocol):
+    """The force routine of one Assur group, as :class:`ForcePlan` calls it."""
+
+    method: str
+    """How the group is solved, as reported in ``GroupForces.method``."""
+    choices: tuple
+    """The disconnections tried (superposition only; else empty)."""
+
+    def solve(self, W, geo: Geometry, L: float, K: int) -> GroupSolution:
+        """Reactions and efforts from the applied wrenches ``W`` over ``K`` steps."""
+
+
+class _InputRoutine:
+    choices = ()
+    method = "input"
+
+    def __init__(self, scene: Scene, g: Group):
+        (dname,) = g.drivers
+        self.routine = InputForces(scene, g.links[0], dname)
+
+    def solve(self, W, geo, L, K) -> GroupSolution:
+        r, e = self.routine.solve(W, geo)
+        name = self.routine.joint.name
+        return GroupSolution({name: r}, {name: e})
+
+
+class _DyadRoutine:
+    choices = ()
+
+    def __init__(self, scene: Scene, g: Group):
+        self.routine = DyadForces(scene, g)
+        self.method = f"dyad {g.dyad_type}"
+
+    def solve(self, W, geo, L, K) -> GroupSolution:
+        return GroupSolution(self.routine.solve(W, geo), {})
+
+
+class _SuperpositionRoutine:
+    method = "disconnection"
+
+    def __init__(self, scene: Scene, g: Group, choices, preferred):
+        self.routine = SuperpositionForces(scene, g, choices, preferred)
+        self.choices = tuple(d.describe() for d in self.routine.choices)
+
+    def solve(self, W, geo, L, K) -> GroupSolution:
+        res, eff, used, amp = self.routine.solve(W, geo, L, K)
+        return GroupSolution(res, eff, used, amp)
+
+
+class _DenseRoutine:
+    """A group no disconnection reduces to dyads: its own equilibrium as one linear system."""
+
+    choices = ()
+    method = "dense"
+
+    def __init__(self, scene: Scene, g: Group):
+        self.scene, self.group = scene, g
+
+    def solve(self, W, geo, L, K) -> GroupSolution:
+        g = self.group
+        res, eff = solve_dense(
+            self.scene, list(g.links), list(g.joints), list(g.drivers), geo, W, L, K
+        )
+        return GroupSolution(res, eff)
 
 
 class ForcePlan:
@@ -60,22 +143,19 @@ class ForcePlan:
         self.scene = scene
         self.decomposition = decomposition
         self.L = L
-        self.routines = []
+        self.routines: list[ForceRoutine] = []
         for gi, g in enumerate(decomposition.groups):
             if g.kind == "input":
-                (dname,) = g.drivers
-                self.routines.append(("input", InputForces(scene, g.links[0], dname)))
+                self.routines.append(_InputRoutine(scene, g))
             elif g.kind == "dyad":
-                self.routines.append(("dyad", DyadForces(scene, g)))
+                self.routines.append(_DyadRoutine(scene, g))
             else:
                 choices = usable_disconnections(scene, g)
                 pref = disconnection.get(gi) if isinstance(disconnection, dict) else disconnection
                 if choices:
-                    self.routines.append(
-                        ("disconnection", SuperpositionForces(scene, g, choices, pref))
-                    )
+                    self.routines.append(_SuperpositionRoutine(scene, g, choices, pref))
                 else:
-                    self.routines.append(("dense", None))
+                    self.routines.append(_DenseRoutine(scene, g))
 
     def run(self, S, ok, method="dyad") -> Forces:
         """Forces at the steps where ``ok`` is true (NaN elsewhere).
@@ -106,25 +186,14 @@ class ForcePlan:
             groups = [GroupForces(g.links, "global") for g in self.decomposition.groups]
         else:
             reactions, efforts = {}, {}
-            for g, (kind, routine) in zip(
-                reversed(self.decomposition.groups), reversed(self.routines)
-            ):
-                info = GroupForces(g.links, kind)
-                if kind == "input":
-                    r, e = routine.solve(W, geo)
-                    res, eff = {routine.joint.name: r}, {routine.joint.name: e}
-                elif kind == "dyad":
-                    res, eff = routine.solve(W, geo), {}
-                    info.method = f"dyad {g.dyad_type}"
-                elif kind == "disconnection":
-                    res, eff, used, amp = routine.solve(W, geo, self.L, K)
-                    info.choices = tuple(d.describe() for d in routine.choices)
-                    info.used = _spread(used, idx, N, -1, int)
-                    info.amplification = _spread(amp, idx, N, np.nan)
-                else:
-                    res, eff = solve_dense(
-                        scene, list(g.links), list(g.joints), list(g.drivers), geo, W, self.L, K
-                    )
+            for g, routine in zip(reversed(self.decomposition.groups), reversed(self.routines)):
+                sol = routine.solve(W, geo, self.L, K)
+                res, eff = sol.reactions, sol.efforts
+                info = GroupForces(g.links, routine.method)
+                if sol.used is not None:
+                    info.choices = routine.choices
+                    info.used = _spread(sol.used, idx, N, -1, int)
+                    info.amplification = _spread(sol.amplification, idx, N, np.nan)
                 groups.append(info)
                 reactions.update(res)
                 efforts.update(eff)
