@@ -130,11 +130,17 @@ def handwritten_fourbar(scene):
                + a1 * l1 * s12) / (l3 * s32)
         al2 = (-w1**2 * l1 * np.cos(th1 - th3) - w2**2 * l2 * np.cos(th2 - th3) + w3**2 * l3
                - a1 * l1 * np.sin(th1 - th3)) / (l2 * np.sin(th2 - th3))
+        # joint velocities/accelerations of B and C
+        vb = (-w1 * l1 * s1, w1 * l1 * c1)
+        vc = (-w3 * (cy - D[1]), w3 * (cx - D[0]))
+        ab = (-a1 * l1 * s1 - w1 * w1 * l1 * c1, a1 * l1 * c1 - w1 * w1 * l1 * s1)
+        ac = (-al3 * (cy - D[1]) - w3 * w3 * (cx - D[0]), al3 * (cx - D[0]) - w3 * w3 * (cy - D[1]))
         out = {}
-        for name, th, w, al, O, t0 in (
-            ("crank", th1, w1, a1, (A[0], A[1]), t10),
-            ("coupler", th2, w2, al2, (bx, by), t20),
-            ("rocker", th3, w3, al3, (D[0], D[1]), t30),
+        # a centre of mass moves with its link's origin (the coupler's is B, which moves)
+        for name, th, w, al, O, vO, aO, t0 in (
+            ("crank", th1, w1, a1, (A[0], A[1]), (0.0, 0.0), (0.0, 0.0), t10),
+            ("coupler", th2, w2, al2, (bx, by), vb, ab, t20),
+            ("rocker", th3, w3, al3, (D[0], D[1]), (0.0, 0.0), (0.0, 0.0), t30),
         ):
             r = th - t0
             c, s = np.cos(r), np.sin(r)
@@ -143,14 +149,9 @@ def handwritten_fourbar(scene):
             out[name] = (
                 r, w, al,
                 O[0] + rx, O[1] + ry,
-                -w * ry, w * rx,
-                -al * ry - w * w * rx, al * rx - w * w * ry,
+                vO[0] - w * ry, vO[1] + w * rx,
+                aO[0] - al * ry - w * w * rx, aO[1] + al * rx - w * w * ry,
             )
-        # joint velocities/accelerations of B and C
-        vb = (-w1 * l1 * s1, w1 * l1 * c1)
-        vc = (-w3 * (cy - D[1]), w3 * (cx - D[0]))
-        ab = (-a1 * l1 * s1 - w1 * w1 * l1 * c1, a1 * l1 * c1 - w1 * w1 * l1 * s1)
-        ac = (-al3 * (cy - D[1]) - w3 * w3 * (cx - D[0]), al3 * (cx - D[0]) - w3 * w3 * (cy - D[1]))
         out["joints"] = (bx, by, cx, cy, vb, vc, ab, ac)
         return out
 
