@@ -31,34 +31,51 @@ and whatever the format.
   kept in memory for plots) is refused with :class:`OutputError`, nothing
   written.
 
-This module is outside the numeric core: it may use tqdm (a progress bar,
+The package: this module plans the chunks (memory, chunk size) and runs the
+sweep (:class:`Sweep`, :func:`write_sweep`); :mod:`~linkage_sym.output.writers`
+holds one writer per format, :mod:`~linkage_sym.output.stats` what the chunks
+add up to.
+
+This package is outside the numeric core: it may use tqdm (a progress bar,
 optional extra ``progress``) and pyarrow (optional extra ``parquet``), which
 the core never imports.
 """
 
 from __future__ import annotations
 
-import io
-import json
 import math
 import os
-import re
-import shutil
 import sys
-import tempfile
-import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
 import numpy as np
 
-from linkage_sym.numeric.sweep import WARN_COND, run_warnings
-from linkage_sym.numeric.result import OK, UNASSEMBLABLE, Analysis, LeftOut
-from linkage_sym.numeric.superposition import AMPLIFICATION_LIMIT
+from linkage_sym.numeric.result import Analysis
+from linkage_sym.output.stats import Peak, SweepStats
+from linkage_sym.output.writers import (
+    FORMATS,
+    SUFFIXES,
+    CsvWriter,
+    JsonWriter,
+    NpzWriter,
+    OutputError,
+    ParquetWriter,
+    ProgressFn,
+    _numeric_columns,
+    _NoWriter,
+    _Writer,
+    output_format,
+    require_pyarrow,
+)
 
-FORMATS = ("json", "csv", "npz", "parquet")
-SUFFIXES = {".json": "json", ".csv": "csv", ".npz": "npz", ".parquet": "parquet", ".pq": "parquet"}
+__all__ = [
+    "FORMATS", "SUFFIXES", "OutputError", "output_format", "require_pyarrow", "available_memory",
+    "bytes_per_step", "chunk_steps", "check_whole", "Sweep", "plan_sweep", "compiled_sweep",
+    "chunk_bounds", "ChunkError", "write_sweep", "SweepStats", "Peak", "ProgressFn",
+]
+
 
 CHUNK_MEMORY = 256 * 2**20
 """Memory (bytes, estimated) one chunk may take; smaller when the machine has less."""
@@ -84,44 +101,6 @@ Arrow arrays with their validity masks, and the encoded pages)."""
 FIXED_BYTES = 64 * 2**20
 """Memory a run needs besides its chunk (a JSON or CSV block of records, buffers)."""
 
-ProgressFn = Callable[[int], None]
-
-
-class OutputError(Exception):
-    """A result file that will not be written: refused before anything is computed or written.
-
-    ``problems``: one sentence each (the command line exits with status 2).
-    """
-
-    def __init__(self, problems):
-        self.problems = [problems] if isinstance(problems, str) else list(problems)
-        super().__init__("; ".join(self.problems))
-
-
-def output_format(path: str | None, given: str | None = None) -> str:
-    """The format of a result file: ``given``, else from the suffix of ``path``, else ``json``."""
-    if given is not None:
-        if given not in FORMATS:
-            raise OutputError(f"--format: {given!r} is not one of {', '.join(FORMATS)}")
-        return given
-    if path is None or path == "-":
-        return "json"
-    return SUFFIXES.get(Path(path).suffix.lower(), "json")
-
-
-def require_pyarrow():
-    """pyarrow's ``(pa, pq)`` modules, or :class:`OutputError` naming the extra to install."""
-    try:
-        import pyarrow as pa
-        import pyarrow.parquet as pq
-    except ImportError as err:
-        raise OutputError(
-            "--format parquet needs pyarrow, which is not installed: "
-            "pip install 'linkage_sym[parquet]'") from err
-    return pa, pq
-
-
-# ------------------------------------------------------------------ memory
 
 
 def _read_int(path: str) -> int | None:
@@ -318,490 +297,6 @@ def compiled_sweep(mechanism) -> Sweep:
 def chunk_bounds(n_steps: int, size: int):
     """``(start, stop)`` of each chunk of ``size`` steps."""
     return [(a, min(n_steps, a + size)) for a in range(0, n_steps, size)]
-
-
-# ------------------------------------------------------------------ merging chunks
-
-
-def _steps_text(first: list, count: int) -> str:
-    """The steps of a warning: the first five, and how many more (as a whole run words them)."""
-    return ", ".join(map(str, first[:5])) + (f" and {count - 5} more" if count > 5 else "")
-
-
-@dataclass
-class _Flagged:
-    """Steps flagged by a warning over the chunks: how many, the first five, the worst."""
-
-    count: int = 0
-    first: list = field(default_factory=list)
-    worst: float = -math.inf
-    worst_step: int = -1
-
-    def add(self, steps: np.ndarray, values: np.ndarray) -> None:
-        if not len(steps):
-            return
-        self.count += len(steps)
-        self.first += [int(i) for i in steps[: 5 - len(self.first)]]
-        k = int(np.argmax(values))
-        if values[k] > self.worst:  # strictly: the earliest of equal values, as argmax
-            self.worst, self.worst_step = values[k], int(steps[k])
-
-
-@dataclass
-class Peak:
-    """The largest ``|value|`` of a series over the chunks: its step, signed value, driver values."""
-
-    step: int = -1
-    value: float = 0.0
-    drivers: dict = field(default_factory=dict)
-
-    def add(self, values: np.ndarray, offset: int, res: Analysis, skip: int) -> None:
-        v = np.abs(np.asarray(values, dtype=float))
-        finite = np.isfinite(v)
-        if not finite.any():
-            return
-        i = int(np.nanargmax(np.where(finite, v, np.nan)))
-        if self.step < 0 or v[i] > abs(self.value):
-            self.step = offset + i
-            self.value = float(np.asarray(values, dtype=float)[i])
-            self.drivers = {k: float(d["q"][skip + i]) for k, d in res.drivers.items()}
-
-    def __bool__(self) -> bool:
-        return self.step >= 0
-
-
-_NOTE_STEP = re.compile(r"; at step (\d+)( \(reached from (?:step (\d+)|the assembly configuration)\))?"
-                        r" it continues")
-
-
-class SweepStats:
-    """What a sweep's chunks add up to: statuses, peaks and warnings of the whole sweep.
-
-    ``SweepStats.of(analysis)`` gives a whole run's; :func:`write_sweep` adds
-    its chunks one after the other (:meth:`add`).  The peaks and counts are
-    those the command line's summary prints; :attr:`warnings` are those a whole
-    run's ``Analysis.warnings`` holds.
-    """
-
-    def __init__(self, template: Analysis, heads=()):
-        self.template = template  # a run of one step: the result's head, groups, stages
-        self.heads = list(heads)
-        self.n_steps = 0
-        self.counts: dict = {}
-        self.first_message = None
-        self.stages = template.stages
-        self.outputs = template.outputs
-        self.has_forces = template.forces is not None
-        self.driving: dict = {}
-        self.reactions: dict = {}
-        self.frame_force = Peak()
-        self.frame_moment = Peak()
-        self._notes: list = []  # (group order, text) of the Newton groups' jumps
-        self._other: list = []  # a chunk's warnings of another kind, as they are
-        self._ill = _Flagged()
-        groups = template.forces.groups if template.forces is not None else []
-        self._amplified = [_Flagged() if g.amplification is not None else None for g in groups]
-        self._choices = [None if g.used is None else [0] * len(g.choices) for g in groups]
-        self.left_out = LeftOut()
-        self.analysis: Analysis | None = None  # the whole run, when it was kept
-
-    @classmethod
-    def of(cls, analysis: Analysis) -> "SweepStats":
-        """The statistics of one whole run."""
-        stats = cls(analysis)
-        stats.add(analysis, 0, 0, keep_warnings=True)
-        return stats
-
-    # -- adding a chunk -------------------------------------------------------------
-    def add(self, res: Analysis, offset: int, skip: int, keep_warnings: bool = False) -> None:
-        """Add the steps ``skip:`` of ``res``, steps ``offset...`` of the sweep.
-
-        ``skip``: leading steps of the chunk that an earlier chunk added (the
-        previous chunk's last step, solved again).  ``keep_warnings``: the
-        chunk is the whole sweep; its warnings are taken as they are.
-        """
-        n = res.n_steps - skip
-        status = res.status[skip:]
-        values, counts = np.unique(status, return_counts=True)
-        first_seen = sorted(zip(values, counts), key=lambda p: int(np.argmax(status == p[0])))
-        for s, c in first_seen:
-            self.counts[str(s)] = self.counts.get(str(s), 0) + int(c)
-        if self.n_steps == 0 and n:
-            self.first_message = res.messages[skip]
-        self.n_steps += n
-        ok = status == OK
-        forces = res.forces
-        if forces is not None:
-            if "driving" in res.outputs:
-                for name, v in forces.driving.items():
-                    self.driving.setdefault(name, Peak()).add(v[skip:], offset, res, skip)
-            if "reactions" in res.outputs:
-                for name, r in forces.reactions.items():
-                    self.reactions.setdefault(name, Peak()).add(
-                        np.hypot(r[skip:, 0], r[skip:, 1]), offset, res, skip)
-            if "frame" in res.outputs:
-                f = forces.frame_force[skip:]
-                self.frame_force.add(np.hypot(f[:, 0], f[:, 1]), offset, res, skip)
-                self.frame_moment.add(forces.frame_moment[skip:], offset, res, skip)
-            for k, g in enumerate(forces.groups):
-                if g.used is not None:
-                    used = g.used[skip:]
-                    for c in range(len(g.choices)):
-                        self._choices[k][c] += int((used == c).sum())
-                if g.amplification is not None:
-                    with np.errstate(invalid="ignore"):
-                        bad = np.flatnonzero(ok & (g.amplification[skip:] > AMPLIFICATION_LIMIT))
-                    self._amplified[k].add(bad + offset, g.amplification[skip:][bad])
-        with np.errstate(invalid="ignore"):
-            ill = np.flatnonzero(ok & (res.condition[skip:] > WARN_COND))
-        self._ill.add(ill + offset, res.condition[skip:][ill])
-        self._add_notes(res, offset - skip, skip, keep_warnings)
-
-    def _add_notes(self, res: Analysis, base: int, skip: int, whole: bool) -> None:
-        """The chunk's own warnings but the merged kinds: the Newton groups' jumps, step
-        numbers offset by ``base`` (the sweep's step of the chunk's step 0)."""
-        own = run_warnings(res)
-        notes = res.warnings[: len(res.warnings) - len(own)] if own else list(res.warnings)
-        if own and res.warnings[len(notes):] != own:  # not the layout of a run's warnings
-            self._other += [w for w in res.warnings if w not in own]
-            return
-        for text in notes:
-            m = _NOTE_STEP.search(text)
-            if m is None or whole:
-                self._other.append(text)
-                continue
-            k = int(m.group(1))
-            if k < skip:
-                continue  # a step an earlier chunk solved, and warned about
-            if m.group(2) is None:
-                where = f"step {base + k}"
-            elif m.group(3) is not None:
-                where = f"step {base + k} (reached from step {base + int(m.group(3))})"
-            else:  # only the first chunk's first step is reached from the assembly configuration
-                where = f"step {base + k} (reached from the assembly configuration)"
-            key = next((i for i, h in enumerate(self.heads) if text.startswith(h + " ")), len(self.heads))
-            self._notes.append((key, text[: m.start()] + f"; at {where} it continues" + text[m.end():]))
-
-    # -- the whole sweep -------------------------------------------------------------
-    @property
-    def warnings(self) -> list:
-        """The warnings of a whole run: the Newton groups' jumps, group by group, then
-        the condition-number and superposition warnings (``run_warnings``)."""
-        out = [t for _, t in sorted(self._notes, key=lambda p: p[0])] + self._other
-        f = self._ill
-        if f.count:
-            out.append(
-                f"{f.count} ok step(s) have a condition number above {WARN_COND:.0e} (steps "
-                f"{_steps_text(f.first, f.count)}; largest {f.worst:.3g} at step {f.worst_step}): "
-                f"their velocities and accelerations carry about {np.log10(f.worst):.0f} "
-                "fewer significant digits than their positions"
-            )
-        if self.template.forces is not None:
-            for g, f in zip(self.template.forces.groups, self._amplified):
-                if f is None or not f.count:
-                    continue
-                out.append(
-                    f"group ({', '.join(g.links)}): the superposition cancels at {f.count} "
-                    f"step(s) (steps {_steps_text(f.first, f.count)}; amplification up to "
-                    f"{f.worst:.3g} at step {f.worst_step}) with every disconnection: "
-                    f"its reactions lose about {np.log10(f.worst):.0f} digits there"
-                )
-        return out
-
-    def tail(self) -> dict:
-        """The result's keys after ``steps`` for the whole sweep."""
-        return self.template.tail(warnings=self.warnings, dropped=self.left_out,
-                                  steps_per_choice=self._choices)
-
-    def meta(self) -> dict:
-        """The result's keys but ``steps`` (the metadata of the columnar formats)."""
-        return {**self.template.head(), **self.tail()}
-
-    @property
-    def any_assembled(self) -> bool:
-        return any(n for s, n in self.counts.items() if s != UNASSEMBLABLE)
-
-
-# ------------------------------------------------------------------ columns
-
-
-def _numeric_columns(res: Analysis) -> list:
-    return [(n, v, w) for n, v, w in res.columns() if n not in ("status", "message")]
-
-
-# ------------------------------------------------------------------ writers
-
-
-class _Writer:
-    """A result file being written chunk by chunk."""
-
-    def begin(self, stats: SweepStats) -> None:
-        pass
-
-    def write(self, res: Analysis, skip: int, offset: int, stats: SweepStats, progress: ProgressFn):
-        raise NotImplementedError
-
-    def finish(self, stats: SweepStats) -> None:
-        pass
-
-    def discard(self) -> None:
-        pass
-
-
-class JsonWriter(_Writer):
-    """The contract's JSON, step by step: the same bytes as ``json.dumps(to_dict(), indent=...)``."""
-
-    def __init__(self, fh, indent: int | None = None):
-        self.fh = fh
-        self.indent = indent
-        self.n = 0
-
-    def begin(self, stats):
-        text = json.dumps({**stats.template.head(), "steps": []}, indent=self.indent)
-        self.fh.write(text[: text.rindex('"steps": []') + len('"steps": [')])
-
-    def write(self, res, skip, offset, stats, progress):
-        ind = self.indent
-        pad = "\n" + " " * (2 * ind) if ind is not None else None
-        sep = "," if ind is not None else ", "
-        parts = []
-        for rec in res.step_records(skip, number_from=offset, dropped=stats.left_out):
-            text = json.dumps(rec, indent=ind, allow_nan=False)
-            if pad is not None:
-                text = pad + text.replace("\n", pad)
-            parts.append(text if self.n == 0 else sep + text)
-            self.n += 1
-            if len(parts) == 1024:
-                self.fh.write("".join(parts))
-                parts = []
-                progress(1024)
-        self.fh.write("".join(parts))
-        progress(len(parts))
-
-    def finish(self, stats):
-        if self.n and self.indent is not None:
-            self.fh.write("\n" + " " * self.indent)
-        text = json.dumps({**stats.template.head(), "steps": [], **stats.tail()},
-                          indent=self.indent, allow_nan=False)
-        self.fh.write(text[text.rindex('"steps": []') + len('"steps": [') :] + "\n")
-
-
-def _float_text(v: np.ndarray) -> list:
-    """The shortest text that reads back as each value (``repr``); empty if not finite."""
-    out = list(map(repr, v.tolist()))
-    bad = ~np.isfinite(v)
-    if bad.any():
-        for i in np.flatnonzero(bad):
-            out[i] = ""
-    return out
-
-
-def _csv_field(text: str) -> str:
-    """``text`` as one CSV field (RFC 4180: quoted when it holds a comma, quote or line break)."""
-    if any(c in text for c in ',"\r\n'):
-        return '"' + text.replace('"', '""') + '"'
-    return text
-
-
-class CsvWriter(_Writer):
-    """One row per step: ``step``, ``status``, ``message`` and one column per number.
-
-    Numbers as Python writes them (``repr``: the shortest text that reads back
-    as the same double); a value the JSON leaves out is an empty field.
-    """
-
-    BLOCK = 4096
-
-    def __init__(self, fh):
-        self.fh = fh
-
-    def begin(self, stats):
-        names = ["step", *(n for n, _, _ in stats.template.columns())]
-        self.fh.write(",".join(map(_csv_field, names)) + "\n")
-
-    def write(self, res, skip, offset, stats, progress):
-        _count_left_out(res, skip, offset, stats)
-        cols = res.columns()
-        for a in range(skip, res.n_steps, self.BLOCK):
-            b = min(res.n_steps, a + self.BLOCK)
-            text = [list(map(str, range(offset + a - skip, offset + b - skip)))]
-            for name, v, _ in cols:
-                if name == "status":
-                    text.append(v[a:b].tolist())
-                elif name == "message":
-                    text.append(["" if m is None else _csv_field(m) for m in v[a:b]])
-                else:
-                    text.append(_float_text(v[a:b]))
-            self.fh.write("\n".join(map(",".join, zip(*text))) + "\n")
-            progress(b - a)
-
-
-def _count_left_out(res, skip, offset, stats):
-    """Name, in the warnings, the values a JSON file would leave out as not finite."""
-    for i in np.flatnonzero(res.not_finite(skip)) + skip:
-        for _ in res.step_records(int(i), int(i) + 1, number_from=offset + int(i) - skip,
-                                  dropped=stats.left_out):
-            pass
-
-
-def _npy_header(dtype: np.dtype, n: int) -> bytes:
-    buf = io.BytesIO()
-    np.lib.format.write_array_header_1_0(
-        buf, {"descr": np.lib.format.dtype_to_descr(dtype), "fortran_order": False, "shape": (n,)})
-    return buf.getvalue()
-
-
-class NpzWriter(_Writer):
-    """One array per column in a NumPy ``.npz`` (a zip of ``.npy`` files).
-
-    Each chunk's columns are appended to one raw file per column in a
-    temporary folder beside the result; :meth:`finish` copies them into the
-    zip (numbers stored, the text columns compressed), so no column is ever
-    whole in memory.  ``meta`` holds the JSON's keys but ``steps``.
-    """
-
-    def __init__(self, path: Path):
-        self.path = path
-        self.tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", dir=path.parent))
-        self.names: list = []
-        self.n = 0
-
-    def _file(self, k: int) -> Path:
-        return self.tmp / f"{k}.raw"
-
-    def begin(self, stats):
-        self.names = ["step", *(n for n, _, _ in stats.template.columns())]
-
-    def write(self, res, skip, offset, stats, progress):
-        _count_left_out(res, skip, offset, stats)
-        n = res.n_steps - skip
-        arrays = [np.arange(offset, offset + n, dtype=np.int64)]
-        for name, v, _ in res.columns():
-            if name == "status":
-                arrays.append(np.asarray(v[skip:], dtype="<U13"))
-            elif name != "message":
-                arrays.append(np.ascontiguousarray(v[skip:], dtype=float))
-        cols = [nm for nm in self.names if nm != "message"]
-        for k, a in enumerate(arrays):
-            with open(self._file(k), "ab") as fh:
-                fh.write(a.tobytes())
-        with open(self.tmp / "message.jsonl", "a", encoding="utf-8") as fh:  # (step, message)
-            fh.write("".join(json.dumps([offset + i, m]) + "\n"
-                             for i, m in enumerate(res.messages[skip:]) if m is not None))
-        self.dtypes = [a.dtype for a in arrays]
-        self.cols = cols
-        self.n += n
-        progress(n)
-
-    def finish(self, stats):
-        with zipfile.ZipFile(self.path, "w", zipfile.ZIP_STORED, allowZip64=True) as zf:
-            raw = dict(zip(self.cols, range(len(self.cols))))
-            for name in self.names:
-                if name == "message":
-                    self._messages(zf)
-                    continue
-                k = raw[name]
-                info = zipfile.ZipInfo(f"{name}.npy", date_time=(1980, 1, 1, 0, 0, 0))
-                if name == "status":
-                    info.compress_type = zipfile.ZIP_DEFLATED
-                with zf.open(info, "w", force_zip64=True) as out, open(self._file(k), "rb") as src:
-                    out.write(_npy_header(self.dtypes[k], self.n))
-                    shutil.copyfileobj(src, out, 2**24)
-            meta = np.array(json.dumps(stats.meta(), allow_nan=False))
-            info = zipfile.ZipInfo("meta.npy", date_time=(1980, 1, 1, 0, 0, 0))
-            info.compress_type = zipfile.ZIP_DEFLATED
-            with zf.open(info, "w") as out:
-                np.lib.format.write_array(out, meta)
-        shutil.rmtree(self.tmp, ignore_errors=True)
-
-    def _messages(self, zf):
-        """The ``message`` column: fixed-width text as wide as the longest ("" for none)."""
-        src = self.tmp / "message.jsonl"
-        width = 1
-        with open(src, encoding="utf-8") as fh:
-            for line in fh:
-                width = max(width, len(json.loads(line)[1]))
-        dtype = np.dtype(f"<U{width}")
-        info = zipfile.ZipInfo("message.npy", date_time=(1980, 1, 1, 0, 0, 0))
-        info.compress_type = zipfile.ZIP_DEFLATED
-        with zf.open(info, "w", force_zip64=True) as out, open(src, encoding="utf-8") as fh:
-            out.write(_npy_header(dtype, self.n))
-            pending = None
-            for a in range(0, self.n, 65536):
-                block = np.zeros(min(self.n, a + 65536) - a, dtype=dtype)
-                while True:
-                    if pending is None:
-                        line = fh.readline()
-                        if not line:
-                            break
-                        pending = json.loads(line)
-                    if pending[0] >= a + len(block):
-                        break
-                    block[pending[0] - a] = pending[1]
-                    pending = None
-                out.write(block.tobytes())
-
-    def discard(self):
-        shutil.rmtree(self.tmp, ignore_errors=True)
-
-
-class ParquetWriter(_Writer):
-    """One row group per chunk (pyarrow); values left out of the JSON are nulls here.
-
-    The schema's metadata ``linkage_sym`` holds the JSON's keys but ``steps``.
-    """
-
-    def __init__(self, path: Path):
-        self.pa, self.pq = require_pyarrow()
-        self.path = path
-        self.writer = None
-
-    def begin(self, stats):
-        pa = self.pa
-        fields = [pa.field("step", pa.int64(), nullable=False)]
-        for name, _, _ in stats.template.columns():
-            kind = pa.string() if name in ("status", "message") else pa.float64()
-            fields.append(pa.field(name, kind, nullable=name != "status"))
-        self.schema = pa.schema(fields)
-        # dictionary encoding only for the text columns: tried on 100+ float columns it
-        # costs six times the rest of the write and saves nothing
-        self.writer = self.pq.ParquetWriter(str(self.path), self.schema,
-                                            use_dictionary=["status", "message"])
-
-    def write(self, res, skip, offset, stats, progress):
-        pa = self.pa
-        _count_left_out(res, skip, offset, stats)
-        n = res.n_steps - skip
-        arrays = [pa.array(np.arange(offset, offset + n, dtype=np.int64))]
-        for name, v, _ in res.columns():
-            if name == "status":
-                arrays.append(pa.array(np.asarray(v[skip:]).astype(str).tolist(), pa.string()))
-            elif name == "message":
-                arrays.append(pa.array(v[skip:], pa.string()))
-            else:
-                a = np.asarray(v[skip:], dtype=float)
-                arrays.append(pa.array(a, pa.float64(), mask=~np.isfinite(a)))
-        self.writer.write_table(pa.Table.from_arrays(arrays, schema=self.schema))
-        progress(n)
-
-    def finish(self, stats):
-        meta = {"linkage_sym": json.dumps(stats.meta(), allow_nan=False)}
-        self.writer.add_key_value_metadata(meta)
-        self.writer.close()
-
-    def discard(self):
-        if self.writer is not None:
-            self.writer.close()
-
-
-class _NoWriter(_Writer):
-    """No file: the statistics only (``analyze`` without ``-o``)."""
-
-    def write(self, res, skip, offset, stats, progress):
-        progress(res.n_steps - skip)
-
-
-# ------------------------------------------------------------------ the run
 
 
 def _progress_bar(total: int, enabled: bool):

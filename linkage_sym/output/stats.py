@@ -1,0 +1,222 @@
+"""What the chunks of a sweep add up to: statuses, peaks and the warnings of one whole run
+(:class:`SweepStats`), merged chunk by chunk by :func:`linkage_sym.output.write_sweep`."""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from linkage_sym.numeric.sweep import WARN_COND, run_warnings
+from linkage_sym.numeric.result import OK, UNASSEMBLABLE, Analysis, LeftOut
+from linkage_sym.numeric.superposition import AMPLIFICATION_LIMIT
+
+
+
+# ------------------------------------------------------------------ merging chunks
+
+
+def _steps_text(first: list, count: int) -> str:
+    """The steps of a warning: the first five, and how many more (as a whole run words them)."""
+    return ", ".join(map(str, first[:5])) + (f" and {count - 5} more" if count > 5 else "")
+
+
+@dataclass
+class _Flagged:
+    """Steps flagged by a warning over the chunks: how many, the first five, the worst."""
+
+    count: int = 0
+    first: list = field(default_factory=list)
+    worst: float = -math.inf
+    worst_step: int = -1
+
+    def add(self, steps: np.ndarray, values: np.ndarray) -> None:
+        if not len(steps):
+            return
+        self.count += len(steps)
+        self.first += [int(i) for i in steps[: 5 - len(self.first)]]
+        k = int(np.argmax(values))
+        if values[k] > self.worst:  # strictly: the earliest of equal values, as argmax
+            self.worst, self.worst_step = values[k], int(steps[k])
+
+
+@dataclass
+class Peak:
+    """The largest ``|value|`` of a series over the chunks: its step, signed value, driver values."""
+
+    step: int = -1
+    value: float = 0.0
+    drivers: dict = field(default_factory=dict)
+
+    def add(self, values: np.ndarray, offset: int, res: Analysis, skip: int) -> None:
+        v = np.abs(np.asarray(values, dtype=float))
+        finite = np.isfinite(v)
+        if not finite.any():
+            return
+        i = int(np.nanargmax(np.where(finite, v, np.nan)))
+        if self.step < 0 or v[i] > abs(self.value):
+            self.step = offset + i
+            self.value = float(np.asarray(values, dtype=float)[i])
+            self.drivers = {k: float(d["q"][skip + i]) for k, d in res.drivers.items()}
+
+    def __bool__(self) -> bool:
+        return self.step >= 0
+
+
+_NOTE_STEP = re.compile(r"; at step (\d+)( \(reached from (?:step (\d+)|the assembly configuration)\))?"
+                        r" it continues")
+
+
+class SweepStats:
+    """What a sweep's chunks add up to: statuses, peaks and warnings of the whole sweep.
+
+    ``SweepStats.of(analysis)`` gives a whole run's; :func:`write_sweep` adds
+    its chunks one after the other (:meth:`add`).  The peaks and counts are
+    those the command line's summary prints; :attr:`warnings` are those a whole
+    run's ``Analysis.warnings`` holds.
+    """
+
+    def __init__(self, template: Analysis, heads=()):
+        self.template = template  # a run of one step: the result's head, groups, stages
+        self.heads = list(heads)
+        self.n_steps = 0
+        self.counts: dict = {}
+        self.first_message = None
+        self.stages = template.stages
+        self.outputs = template.outputs
+        self.has_forces = template.forces is not None
+        self.driving: dict = {}
+        self.reactions: dict = {}
+        self.frame_force = Peak()
+        self.frame_moment = Peak()
+        self._notes: list = []  # (group order, text) of the Newton groups' jumps
+        self._other: list = []  # a chunk's warnings of another kind, as they are
+        self._ill = _Flagged()
+        groups = template.forces.groups if template.forces is not None else []
+        self._amplified = [_Flagged() if g.amplification is not None else None for g in groups]
+        self._choices = [None if g.used is None else [0] * len(g.choices) for g in groups]
+        self.left_out = LeftOut()
+        self.analysis: Analysis | None = None  # the whole run, when it was kept
+
+    @classmethod
+    def of(cls, analysis: Analysis) -> "SweepStats":
+        """The statistics of one whole run."""
+        stats = cls(analysis)
+        stats.add(analysis, 0, 0, keep_warnings=True)
+        return stats
+
+    # -- adding a chunk -------------------------------------------------------------
+    def add(self, res: Analysis, offset: int, skip: int, keep_warnings: bool = False) -> None:
+        """Add the steps ``skip:`` of ``res``, steps ``offset...`` of the sweep.
+
+        ``skip``: leading steps of the chunk that an earlier chunk added (the
+        previous chunk's last step, solved again).  ``keep_warnings``: the
+        chunk is the whole sweep; its warnings are taken as they are.
+        """
+        n = res.n_steps - skip
+        status = res.status[skip:]
+        values, counts = np.unique(status, return_counts=True)
+        first_seen = sorted(zip(values, counts), key=lambda p: int(np.argmax(status == p[0])))
+        for s, c in first_seen:
+            self.counts[str(s)] = self.counts.get(str(s), 0) + int(c)
+        if self.n_steps == 0 and n:
+            self.first_message = res.messages[skip]
+        self.n_steps += n
+        ok = status == OK
+        forces = res.forces
+        if forces is not None:
+            if "driving" in res.outputs:
+                for name, v in forces.driving.items():
+                    self.driving.setdefault(name, Peak()).add(v[skip:], offset, res, skip)
+            if "reactions" in res.outputs:
+                for name, r in forces.reactions.items():
+                    self.reactions.setdefault(name, Peak()).add(
+                        np.hypot(r[skip:, 0], r[skip:, 1]), offset, res, skip)
+            if "frame" in res.outputs:
+                f = forces.frame_force[skip:]
+                self.frame_force.add(np.hypot(f[:, 0], f[:, 1]), offset, res, skip)
+                self.frame_moment.add(forces.frame_moment[skip:], offset, res, skip)
+            for k, g in enumerate(forces.groups):
+                if g.used is not None:
+                    used = g.used[skip:]
+                    for c in range(len(g.choices)):
+                        self._choices[k][c] += int((used == c).sum())
+                if g.amplification is not None:
+                    with np.errstate(invalid="ignore"):
+                        bad = np.flatnonzero(ok & (g.amplification[skip:] > AMPLIFICATION_LIMIT))
+                    self._amplified[k].add(bad + offset, g.amplification[skip:][bad])
+        with np.errstate(invalid="ignore"):
+            ill = np.flatnonzero(ok & (res.condition[skip:] > WARN_COND))
+        self._ill.add(ill + offset, res.condition[skip:][ill])
+        self._add_notes(res, offset - skip, skip, keep_warnings)
+
+    def _add_notes(self, res: Analysis, base: int, skip: int, whole: bool) -> None:
+        """The chunk's own warnings but the merged kinds: the Newton groups' jumps, step
+        numbers offset by ``base`` (the sweep's step of the chunk's step 0)."""
+        own = run_warnings(res)
+        notes = res.warnings[: len(res.warnings) - len(own)] if own else list(res.warnings)
+        if own and res.warnings[len(notes):] != own:  # not the layout of a run's warnings
+            self._other += [w for w in res.warnings if w not in own]
+            return
+        for text in notes:
+            m = _NOTE_STEP.search(text)
+            if m is None or whole:
+                self._other.append(text)
+                continue
+            k = int(m.group(1))
+            if k < skip:
+                continue  # a step an earlier chunk solved, and warned about
+            if m.group(2) is None:
+                where = f"step {base + k}"
+            elif m.group(3) is not None:
+                where = f"step {base + k} (reached from step {base + int(m.group(3))})"
+            else:  # only the first chunk's first step is reached from the assembly configuration
+                where = f"step {base + k} (reached from the assembly configuration)"
+            key = next((i for i, h in enumerate(self.heads) if text.startswith(h + " ")), len(self.heads))
+            self._notes.append((key, text[: m.start()] + f"; at {where} it continues" + text[m.end():]))
+
+    # -- the whole sweep -------------------------------------------------------------
+    @property
+    def warnings(self) -> list:
+        """The warnings of a whole run: the Newton groups' jumps, group by group, then
+        the condition-number and superposition warnings (``run_warnings``)."""
+        out = [t for _, t in sorted(self._notes, key=lambda p: p[0])] + self._other
+        f = self._ill
+        if f.count:
+            out.append(
+                f"{f.count} ok step(s) have a condition number above {WARN_COND:.0e} (steps "
+                f"{_steps_text(f.first, f.count)}; largest {f.worst:.3g} at step {f.worst_step}): "
+                f"their velocities and accelerations carry about {np.log10(f.worst):.0f} "
+                "fewer significant digits than their positions"
+            )
+        if self.template.forces is not None:
+            for g, f in zip(self.template.forces.groups, self._amplified):
+                if f is None or not f.count:
+                    continue
+                out.append(
+                    f"group ({', '.join(g.links)}): the superposition cancels at {f.count} "
+                    f"step(s) (steps {_steps_text(f.first, f.count)}; amplification up to "
+                    f"{f.worst:.3g} at step {f.worst_step}) with every disconnection: "
+                    f"its reactions lose about {np.log10(f.worst):.0f} digits there"
+                )
+        return out
+
+    def tail(self) -> dict:
+        """The result's keys after ``steps`` for the whole sweep."""
+        return self.template.tail(warnings=self.warnings, dropped=self.left_out,
+                                  steps_per_choice=self._choices)
+
+    def meta(self) -> dict:
+        """The result's keys but ``steps`` (the metadata of the columnar formats)."""
+        return {**self.template.head(), **self.tail()}
+
+    @property
+    def any_assembled(self) -> bool:
+        return any(n for s, n in self.counts.items() if s != UNASSEMBLABLE)
+
+
+# ------------------------------------------------------------------ columns
+
+
