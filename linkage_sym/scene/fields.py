@@ -1,0 +1,236 @@
+"""Reading the fields of a JSON mapping, collecting every problem (no model here).
+
+:class:`FieldReader` checks one field at a time -- a key, a name, a number
+within its limits, an integer, a boolean, a point -- and records each problem
+as ``"field.path: reason"`` instead of raising, so a whole document is read in
+one pass; :mod:`linkage_sym.scene.validate` builds the scene reader on it, and
+any later section of the format (gear meshes, cam contacts, load tables) reads
+its fields with the same checks and wording.
+"""
+
+from __future__ import annotations
+
+import difflib
+import json
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from linkage_sym.model.scene import Point
+
+MAX_MAGNITUDE = 1e30
+"""Largest magnitude of any number of a scene, in SI units.
+
+A coordinate (m), a mass, an inertia, a force, a torque, a driver's speed or
+acceleration, a gravity component: the solver multiplies such quantities.  It
+squares lengths in its closed forms, and its largest products -- the moment
+about the origin of a d'Alembert force, a coordinate times a mass times a speed
+squared times a length, divided by a determinant of two lengths -- have fewer
+than ten factors.  With every factor within 1e30 (and lengths no smaller than
+:data:`MIN_SIZE`), every product stays within 1e300, inside the range of a
+float64 (1.8e308): no overflow, no ``inf`` or ``NaN`` in a result.
+"""
+
+MAX_ANGLE_DEG = 1e6
+"""Largest magnitude of an angle in degrees (float64 resolves it to 1e-10 degree)."""
+
+_MAGNITUDE_WHY = (
+    f"must be within +-{MAX_MAGNITUDE:.0e} (SI units): the solver multiplies up to ten such "
+    "quantities (e.g. a coordinate x a mass x a speed^2 x a length) and every product must stay "
+    "within the float64 range 1.8e308"
+)
+_ANGLE_WHY = (
+    f"an angle must be within +-{MAX_ANGLE_DEG:.0e} degrees (float64 resolves such an angle "
+    "to 1e-10 degree; beyond, the direction it gives is lost)"
+)
+
+_ANGLE = {"limit": MAX_ANGLE_DEG, "limit_why": _ANGLE_WHY}
+"""Keyword arguments of :meth:`FieldReader.number` for an angle in degrees."""
+
+_REQUIRED = object()
+"""Default marking a key that must be present."""
+
+_POINT = "an array of 2 finite numbers [x, y]"
+
+
+
+class FieldReader:
+    """Reads fields, collecting every problem on the way (see the module docstring)."""
+
+    def __init__(self) -> None:
+        self.problems: list[str] = []
+        self.positions: list[tuple[str, Point]] = []  # every valid point read, with its path
+
+    def add(self, path: str, reason: str) -> None:
+        self.problems.append(f"{path}: {reason}")
+
+    def keys(self, obj: Mapping[str, Any], path: str, allowed: tuple[str, ...]) -> None:
+        for key in obj:
+            if key not in allowed:
+                where = _join(path, str(key))
+                self.add(where, f"unknown key{_suggest(str(key), allowed)}")
+
+    def forbid(self, obj: Mapping[str, Any], path: str, keys: tuple[str, ...], where: str) -> None:
+        for key in keys:
+            if key in obj:
+                self.add(_join(path, key), f"not allowed {where}")
+
+    def missing(self, path: str, why: str = "") -> None:
+        self.add(path, "required key is missing" + (f" ({why})" if why else ""))
+
+    def present(self, obj: Mapping[str, Any], key: str, path: str, default: Any, why: str) -> bool:
+        """Whether ``key`` is there to be read; reports it if required and missing."""
+        if key in obj:
+            return True
+        if default is _REQUIRED:
+            self.missing(_join(path, key), why)
+        return False
+
+    def object(self, value: Any, path: str) -> bool:
+        if isinstance(value, Mapping):
+            return True
+        self.add(path, f"must be an object, got {_kind(value)}")
+        return False
+
+    def array(self, obj: Mapping[str, Any], key: str, path: str) -> list[Any] | None:
+        if not self.present(obj, key, path, _REQUIRED, ""):
+            return None
+        value = obj[key]
+        if isinstance(value, (list, tuple)):
+            return list(value)
+        self.add(_join(path, key), f"must be an array, got {_kind(value)}")
+        return None
+
+    def name(self, obj: Mapping[str, Any], key: str, path: str, *, why: str = "") -> str | None:
+        if not self.present(obj, key, path, _REQUIRED, why):
+            return None
+        value = obj[key]
+        if isinstance(value, str) and value:
+            return value
+        self.add(_join(path, key), f"must be a non-empty string, got {_show(value)}")
+        return None
+
+    def number(
+        self,
+        obj: Mapping[str, Any],
+        key: str,
+        path: str,
+        *,
+        default: Any = _REQUIRED,
+        minimum: float | None = None,
+        why: str = "",
+        limit: float = MAX_MAGNITUDE,
+        limit_why: str = _MAGNITUDE_WHY,
+    ) -> float | None:
+        if not self.present(obj, key, path, default, why):
+            return None if default is _REQUIRED else default
+        value = obj[key]
+        number = _finite(value)
+        if number is None or (minimum is not None and number < minimum):
+            bound = "" if minimum is None else f" >= {minimum:g}"
+            self.add(_join(path, key), f"must be a finite number{bound}, got {_show(value)}")
+            return None
+        if abs(number) > limit:
+            self.add(_join(path, key), f"{limit_why}, got {_show(value)}")
+            return None
+        return number
+
+    def integer(self, obj: Mapping[str, Any], key: str, path: str, *, minimum: int) -> int | None:
+        if not self.present(obj, key, path, _REQUIRED, ""):
+            return None
+        value = obj[key]
+        if isinstance(value, int) and not isinstance(value, bool) and value >= minimum:
+            return value
+        self.add(_join(path, key), f"must be an integer >= {minimum}, got {_show(value)}")
+        return None
+
+    def boolean(self, obj: Mapping[str, Any], key: str, path: str, *, default: bool) -> bool | None:
+        if key not in obj:
+            return default
+        value = obj[key]
+        if isinstance(value, bool):
+            return value
+        self.add(_join(path, key), f"must be true or false, got {_show(value)}")
+        return None
+
+    def point(
+        self,
+        obj: Mapping[str, Any],
+        key: str,
+        path: str,
+        *,
+        default: Any = _REQUIRED,
+        expected: str = _POINT,
+        position: bool = False,
+    ) -> Point | None:
+        """A point ``[x, y]``; ``position``: a point fixed on a link (checked against the size)."""
+        if not self.present(obj, key, path, default, ""):
+            return None if default is _REQUIRED else default
+        value = obj[key]
+        field = _join(path, key)
+        if not isinstance(value, (list, tuple)) or len(value) != 2:
+            self.add(field, f"must be {expected}, got {_show(value)}")
+            return None
+        x, y = (_finite(c) for c in value)
+        for i, (given, number) in enumerate(zip(value, (x, y))):
+            if number is None:
+                self.add(f"{field}[{i}]", f"must be a finite number, got {_show(given)}")
+            elif abs(number) > MAX_MAGNITUDE:
+                self.add(f"{field}[{i}]", f"{_MAGNITUDE_WHY}, got {_show(given)}")
+                x = y = None
+        if x is None or y is None:
+            return None
+        if position:
+            self.positions.append((field, (x, y)))
+        return (x, y)
+
+
+def _finite(value: Any) -> float | None:
+    """``value`` as a float if it is a finite int or float (not a bool), else ``None``."""
+    if not isinstance(value, (int, float)) or isinstance(value, bool):
+        return None
+    try:
+        number = float(value)
+    except OverflowError:
+        return None
+    return number if math.isfinite(number) else None
+
+
+def _radians(degrees: float | None) -> float | None:
+    return None if degrees is None else math.radians(degrees)
+
+
+def _join(path: str, key: str) -> str:
+    return f"{path}.{key}" if path else key
+
+
+def _kind(value: Any) -> str:
+    """The JSON type name of a value, for messages."""
+    if value is None:
+        return "null"
+    if isinstance(value, bool):
+        return "a boolean"
+    if isinstance(value, (int, float)):
+        return "a number"
+    if isinstance(value, str):
+        return "a string"
+    if isinstance(value, Mapping):
+        return "an object"
+    if isinstance(value, (list, tuple)):
+        return "an array"
+    return type(value).__name__
+
+
+def _show(value: Any, limit: int = 40) -> str:
+    """A short JSON rendering of a value, for messages."""
+    try:
+        text = json.dumps(value)
+    except (TypeError, ValueError):
+        text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def _suggest(word: str, choices: Any) -> str:
+    """`` (did you mean 'x'?)`` for the closest of ``choices``, or ``""``."""
+    match = difflib.get_close_matches(word, [str(c) for c in choices], n=1)
+    return f" (did you mean '{match[0]}'?)" if match else ""
