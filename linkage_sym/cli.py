@@ -70,8 +70,10 @@ from pathlib import Path
 
 import numpy as np
 
-from linkage_sym import cli_accuracy, cli_centres
+from linkage_sym import cli_accuracy, cli_balance, cli_centres
 from linkage_sym._version import __version__
+from linkage_sym.cli_common import OptionError, check_outputs as _check_outputs, load as _load
+from linkage_sym.cli_common import stem as _stem, write as _write
 from linkage_sym.errors import BalanceError, SceneError
 from linkage_sym.synthesis import cli as synthesis_cli
 
@@ -91,97 +93,6 @@ exit status:
        written (-o), no plots
   {BROKEN_PIPE}  standard output closed early (e.g. | head): stops quietly
 """
-
-
-class OptionError(Exception):
-    """Command-line options the command cannot use; each problem starts with the option's name."""
-
-    def __init__(self, problems):
-        self.problems = [problems] if isinstance(problems, str) else list(problems)
-        super().__init__("; ".join(self.problems))
-
-
-def _load(path):
-    from linkage_sym.scene import load_scene
-
-    return load_scene(path)
-
-
-# ------------------------------------------------------------------ output paths
-
-
-def _first_existing(path: Path) -> Path:
-    """``path`` or its nearest ancestor that exists (what a ``mkdir -p`` would start from)."""
-    p = path.absolute()
-    while not p.exists() and p != p.parent:
-        p = p.parent
-    return p
-
-
-def _creatable(option: str, given: str, folder: Path) -> str | None:
-    """Why ``folder`` cannot be created or written into, or None."""
-    base = _first_existing(folder)
-    if not base.is_dir():
-        return f"{option}: {given!r}: {str(base)!r} is a file, not a folder"
-    if not os.access(base, os.W_OK | os.X_OK):
-        return f"{option}: {given!r}: cannot write in {str(base)!r}"
-    return None
-
-
-def _check_outputs(files=(), folders=()) -> None:
-    """Refuse, before anything is computed or written, output paths that cannot be written.
-
-    ``files``: ``(option, path)`` of files (``None`` = not asked; ``"-"`` = standard
-    output); ``folders``: ``(option, path)`` of folders, created if needed.
-    Raises :class:`OptionError` naming each option.
-    """
-    problems, seen = [], {}
-    for option, given in files:
-        if given is None or given == "-":
-            continue
-        p = Path(given)
-        if p.is_dir():
-            problems.append(f"{option}: {given!r} is a folder; a file name is expected")
-            continue
-        if p.exists() and not os.access(p, os.W_OK):
-            problems.append(f"{option}: {given!r} is not writable")
-            continue
-        why = _creatable(option, given, p.parent)
-        if why:
-            problems.append(why)
-            continue
-        key = os.path.normcase(os.path.abspath(p))
-        if key in seen:
-            problems.append(f"{option}: {given!r} is also the file of {seen[key]}")
-        seen.setdefault(key, option)
-    for option, given in folders:
-        if given is None:
-            continue
-        p = Path(given)
-        if p.exists() and not p.is_dir():
-            problems.append(f"{option}: {given!r} is a file; a folder is expected")
-        elif p.is_dir() and not os.access(p, os.W_OK | os.X_OK):
-            problems.append(f"{option}: cannot write in {given!r}")
-        elif not p.exists():
-            why = _creatable(option, given, p)
-            if why:
-                problems.append(why)
-    if problems:
-        raise OptionError(problems)
-
-
-def _write(path, text: str) -> None:
-    """Write a file the command was asked for, creating its folder if needed."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text)
-
-
-def _stem(scene) -> str:
-    """The scene's name made safe for a file name: the stem of every plot file."""
-    from linkage_sym.plotting.style import file_stem
-
-    return file_stem(scene, None)
 
 
 # ------------------------------------------------------------------ analyze
@@ -369,91 +280,6 @@ def cmd_derive(args) -> int:
     return 0
 
 
-# ------------------------------------------------------------------ balance
-
-
-def _optimize_options(scene, args):
-    """The checked options of ``--optimize`` (``None`` without it), before anything is computed or written."""
-    if not args.optimize:
-        given = [o for o, v in (("--weights", args.weights), ("--max-mass", args.max_mass),
-                                ("--links", args.links)) if v is not None]
-        if given:
-            raise OptionError([f"{o}: used only with --optimize FILE" for o in given])
-        return None
-    from linkage_sym.balancing.options import OptionsError, search_options
-
-    try:
-        return search_options(
-            scene,
-            links=None if args.links is None else [n.strip() for n in args.links.split(",")],
-            weights=(1.0, 1.0, 1.0) if args.weights is None else args.weights.split(","),
-            max_mass=args.max_mass,
-        )
-    except OptionsError as err:
-        raise OptionError([f"--{option.replace('_', '-')}: {why}" for option, why in err.problems]) from err
-
-
-def _write_balance(scene, args, report, series, files) -> int:
-    """Write everything ``balance`` computed: the scene files, the plots, the report."""
-    written = []
-    for path, text in files:
-        _write(path, text)
-        written.append(path)
-    if args.plots:
-        from linkage_sym.plotting.balance import shaking_force_polar, shaking_moment_curve
-
-        out = Path(args.plots)
-        out.mkdir(parents=True, exist_ok=True)
-        stem = _stem(scene)
-        kind = scene.joint(scene.drivers[0].joint).type
-        written.append(str(shaking_force_polar(series, out / f"{stem}_shaking_force_polar.png",
-                                               title=scene.name, driver_kind=kind)))
-        written.append(str(shaking_moment_curve(series, out / f"{stem}_shaking_moment.png",
-                                                title=scene.name, driver_kind=kind)))
-    text = json.dumps(report, indent=2 if args.pretty else None)
-    if args.output in (None, "-"):
-        sys.stdout.write(text + "\n")
-    else:
-        _write(args.output, text + "\n")
-        written.insert(0, args.output)
-    for w in written:
-        print(f"wrote {w}", file=sys.stderr if args.output in (None, "-") else sys.stdout)
-    return 0
-
-
-def cmd_balance(args) -> int:
-    _check_outputs(
-        files=[("-o/--output", args.output), ("--balanced-scene", args.balanced_scene),
-               ("--optimize", args.optimize)],
-        folders=[("--plots", args.plots)],
-    )
-    scene = _load(args.scene)
-    options = _optimize_options(scene, args)
-    sliding = [j.name for j in scene.joints if j.type != "R"]
-    if sliding and not args.optimize:
-        raise OptionError(
-            f"the derived balancing conditions cover hinged (R-joint only) linkages; "
-            f"{scene.name!r} has prismatic joint(s) {', '.join(sliding)}: use --optimize FILE "
-            "for counterweights optimised on the force solver's shaking force and moment")
-    for flag, given in (("--latex", args.latex), ("--balanced-scene", args.balanced_scene)):
-        if sliding and given:
-            raise OptionError(
-                f"{flag}: needs the derived balance conditions, which cover hinged (R-joint) "
-                f"linkages only; with prismatic joints ({', '.join(sliding)}) only --optimize "
-                "(and --plots) run")
-    from linkage_sym.balancing.report import balance_document
-
-    doc = balance_document(scene, latex=args.latex, optimize=options)
-    files = []
-    if args.balanced_scene:
-        if doc.balanced_scene is None:
-            raise BalanceError(doc.report["counterweights"]["error"])
-        files.append((args.balanced_scene, json.dumps(doc.balanced_scene, indent=2) + "\n"))
-    if args.optimize:
-        files.append((args.optimize, json.dumps(doc.optimized_scene, indent=2) + "\n"))
-    return _write_balance(scene, args, doc.report, doc.series, files)
-
-
 # ------------------------------------------------------------------ the others
 
 
@@ -509,27 +335,12 @@ def cmd_demo(args) -> int:
         for f in files:
             print(f"  {f}")
         if all(j.type == "R" for j in scene.joints):
-            files = _demo_balance(scene, stem, out)
+            files = cli_balance.demo_balance(scene, stem, out)
             print(f"{name}: balancing conditions and force-balancing counterweights; wrote")
             for f in files:
                 print(f"  {f}")
     print(f"demo output is in {out.resolve()}")
     return 0
-
-
-def _demo_balance(scene, stem, out) -> list:
-    """Song and Wang's (1992) balancing of a hinged example: JSON and before/after plots."""
-    from linkage_sym.balancing.report import balance_document
-    from linkage_sym.plotting.balance import shaking_force_polar, shaking_moment_curve
-
-    doc = balance_document(scene)
-    path = out / f"{stem}_balance.json"
-    path.write_text(json.dumps(doc.report) + "\n")
-    return [
-        path,
-        shaking_force_polar(doc.series, out / f"{stem}_balance_force_polar.png", title=scene.name),
-        shaking_moment_curve(doc.series, out / f"{stem}_balance_moment.png", title=scene.name),
-    ]
 
 
 # ------------------------------------------------------------------ parser and main
@@ -598,25 +409,6 @@ def build_parser() -> argparse.ArgumentParser:
                    help="with --latex: a table of every symbol with its meaning and unit")
     v.add_argument("-o", "--output", help="output file (default: standard output)")
     v.set_defaults(func=cmd_derive)
-    b = sub.add_parser(
-        "balance", help="derive balancing conditions of a hinged linkage (Song and Wang 1992)",
-        description="Derive the shaking force and moment balance conditions of a hinged "
-        "(R-joint only) linkage; with prismatic joints only --optimize (and --plots) run.")
-    b.add_argument("scene", help="scene JSON file (R joints only, unless --optimize)")
-    b.add_argument("-o", "--output", help="balance JSON file (default: standard output)")
-    b.add_argument("--pretty", action="store_true", help="indent the JSON")
-    b.add_argument("--latex", action="store_true", help="add the expressions as LaTeX")
-    b.add_argument("--plots", metavar="DIR", help="write the shaking force polar plot and moment curve, before and after")
-    b.add_argument("--balanced-scene", metavar="FILE", help="write the scene with force-balancing counterweights")
-    b.add_argument("--optimize", metavar="FILE",
-                   help="write the scene with optimised counterweights (also for linkages with sliders)")
-    b.add_argument("--weights", default=None, metavar="F,M,T",
-                   help="with --optimize: weights of RMS shaking force, moment, driving effort (default 1,1,1)")
-    b.add_argument("--max-mass", type=float, default=None, metavar="KG",
-                   help="with --optimize: bound on each counterweight's mass (kg)")
-    b.add_argument("--links", default=None, metavar="L1,L2",
-                   help="with --optimize: links that get a counterweight (default: every moving link)")
-    b.set_defaults(func=cmd_balance)
     s = sub.add_parser("structure", help="print drivers and Assur groups in solving order")
     s.add_argument("scene", help="scene JSON file")
     s.set_defaults(func=cmd_structure)
@@ -631,6 +423,7 @@ def build_parser() -> argparse.ArgumentParser:
     e = sub.add_parser("examples", help="list the shipped example scenes")
     e.set_defaults(func=cmd_examples)
     synthesis_cli.register(sub)
+    cli_balance.register(sub)
     cli_centres.register(sub)
     return p
 

@@ -38,7 +38,7 @@ def add_analyze_options(parser) -> None:
 
 
 def _option_error(problems):
-    from linkage_sym.cli import OptionError
+    from linkage_sym.cli_common import OptionError
 
     return OptionError(problems)
 

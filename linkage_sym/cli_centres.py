@@ -211,7 +211,7 @@ def _polygon_lines(scene, pq, num) -> list:
 
 def _problems_at(scene, args):
     """Option problems that the scene alone shows (before solving)."""
-    from linkage_sym.cli import OptionError
+    from linkage_sym.cli_common import OptionError
 
     if args.deg is not None:
         if len(scene.drivers) != 1 or scene.drivers[0].kind != "R":
@@ -238,7 +238,7 @@ def cmd_centres(args) -> int:
     (0, '  P13  ground-coupler  (73.092, 42.2) mm  three-centre lines P12-P23 and P14-P34')
     """
     from linkage_sym.centres import centrodes, floating_links, instant_centres, polygon_quantities
-    from linkage_sym.cli import OptionError, _check_outputs, _load, _write
+    from linkage_sym.cli_common import OptionError, check_outputs as _check_outputs, load as _load, write as _write
     from linkage_sym.numeric.plan import compile_plan
 
     _check_outputs(files=[("-o/--output", args.output)], folders=[("--plots", args.plots)])

@@ -43,14 +43,14 @@ def _option(field: str) -> str:
 
 
 def _refuse(err: SynthesisError):
-    from linkage_sym.cli import OptionError
+    from linkage_sym.cli_common import OptionError
 
     return OptionError(f"{_option(err.field)}: {err.reason}")
 
 
 def _numbers(option: str, text: str | None, n: int, names: str):
     """``n`` comma-separated numbers of an option, or :class:`OptionError`."""
-    from linkage_sym.cli import OptionError
+    from linkage_sym.cli_common import OptionError
 
     if text is None:
         return None
@@ -65,7 +65,7 @@ def _numbers(option: str, text: str | None, n: int, names: str):
 
 def _emit(design, args, what: str) -> int:
     """Print the design and write its scene (``-o``); ``-o -`` writes the scene to standard output."""
-    from linkage_sym.cli import _write
+    from linkage_sym.cli_common import write as _write
     from linkage_sym.synthesis.builders import describe
 
     to_stdout = args.output == "-"
@@ -92,7 +92,7 @@ def _sweep(args) -> dict:
 
 def cmd_new(args) -> int:
     """``linkage-sym new fourbar|slider-crank|guide-bar``."""
-    from linkage_sym.cli import _check_outputs
+    from linkage_sym.cli_common import check_outputs as _check_outputs
     from linkage_sym.synthesis import builders
 
     _check_outputs(files=[("-o/--output", args.output)])
@@ -119,7 +119,7 @@ _SOURCE = "textbook section 'Design of four-bar mechanisms' [2]"
 
 def cmd_synthesize(args) -> int:
     """``linkage-sym synthesize crank-rocker|slider-crank|guide-bar|coupler-positions|equations``."""
-    from linkage_sym.cli import _check_outputs
+    from linkage_sym.cli_common import check_outputs as _check_outputs
 
     _check_outputs(files=[("-o/--output", args.output)])
     if args.kind == "equations":
@@ -161,7 +161,7 @@ def _add_note(design, note):
 
 
 def _read_positions(path):
-    from linkage_sym.cli import OptionError
+    from linkage_sym.cli_common import OptionError
 
     try:
         with open(path, encoding="utf-8") as fh:
@@ -173,7 +173,7 @@ def _read_positions(path):
 
 
 def _equations(args) -> int:
-    from linkage_sym.cli import _write
+    from linkage_sym.cli_common import write as _write
     from linkage_sym.synthesis.equations import latex_document, plain_text
 
     text = latex_document() if args.latex else plain_text()

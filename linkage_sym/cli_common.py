@@ -1,0 +1,104 @@
+"""What every command of the command line shares (no command here).
+
+The :class:`OptionError` every command raises for options it cannot use,
+loading a scene file, checking every output path before anything is
+computed (:func:`check_outputs`), writing a file the command was asked for,
+and the file stem of a scene's plots.  The commands live in
+:mod:`linkage_sym.cli` and its ``cli_*`` and ``synthesis.cli`` neighbours,
+each importing from here (not from each other).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+__all__ = ["OptionError", "load", "check_outputs", "write", "stem"]
+
+
+class OptionError(Exception):
+    """Command-line options the command cannot use; each problem starts with the option's name."""
+
+    def __init__(self, problems):
+        self.problems = [problems] if isinstance(problems, str) else list(problems)
+        super().__init__("; ".join(self.problems))
+
+
+def load(path):
+    from linkage_sym.scene import load_scene
+
+    return load_scene(path)
+
+
+def _first_existing(path: Path) -> Path:
+    """``path`` or its nearest ancestor that exists (what a ``mkdir -p`` would start from)."""
+    p = path.absolute()
+    while not p.exists() and p != p.parent:
+        p = p.parent
+    return p
+
+
+def _creatable(option: str, given: str, folder: Path) -> str | None:
+    """Why ``folder`` cannot be created or written into, or None."""
+    base = _first_existing(folder)
+    if not base.is_dir():
+        return f"{option}: {given!r}: {str(base)!r} is a file, not a folder"
+    if not os.access(base, os.W_OK | os.X_OK):
+        return f"{option}: {given!r}: cannot write in {str(base)!r}"
+    return None
+
+
+def check_outputs(files=(), folders=()) -> None:
+    """Refuse, before anything is computed or written, output paths that cannot be written.
+
+    ``files``: ``(option, path)`` of files (``None`` = not asked; ``"-"`` = standard
+    output); ``folders``: ``(option, path)`` of folders, created if needed.
+    Raises :class:`OptionError` naming each option.
+    """
+    problems, seen = [], {}
+    for option, given in files:
+        if given is None or given == "-":
+            continue
+        p = Path(given)
+        if p.is_dir():
+            problems.append(f"{option}: {given!r} is a folder; a file name is expected")
+            continue
+        if p.exists() and not os.access(p, os.W_OK):
+            problems.append(f"{option}: {given!r} is not writable")
+            continue
+        why = _creatable(option, given, p.parent)
+        if why:
+            problems.append(why)
+            continue
+        key = os.path.normcase(os.path.abspath(p))
+        if key in seen:
+            problems.append(f"{option}: {given!r} is also the file of {seen[key]}")
+        seen.setdefault(key, option)
+    for option, given in folders:
+        if given is None:
+            continue
+        p = Path(given)
+        if p.exists() and not p.is_dir():
+            problems.append(f"{option}: {given!r} is a file; a folder is expected")
+        elif p.is_dir() and not os.access(p, os.W_OK | os.X_OK):
+            problems.append(f"{option}: cannot write in {given!r}")
+        elif not p.exists():
+            why = _creatable(option, given, p)
+            if why:
+                problems.append(why)
+    if problems:
+        raise OptionError(problems)
+
+
+def write(path, text: str) -> None:
+    """Write a file the command was asked for, creating its folder if needed."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+
+
+def stem(scene) -> str:
+    """The scene's name made safe for a file name: the stem of every plot file."""
+    from linkage_sym.plotting.style import file_stem
+
+    return file_stem(scene, None)
