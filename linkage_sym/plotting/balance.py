@@ -27,6 +27,9 @@ series that is numerically zero (see :data:`ZERO_ABS`, :data:`ZERO_REL`) is
 drawn as a diamond at the origin (polar diagram) or a marked line on zero
 (moment curve) and its legend entry says so, with the peak value it has.
 
+Size: about 630 lines: the polar plot and the moment curve share the
+before/after styling, the driver-value axis and the legend layout.
+
 Examples
 --------
 >>> import numpy as np
