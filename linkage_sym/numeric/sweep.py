@@ -250,9 +250,30 @@ def needed_stages(scene: Scene) -> tuple[str, ...]:
     return tuple(stages)
 
 
-def _steps_text(idx) -> str:
-    idx = [int(i) for i in idx]
-    return ", ".join(map(str, idx[:5])) + (f" and {len(idx) - 5} more" if len(idx) > 5 else "")
+def steps_text(first, count: int) -> str:
+    """The steps of a warning: the first five, and how many more."""
+    return ", ".join(str(int(i)) for i in list(first)[:5]) + (
+        f" and {count - 5} more" if count > 5 else "")
+
+
+def ill_conditioned_warning(count: int, first, worst: float, worst_step: int) -> str:
+    """The wording of ``ok`` steps above :data:`WARN_COND` (one run, or a sweep's chunks)."""
+    return (
+        f"{count} ok step(s) have a condition number above {WARN_COND:.0e} (steps "
+        f"{steps_text(first, count)}; largest {worst:.3g} at step {worst_step}): their "
+        f"velocities and accelerations carry about {np.log10(worst):.0f} "
+        "fewer significant digits than their positions"
+    )
+
+
+def cancelling_warning(links, count: int, first, worst: float, worst_step: int) -> str:
+    """The wording of a group whose force superposition cancels at ``ok`` steps."""
+    return (
+        f"group ({', '.join(links)}): the superposition cancels at {count} "
+        f"step(s) (steps {steps_text(first, count)}; amplification up to "
+        f"{worst:.3g} at step {worst_step}) with every disconnection: "
+        f"its reactions lose about {np.log10(worst):.0f} digits there"
+    )
 
 
 def run_warnings(res: Analysis) -> list[str]:
@@ -270,12 +291,7 @@ def run_warnings(res: Analysis) -> list[str]:
         ill = np.flatnonzero(ok & (res.condition > WARN_COND))
     if len(ill):
         worst = int(ill[np.argmax(res.condition[ill])])
-        out.append(
-            f"{len(ill)} ok step(s) have a condition number above {WARN_COND:.0e} (steps "
-            f"{_steps_text(ill)}; largest {res.condition[worst]:.3g} at step {worst}): their "
-            f"velocities and accelerations carry about {np.log10(res.condition[worst]):.0f} "
-            "fewer significant digits than their positions"
-        )
+        out.append(ill_conditioned_warning(len(ill), ill, res.condition[worst], worst))
     if res.forces is not None:
         for g in res.forces.groups:
             if g.amplification is None:
@@ -284,10 +300,5 @@ def run_warnings(res: Analysis) -> list[str]:
                 bad = np.flatnonzero(ok & (g.amplification > AMPLIFICATION_LIMIT))
             if len(bad):
                 worst = int(bad[np.argmax(g.amplification[bad])])
-                out.append(
-                    f"group ({', '.join(g.links)}): the superposition cancels at {len(bad)} "
-                    f"step(s) (steps {_steps_text(bad)}; amplification up to "
-                    f"{g.amplification[worst]:.3g} at step {worst}) with every disconnection: "
-                    f"its reactions lose about {np.log10(g.amplification[worst]):.0f} digits there"
-                )
+                out.append(cancelling_warning(g.links, len(bad), bad, g.amplification[worst], worst))
     return out

@@ -9,18 +9,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkage_sym.numeric.sweep import WARN_COND, run_warnings
+from linkage_sym.numeric.sweep import WARN_COND, cancelling_warning, ill_conditioned_warning, run_warnings
 from linkage_sym.numeric.result import OK, UNASSEMBLABLE, Analysis, LeftOut
 from linkage_sym.numeric.superposition import AMPLIFICATION_LIMIT
 
 
 
 # ------------------------------------------------------------------ merging chunks
-
-
-def _steps_text(first: list, count: int) -> str:
-    """The steps of a warning: the first five, and how many more (as a whole run words them)."""
-    return ", ".join(map(str, first[:5])) + (f" and {count - 5} more" if count > 5 else "")
 
 
 @dataclass
@@ -185,22 +180,11 @@ class SweepStats:
         out = [t for _, t in sorted(self._notes, key=lambda p: p[0])] + self._other
         f = self._ill
         if f.count:
-            out.append(
-                f"{f.count} ok step(s) have a condition number above {WARN_COND:.0e} (steps "
-                f"{_steps_text(f.first, f.count)}; largest {f.worst:.3g} at step {f.worst_step}): "
-                f"their velocities and accelerations carry about {np.log10(f.worst):.0f} "
-                "fewer significant digits than their positions"
-            )
+            out.append(ill_conditioned_warning(f.count, f.first, f.worst, f.worst_step))
         if self.template.forces is not None:
             for g, f in zip(self.template.forces.groups, self._amplified):
-                if f is None or not f.count:
-                    continue
-                out.append(
-                    f"group ({', '.join(g.links)}): the superposition cancels at {f.count} "
-                    f"step(s) (steps {_steps_text(f.first, f.count)}; amplification up to "
-                    f"{f.worst:.3g} at step {f.worst_step}) with every disconnection: "
-                    f"its reactions lose about {np.log10(f.worst):.0f} digits there"
-                )
+                if f is not None and f.count:
+                    out.append(cancelling_warning(g.links, f.count, f.first, f.worst, f.worst_step))
         return out
 
     def tail(self) -> dict:
