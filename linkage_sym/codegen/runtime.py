@@ -436,8 +436,11 @@ class CompiledMechanism:
         status, messages = step_status(failed, message_of)
         pos_ok = failed < 0
         idx = np.flatnonzero(pos_ok)
-        Xk = X[:, idx]
-        Qk, QDk, QDDk = list(Qs[:, idx]), list(QDs[:, idx]), list(QDDs[:, idx])
+        if len(idx) == N:  # every step assembled: the arrays themselves, no copies
+            Xk, Qk, QDk, QDDk = X, list(Qs), list(QDs), list(QDDs)
+        else:
+            Xk = X[:, idx]
+            Qk, QDk, QDDk = list(Qs[:, idx]), list(QDs[:, idx]), list(QDDs[:, idx])
         CS = (np.cos(Xk), np.sin(Xk))
         A, Bqd = self.rate_matrix(Xk, Qk, QDk, (list(CS[0]), list(CS[1])))
         # singular steps: a block's Hadamard ratio screens, the exact condition number decides
@@ -474,19 +477,23 @@ class CompiledMechanism:
         rate_ok = ok[idx]
         stages = tuple(art["stages"])
         K = len(idx)
+        # the steps with rates: a slice (views, no copies) when every step has them
+        sel = slice(None) if rate_ok.all() else rate_ok
+        n_sel = int(rate_ok.sum())
         XD = np.full((self.m, K), np.nan)
         XDD = np.full((self.m, K), np.nan)
-        if "velocity" in stages and rate_ok.any():
-            XD[:, rate_ok] = _solve_blocks(A[rate_ok], Bqd[rate_ok], self.blocks).T
-        if "acceleration" in stages and rate_ok.any():
+        if "velocity" in stages and n_sel:
+            XD[:, sel] = _solve_blocks(A[sel], Bqd[sel], self.blocks).T
+        if "acceleration" in stages and n_sel:
             r = self._call(
-                "accelerations", X=list(Xk[:, rate_ok]), XD=list(XD[:, rate_ok]),
-                CS=(list(CS[0][:, rate_ok]), list(CS[1][:, rate_ok])),
-                Q=[v[rate_ok] for v in Qk], QD=[v[rate_ok] for v in QDk],
-                QDD=[v[rate_ok] for v in QDDk],
+                "accelerations", X=list(Xk[:, sel]), XD=list(XD[:, sel]),
+                CS=(list(CS[0][:, sel]), list(CS[1][:, sel])),
+                Q=[v[sel] for v in Qk], QD=[v[sel] for v in QDk], QDD=[v[sel] for v in QDDk],
             )
-            rhs = np.stack([np.broadcast_to(np.asarray(v, float), (int(rate_ok.sum()),)) for v in r], axis=1)
-            XDD[:, rate_ok] = _solve_blocks(A[rate_ok], rhs, self.blocks).T
+            rhs = np.empty((n_sel, self.m))
+            for i, v in enumerate(r):
+                rhs[:, i] = v
+            XDD[:, sel] = _solve_blocks(A[sel], rhs, self.blocks).T
         with np.errstate(invalid="ignore"):
             pts = self._call(
                 "points", X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk, QD=QDk, QDD=QDDk,
@@ -585,11 +592,14 @@ class CompiledMechanism:
         links, joints, points = lay.records(scene, block, stages)
         every = len(idx) == N
 
-        def put(dest, v):  # a row (N,) or a pair of rows (2, N) at the solved steps
-            if every:
+        def put(dest, v):  # a row (N,), or a pair of rows (2, N) given as two arrays
+            if dest.ndim == 2:
+                put(dest[0], v[0])
+                put(dest[1], v[1])
+            elif every:
                 dest[...] = v
             else:
-                dest[..., idx] = v
+                dest[idx] = v
 
         for j in scene.joints:
             rec = joints[j.name]
