@@ -518,10 +518,9 @@ def head_to_head(calls: dict, anchor: str = "plan") -> dict:
 
     In pairs rather than all at once: a call finds the caches as the call
     before it left them, and Plan.run's megabytes of result are slower after
-    a contender that went through other memory (about 0.24 µs a position
-    back to back, 0.29 alternating with pylinkage's numba solver, 0.34
-    alternating with all of them, in one trial); the pylinkage kernels
-    hardly notice.  Returns, per contender, its time and the anchor's in
+    a contender that went through other memory (the four-bar in one trial:
+    0.24 µs a position back to back, 0.34 alternating with all the other
+    contenders); pylinkage's numba kernels hardly notice.  Returns, per contender, its time and the anchor's in
     that pair, and the anchor's back to back.
     """
     fa = calls[anchor][0]
