@@ -28,6 +28,7 @@ __all__ = [
     "derive",
     "load_example",
     "load_scene",
+    "sweep",
 ]
 
 
@@ -108,3 +109,13 @@ def compile_mechanism(scene, use_cache=True):
     from linkage_sym.codegen.compile import compile_mechanism as _compile
 
     return _compile(scene, use_cache)
+
+
+def sweep(scene, parameters=None, metrics=None, **options):
+    """Evaluate many designs of a scene at once (a grid, samples, a Monte Carlo spread).
+
+    See :func:`linkage_sym.design.api.sweep`.
+    """
+    from linkage_sym.design.api import sweep as _sweep
+
+    return _sweep(scene, parameters, metrics, **options)

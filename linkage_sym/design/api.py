@@ -1,0 +1,215 @@
+"""``linkage_sym.sweep``: evaluate many designs of one scene's topology at once."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from linkage_sym.design.errors import SweepError
+from linkage_sym.design.execute import TARGET_ENTRIES, Spec, run_chunks
+from linkage_sym.design.metrics import DEFAULT_METRICS, MetricPlan
+from linkage_sym.design.parameters import Designs, check_names, grid, monte_carlo as _mc
+from linkage_sym.design.parameters import read_samples
+from linkage_sym.design.table import SweepResult
+
+__all__ = ["sweep", "scene_parameters"]
+
+
+def _as_scene(scene):
+    from linkage_sym.model import Scene
+
+    if isinstance(scene, Scene):
+        return scene
+    from linkage_sym.scene import load_scene
+
+    return load_scene(scene)
+
+
+def scene_parameters(scene) -> list:
+    """``(name, value, meaning)`` of every parameter a sweep may vary (what
+    ``linkage-sym sweep SCENE --list`` prints).
+
+    Examples
+    --------
+    >>> import linkage_sym
+    >>> rows = scene_parameters(linkage_sym.load_example("crank_rocker"))
+    >>> [(n, round(v, 6)) for n, v, _ in rows[2:5]]
+    [('l_AB', 0.024), ('l_BC', 0.063032), ('l_CD', 0.048508)]
+    """
+    from linkage_sym.design.evaluate import Model
+    from linkage_sym.design.parameters import parameter_list
+
+    scene = _as_scene(scene)
+    model = Model(scene, forces=_has_forces(scene))
+    return parameter_list(scene, model.names, model.base)
+
+
+def _has_forces(scene) -> bool:
+    return any(lk.mass > 0 or lk.inertia > 0 for lk in scene.links) or bool(scene.loads)
+
+
+def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=None,
+          tolerance=None, random_state=0, output=None, trace=None, workers=None, dask=None,
+          chunk_designs=None, write_scenes=None, progress=False) -> SweepResult:
+    """Evaluate many designs of a scene: a grid, samples or a Monte Carlo spread.
+
+    Every design is the scene with some named parameters (the symbolic layer's
+    names, :mod:`linkage_sym.structure.parameters`; :func:`scene_parameters`
+    lists them) set to other values, assembled at the scene's driver values in
+    the scene's assembly mode, and solved over the scene's sweep by the
+    compiled mechanism's functions, many designs per call
+    (:mod:`linkage_sym.design.evaluate`).
+
+    Parameters
+    ----------
+    scene : Scene, dict or path
+    parameters : mapping of str to sequence, or Designs, optional
+        A grid: the product of these axes of values (the first varies slowest).
+    metrics : sequence of str, optional
+        Default: those of :data:`~linkage_sym.design.metrics.DEFAULT_METRICS` the scene
+        has (``assemblable``, ``grashof``, ``K``, ``swing``, ``min_transmission_deg``).
+        From :data:`linkage_sym.design.metrics.METRICS` (their definitions are
+        in that module): ``assemblable``, ``grashof``, ``K``, ``swing``,
+        ``min_transmission_deg``, ``peak_driving``, ``rms_driving``,
+        ``peak_reaction``, ``rms_shaking_force``, ``rms_shaking_moment``, ``path``.
+    samples : path, optional
+        A CSV file of designs (a header of parameter names) instead of a grid.
+    monte_carlo : int, optional
+        That many designs with the ``tolerance`` parameters (``name -> sigma``)
+        drawn from normal distributions about the scene's values
+        (``numpy.random.default_rng(random_state)``: reproducible).
+    output : str, optional
+        The link of ``K`` and ``swing`` (default: the last link pivoted on the
+        ground that is not driven).
+    trace : str or sequence of str, optional
+        The traced points of ``path`` (default: all the scene's).
+    workers : int, optional
+        Local processes (default: this process only).
+    dask : str or dask.distributed.Client, optional
+        A scheduler address, ``"local"`` (a LocalCluster of ``workers`` processes)
+        or a client: the chunks run there.
+    chunk_designs : int, optional
+        Designs per chunk (default: about 65,000 design-steps a chunk).
+    write_scenes : path, optional
+        A folder: each design's own scene is written there as
+        ``design_<i>.json`` (:mod:`linkage_sym.design.scenes`).
+    progress : bool
+        A progress bar on a terminal (tqdm).
+
+    Returns
+    -------
+    SweepResult
+        One row per design: ``design``, the parameters, the metric columns.
+
+    Raises
+    ------
+    SweepError
+        Input it cannot use, naming the argument (an unknown parameter lists the
+        valid ones; a scene whose groups have no closed form).
+
+    Examples
+    --------
+    >>> import linkage_sym
+    >>> scene = linkage_sym.load_example("crank_rocker")
+    >>> res = linkage_sym.sweep(scene, {"l_AB": [0.02, 0.024], "l_BC": [0.06, 0.065]},
+    ...                         ["grashof", "K", "min_transmission_deg"])
+    >>> list(res.columns)
+    ['design', 'l_AB', 'l_BC', 'grashof', 'K', 'min_transmission_deg']
+    >>> res["grashof"].tolist()
+    ['crank-rocker', 'crank-rocker', 'crank-rocker', 'crank-rocker']
+    >>> [round(float(k), 4) for k in res["K"]]
+    [1.0503, 1.0071, 1.0945, 1.0082]
+    """
+    scene = _as_scene(scene)
+    designs = _designs(scene, parameters, samples, monte_carlo, tolerance, random_state)
+    if metrics is None:
+        metrics = default_metrics(scene, output)
+    metrics = [metrics] if isinstance(metrics, str) else list(metrics)
+    plan = MetricPlan(scene, metrics, output, trace)
+    spec = Spec(scene, tuple(designs.names), tuple(plan.metrics), plan.__dict__.get("output"),
+                None if trace is None else tuple([trace] if isinstance(trace, str) else trace))
+    from linkage_sym.design.execute import _state
+
+    model, _ = _state(spec)
+    check_names(designs, model.names, "parameters" if monte_carlo is None else "--tolerance")
+    if workers is not None:
+        if not isinstance(workers, int) or isinstance(workers, bool) or workers < 1:
+            raise SweepError("--workers", f"a number of processes >= 1 is expected, got {workers!r}")
+    if chunk_designs is None:
+        chunk_designs = max(1, TARGET_ENTRIES // model.path.shape[1])
+    elif not isinstance(chunk_designs, int) or chunk_designs < 1:
+        raise SweepError("chunk_designs", f"a number of designs >= 1 is expected, got {chunk_designs!r}")
+    files = []
+    if write_scenes is not None:
+        files = _write_scenes(model, designs, Path(write_scenes), chunk_designs)
+    parts = run_chunks(spec, designs.values, chunk_designs, workers, dask, progress)
+    columns = {"design": np.arange(len(designs))}
+    for k, n in enumerate(designs.names):
+        columns[n] = designs.values[:, k].copy()
+    mcols = list(parts[0]) if parts else plan.columns(model.N)
+    for c in mcols:
+        columns[c] = np.concatenate([p[c] for p in parts])
+    return SweepResult(columns, tuple(designs.names), tuple(mcols), designs.kind, designs.axes,
+                       scene.name, files)
+
+
+def default_metrics(scene, output=None) -> list:
+    """The metrics of :data:`DEFAULT_METRICS` that apply to ``scene``."""
+    out = []
+    for m in DEFAULT_METRICS:
+        try:
+            MetricPlan(scene, [m], output)
+        except SweepError:
+            continue
+        out.append(m)
+    return out
+
+
+def _designs(scene, parameters, samples, monte_carlo, tolerance, random_state) -> Designs:
+    given = [n for n, v in (("parameters", parameters), ("samples", samples),
+                            ("monte_carlo", monte_carlo)) if v is not None]
+    if len(given) != 1:
+        raise SweepError("parameters", "give exactly one of a grid of parameters (--vary), "
+                                       "samples (--samples) or a Monte Carlo spread "
+                                       f"(--monte-carlo); got {', '.join(given) or 'none'}")
+    if tolerance is not None and monte_carlo is None:
+        raise SweepError("--tolerance", "used only with a Monte Carlo spread (--monte-carlo N)")
+    if isinstance(parameters, Designs):
+        return parameters
+    if parameters is not None:
+        return grid(parameters)
+    if samples is not None:
+        return read_samples(samples)
+    from linkage_sym.design.execute import Spec as _S, _state
+
+    model, _ = _state(_S(scene, (), ("assemblable",)))
+    base = {n: v for n, v in zip(model.names, model.base)}
+    for n in (tolerance or {}):
+        if n not in base or n.startswith("theta0_"):
+            check_names(Designs((n,), np.zeros((1, 1)), "monte-carlo"), model.names, "--tolerance")
+    return _mc(base, tolerance or {}, monte_carlo, random_state)
+
+
+def _write_scenes(model, designs, folder: Path, size: int) -> list:
+    from linkage_sym.design.scenes import design_scene
+    from linkage_sym.scene.load import dump_scene
+
+    folder.mkdir(parents=True, exist_ok=True)
+    files = []
+    width = max(1, len(str(len(designs) - 1)))
+    for a in range(0, len(designs), size):
+        vals = designs.values[a:a + size]
+        P = model.params(designs.names, vals)
+        P, X0, ok, joints0, _ = model.assemble(P, len(vals))
+        for d in range(len(vals)):
+            i = a + d
+            if not ok[d]:
+                continue
+            sc = design_scene(model, P, X0, joints0, d, f"{model.scene.name}-design-{i}")
+            path = folder / f"design_{i:0{width}d}.json"
+            path.write_text(json.dumps(dump_scene(sc), indent=1) + "\n")
+            files.append(str(path))
+    return files

@@ -1,0 +1,478 @@
+"""Solve many designs of one topology at once with the compiled mechanism's functions.
+
+The compiled mechanism (:mod:`linkage_sym.codegen.runtime`) takes every named
+parameter as an argument; passing arrays (designs x steps, flattened design by
+design) evaluates a whole chunk of designs in one call of each generated
+function.  For a chunk of designs :meth:`Model.solve` does what
+``CompiledMechanism.run`` does for one scene, with the same functions:
+
+1. **the design's assembly configuration**: the closed forms at the scene's
+   driver values ``q0`` with the scene's assembly-mode signs.  The assembly
+   angles ``theta0_<link>`` (the constant angles of links joined by ``P``
+   joints) are then the design's own: set to that configuration's angles and
+   the closed forms evaluated again.  A design whose closed forms have no real
+   root at ``q0`` cannot be assembled (every metric NaN, ``assemblable`` 0);
+2. **positions** along the scene's solving path (:func:`~linkage_sym.numeric.sweep.solving_path`:
+   from ``q0`` through the steps), angles unwrapped along it from the assembly
+   configuration, as the runtimes do;
+3. **the singularity screen**: each group block's Hadamard ratio
+   (:data:`~linkage_sym.numeric.sweep.SCREEN`), then the dimensionless
+   condition number (the design's own size) against
+   :data:`~linkage_sym.numeric.sweep.SINGULAR_COND`; a step is ``ok`` when it
+   is assembled and not singular;
+4. only what the metrics need: the velocities (along the sweep for limit
+   positions, at the scene's speeds for forces), accelerations, the points
+   function and the force blocks ``A_g F_g = b_g - C_g F_later`` from the last
+   group back.
+
+Every operation is elementwise per design or a per-matrix LAPACK call, and
+chunks are made of whole designs: a design's numbers do not depend on the
+chunk that carried it.  Groups without a closed form (class-III triads,
+actuator groups) are refused here: their Newton continuation is step by step.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from linkage_sym.design.errors import SweepError
+from linkage_sym.model import OUTPUTS
+from linkage_sym.numeric.sweep import SCREEN, SINGULAR_COND, scene_sweep, solving_path
+from linkage_sym.structure.parameters import driver_q0, ident
+
+__all__ = ["Model", "Solution", "compiled"]
+
+
+def compiled(scene):
+    """The scene's compiled mechanism: from the cache when there (no SymPy), else derived."""
+    from linkage_sym.codegen.runtime import load_compiled
+
+    cm = load_compiled(scene)
+    if cm is None:
+        from linkage_sym.codegen.compile import compile_mechanism
+
+        cm = compile_mechanism(scene)
+    return cm
+
+
+def _full(v, E):
+    return np.broadcast_to(np.asarray(v, float), (E,))
+
+
+@dataclass
+class Solution:
+    """A chunk of ``n`` designs solved at the ``N`` steps of the scene's sweep.
+
+    Per-step arrays are ``(n, N)`` (coordinates ``(m, n, N)``), NaN where a step
+    has no value; per-design arrays ``(n,)``.
+    """
+
+    n: int
+    N: int
+    P: list  # parameters of the designs: floats (shared) or (n,) arrays
+    assembled: np.ndarray  # (n,) bool
+    X0: np.ndarray  # (m, n) the assembly configuration
+    joints0: dict  # joint -> (2, n) positions in the assembly configuration
+    L: np.ndarray  # (n,) size: largest distance between two joints at assembly
+    X: np.ndarray  # (m, n, N) coordinates, angles continuous from the assembly
+    pos_ok: np.ndarray  # (n, N)
+    ok: np.ndarray  # (n, N)
+    rate_t: np.ndarray | None = None  # (m, n, N) rates along the steps (dq/dt per step)
+    XD: np.ndarray | None = None  # (m, n, N) at the scene's speeds
+    XDD: np.ndarray | None = None
+    points: list | None = None  # the points function's outputs, (n, N) each
+    forces: np.ndarray | None = None  # (nF, n, N) reactions and efforts
+    C: np.ndarray | None = None  # (m, n, N) cosines of the coordinates (NaN where no position)
+    S: np.ndarray | None = None
+
+
+class Model:
+    """The compiled mechanism of a scene's topology, ready to solve chunks of designs.
+
+    Parameters
+    ----------
+    scene : Scene
+    forces : bool
+        Compile the force blocks (reactions, efforts) too.
+    """
+
+    def __init__(self, scene, forces: bool = False):
+        self.scene = scene
+        kin = dataclasses.replace(scene, outputs=OUTPUTS if forces else ("kinematics",))
+        self.cm = cm = compiled(kin)
+        art = self.art = cm.art
+        newton = [g["label"] for g in art["groups"] if not g["closed"]]
+        if newton:
+            raise SweepError("scene", f"the {', '.join(newton)} of {scene.name!r} has no closed "
+                             "form (its positions are found by Newton continuation, step by "
+                             "step); a sweep evaluates four-bars and dyad chains, whose groups "
+                             "have closed forms")
+        self.names = list(cm.param_names)
+        self.index = {n: i for i, n in enumerate(self.names)}
+        self.recipes = {tuple(tuple(x) if isinstance(x, list) else x for x in r): i
+                        for i, (_, r) in enumerate(art["params"])}
+        self.base = [float(v) for v in cm.params]
+        self.m = cm.m
+        self.qnames = list(art["q"])
+        q, qd, qdd = scene_sweep(scene)
+        self.Q = np.array([q[k] for k in self.qnames])
+        self.QD = np.array([qd[k] for k in self.qnames])
+        self.QDD = np.array([qdd[k] for k in self.qnames])
+        self.N = self.Q.shape[1]
+        q0 = driver_q0(scene)
+        self.q0 = np.array([q0[k] for k in self.qnames])
+        self.path, self.out, _ = solving_path(scene, self.qnames, q0, cm.L, self.Q)
+        self.slope = (np.zeros(len(self.qnames)) if self.N == 1
+                      else (self.Q[:, -1] - self.Q[:, 0]) / (self.N - 1))
+        self.theta0 = [(i, cm.angle_of[r[1]]) for r, i in self.recipes.items() if r[0] == "theta0"]
+        self.angle_cols = np.flatnonzero(cm.is_angle)
+        self.angle_of = dict(cm.angle_of)
+        self.blocks = list(cm.blocks)
+        self.layout = art["layout"]
+        self.stages = tuple(art["stages"])
+        self.rows_length = np.array(art["rows_length"], bool)
+        self.cols_length = np.array(art["cols_length"], bool)
+        self.frames = cm.frames
+        self.simple_path = (self.path.shape[1] == self.N + 1
+                            and np.array_equal(self.out, np.arange(1, self.N + 1)))
+        self._tiles = {}
+
+    # -- parameters -------------------------------------------------------------------------
+    def value(self, P, recipe, default):
+        """A parameter of the designs by its recipe (``default`` when the derivation has no
+        such parameter: a constant of the topology's scene)."""
+        i = self.recipes.get(recipe)
+        return default if i is None else P[i]
+
+    def params(self, names, values) -> list:
+        """The ``P`` argument of a chunk: the scene's values with ``names`` set to the
+        columns of ``values`` (n, k)."""
+        P = list(self.base)
+        for k, n in enumerate(names):
+            P[self.index[n]] = np.ascontiguousarray(values[:, k], dtype=float)
+        return P
+
+    # -- generated functions -------------------------------------------------------------------
+    def call(self, name, P, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, CS=(None, None)):
+        return self.cm.functions[name](X, XD, XDD, Q, QD, QDD, F, P, CS[0], CS[1])
+
+    def positions(self, P, Q, E) -> np.ndarray:
+        """Coordinates (m, E) from the closed forms at driver values ``Q`` (list of (E,))."""
+        X = [None] * self.m
+        with np.errstate(invalid="ignore", divide="ignore"):
+            for st in self.art["steps"]:
+                for c, v in zip(st["x"], self.call(st["function"], P, X=X, Q=Q)):
+                    X[c] = _full(v, E)
+        return np.array(X)
+
+    def rates(self, P, X, Q, QD, CS):
+        """The nonzero entries of ``A`` (dict ``(i, j) -> (E,)``) and ``B qd`` (list of (E,))."""
+        E = X.shape[1]
+        out = self.call("rates", P, X=list(X), Q=Q, QD=QD, CS=CS)
+        pat = self.art["pattern"]
+        A = {(i, j): _full(v, E) for (i, j), v in zip(pat, out)}
+        return A, [_full(v, E) for v in out[len(pat):]]
+
+    def solve_blocks(self, A, rhs):
+        """The block lower-triangular ``A x = rhs`` (group by group, Cramer for 2x2), ``A``
+        and ``rhs`` as :meth:`rates` returns them; ``x`` (m, E)."""
+        E = len(rhs[0])
+        x = np.zeros((self.m, E))
+        zero = np.zeros(E)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            for r0, r1, c0, c1 in self.blocks:
+                b = []
+                for i in range(r0, r1):
+                    v = rhs[i]
+                    for j in range(c0):
+                        a = A.get((i, j))
+                        if a is not None:
+                            v = v - a * x[j]
+                    b.append(v)
+                k = c1 - c0
+                M = [[A.get((i, j), zero) for j in range(c0, c1)] for i in range(r0, r1)]
+                if k == 1:
+                    x[c0] = b[0] / M[0][0]
+                elif k == 2:
+                    det = M[0][0] * M[1][1] - M[0][1] * M[1][0]
+                    x[c0] = (b[0] * M[1][1] - b[1] * M[0][1]) / det
+                    x[c0 + 1] = (M[0][0] * b[1] - M[1][0] * b[0]) / det
+                else:
+                    Md = np.moveaxis(np.array(M), -1, 0)
+                    x[c0:c1] = np.linalg.solve(Md, np.array(b).T[..., None])[..., 0].T
+        return x
+
+    def screen(self, A, L):
+        """Singular entries: a block's Hadamard ratio (by rows, by columns) below
+        :data:`SCREEN`, then the dimensionless condition number (size ``L`` per entry)
+        above :data:`SINGULAR_COND`."""
+        E = len(L)
+        zero = np.zeros(E)
+        flag = np.zeros(E, bool)
+        s2 = SCREEN * SCREEN
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            for r0, r1, c0, c1 in self.blocks:
+                if c1 - c0 < 2:
+                    continue
+                M = [[A.get((i, j), zero) for j in range(c0, c1)] for i in range(r0, r1)]
+                if c1 - c0 == 2:
+                    (a, b), (c, d) = M
+                    det = a * d - b * c
+                    det2 = det * det
+                    aa, bb, cc, dd = a * a, b * b, c * c, d * d
+                    ok = (det2 >= s2 * ((aa + bb) * (cc + dd))) & (det2 >= s2 * ((aa + cc) * (bb + dd)))
+                else:
+                    Md = np.moveaxis(np.array(M), -1, 0)
+                    det = np.abs(np.linalg.det(Md))
+                    ok = (det / np.prod(np.linalg.norm(Md, axis=2), axis=1) >= SCREEN) & (
+                        det / np.prod(np.linalg.norm(Md, axis=1), axis=1) >= SCREEN)
+                flag |= ~ok
+        sing = np.zeros(E, bool)
+        idx = np.flatnonzero(flag)
+        if len(idx):
+            Md = np.zeros((len(idx), self.m, self.m))
+            for (i, j), v in A.items():
+                Md[:, i, j] = v[idx]
+            Ls = L[idx]
+            rl = np.where(self.rows_length[None, :], 1.0 / Ls[:, None], 1.0)
+            cl = np.where(self.cols_length[None, :], Ls[:, None], 1.0)
+            Ms = Md * rl[:, :, None] * cl[:, None, :]
+            good = np.isfinite(Ms).all(axis=(1, 2))
+            cond = np.full(len(idx), np.inf)
+            if good.any():
+                sv = np.linalg.svd(Ms[good], compute_uv=False)
+                with np.errstate(divide="ignore"):
+                    cond[good] = sv[:, 0] / sv[:, -1]
+            sing[idx] = ~(cond <= SINGULAR_COND)
+        return sing
+
+    # -- a chunk -------------------------------------------------------------------------------
+    def assemble(self, P, n):
+        """The designs' assembly configurations at ``q0`` (see the module docstring):
+        ``(P with the designs' theta0, X0 (m, n), assembled (n,), joints0, L)``."""
+        Q = [np.full(n, v) for v in self.q0]
+        X0 = self.positions(P, Q, n)
+        if self.theta0:
+            P = list(P)
+            for i, c in self.theta0:
+                P[i] = X0[c].copy()
+            X0 = self.positions(P, Q, n)
+        assembled = np.isfinite(X0).all(axis=0)
+        z = [np.zeros(n)] * self.m
+        zq = [np.zeros(n)] * len(self.qnames)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            pts = self.call("points", P, X=list(X0), XD=z, XDD=z, Q=Q, QD=zq, QDD=zq,
+                            CS=(list(np.cos(X0)), list(np.sin(X0))))
+        joints0 = {}
+        for j in self.scene.joints:
+            a, _ = self.layout[f"joint:{j.name}:0"]
+            joints0[j.name] = np.array([_full(pts[a], n), _full(pts[a + 1], n)])
+        xy = np.array(list(joints0.values()))  # (J, 2, n)
+        for lk in self.scene.link_names:  # the link frames' origins (a P joint's moves along it)
+            a, _ = self.layout[f"origin:{lk}:0"]
+            joints0["origin:" + lk] = np.array([_full(pts[a], n), _full(pts[a + 1], n)])
+        L = np.zeros(n)
+        for i in range(len(xy)):
+            for k in range(i + 1, len(xy)):
+                L = np.fmax(L, np.hypot(*(xy[i] - xy[k])))
+        return P, X0, assembled, joints0, L
+
+    def _steps(self, n):
+        """Driver values of ``n`` designs' steps, flattened design by design (cached)."""
+        if self._tiles.get("n") != n:
+            self._tiles = {"n": n, "Q": [np.tile(r, n) for r in self.Q],
+                           "QD": [np.tile(r, n) for r in self.QD],
+                           "QDD": [np.tile(r, n) for r in self.QDD],
+                           "slope": [np.full(n * self.N, s) for s in self.slope]}
+        return self._tiles
+
+    def positions_at_steps(self, P, X0, assembled, n, unwrap):
+        """Coordinates (m, n, N) at the steps, the angles of ``unwrap`` continuous from
+        the assembly configuration along the solving path; and the designs' ``P`` repeated
+        per step."""
+        N, m = self.N, self.m
+        Ps = [np.repeat(v, N) if np.ndim(v) else v for v in P]
+        if self.simple_path:  # the path is the assembly configuration, then the steps
+            X = self.positions(Ps, self._steps(n)["Q"], n * N).reshape(m, n, N)
+            valid = np.isfinite(X).all(axis=0) & assembled[:, None]
+            for c in unwrap:
+                X[c] = _unwrap_rows(X[c], valid, X0[c])
+            return X, valid, Ps
+        K = self.path.shape[1]
+        Pp = [np.repeat(v, K) if np.ndim(v) else v for v in P]
+        Xp = self.positions(Pp, [np.tile(r, n) for r in self.path], n * K).reshape(m, n, K)
+        valid = np.isfinite(Xp).all(axis=0) & assembled[:, None]
+        for c in unwrap:
+            Xp[c] = _unwrap_rows(Xp[c], valid, None)
+        return np.ascontiguousarray(Xp[:, :, self.out]), valid[:, self.out], Ps
+
+    def solve(self, P, n, need, unwrap=()) -> Solution:
+        """Solve ``n`` designs (parameters ``P``, from :meth:`params`) at the sweep's steps.
+
+        ``need``: a set of ``"rate_t"`` (rates along the steps), ``"velocity"``,
+        ``"acceleration"``, ``"points"``, ``"forces"``; ``unwrap``: the coordinates
+        whose angles must be continuous from the assembly configuration.
+        """
+        P, X0, assembled, joints0, L = self.assemble(P, n)
+        N, m, E = self.N, self.m, n * self.N
+        X, pos_ok, Ps = self.positions_at_steps(P, X0, assembled, n, unwrap)
+        sol = Solution(n, N, P, assembled, X0, joints0, L, X, pos_ok, pos_ok.copy())
+        flat = pos_ok.ravel()
+        every = bool(flat.all())
+        tiles = self._steps(n)
+        if every:  # no copies: the step arrays as they are
+            idx = None
+            Xk = X.reshape(m, E)
+            Pk, Qk, Tk, Lk = Ps, tiles["Q"], tiles["slope"], np.repeat(L, N)
+        else:
+            idx = np.flatnonzero(flat)
+            if not len(idx):
+                return sol
+            Xk = X.reshape(m, E)[:, idx]
+            Pk = [v[idx] if np.ndim(v) else v for v in Ps]
+            Qk = [r[idx] for r in tiles["Q"]]
+            Tk = [r[idx] for r in tiles["slope"]]
+            Lk = np.repeat(L, N)[idx]
+        C, S = np.cos(Xk), np.sin(Xk)
+        sol.C, sol.S = self._spread_rows(C, idx, n), self._spread_rows(S, idx, n)
+        CS = (list(C), list(S))
+        A, Bqt = self.rates(Pk, Xk, Qk, Tk, CS)
+        sing = self.screen(A, Lk)
+        if sing.any():
+            bad = np.flatnonzero(sing) if idx is None else idx[sing]
+            sol.ok.ravel()[bad] = False
+            keep = np.flatnonzero(~sing)
+            idx = keep if idx is None else idx[keep]
+            Xk = Xk[:, keep]
+            C, S = C[:, keep], S[:, keep]
+            CS = (list(C), list(S))
+            Pk = [v[keep] if np.ndim(v) else v for v in Pk]
+            Qk = [r[keep] for r in Qk]
+            A = {k: v[keep] for k, v in A.items()}
+            Bqt = [v[keep] for v in Bqt]
+        if "rate_t" in need:
+            sol.rate_t = self._spread_rows(self.solve_blocks(A, Bqt), idx, n)
+        if not ({"velocity", "acceleration", "points", "forces"} & need):
+            return sol
+        Ko = Xk.shape[1]
+        sel = (lambda r: r) if idx is None else (lambda r: r[idx])
+        QDo = [sel(r) for r in tiles["QD"]]
+        QDDo = [sel(r) for r in tiles["QDD"]]
+        _, Bqd = self.rates(Pk, Xk, Qk, QDo, CS)
+        XD = self.solve_blocks(A, Bqd)
+        r = self.call("accelerations", Pk, X=list(Xk), XD=list(XD), Q=Qk, QD=QDo, QDD=QDDo, CS=CS)
+        XDD = self.solve_blocks(A, [_full(v, Ko) for v in r])
+        sol.XD = self._spread_rows(XD, idx, n)
+        sol.XDD = self._spread_rows(XDD, idx, n)
+        if not ({"points", "forces"} & need):
+            return sol
+        with np.errstate(invalid="ignore", divide="ignore"):
+            pts = self.call("points", Pk, X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk,
+                            QD=QDo, QDD=QDDo, CS=CS)
+        pts = [_full(v, Ko) for v in pts]
+        sol.points = list(self._spread_rows(np.array(pts), idx, n))
+        if "forces" in need:
+            F = self.forces(Pk, pts, Xk, CS, Ko)
+            sol.forces = self._spread_rows(F, idx, n)
+        return sol
+
+    def _spread_rows(self, V, idx, n):
+        """Rows (r, E') at the entries ``idx`` (None: every entry) as (r, n, N), NaN elsewhere."""
+        if idx is None:
+            return V.reshape(len(V), n, self.N)
+        out = np.full((len(V), n * self.N), np.nan)
+        out[:, idx] = V
+        return out.reshape(len(V), n, self.N)
+
+    def forces(self, P, pts, X, CS, K):
+        """Reactions and efforts (nF, K): each group's block from the last group back."""
+        art = self.art
+        Fv = np.zeros((len(art["force_names"]), K))
+        for g, lay in reversed(list(zip(art["groups"], art["forces"]))):
+            k = g["index"]
+            unk = lay["unknowns"]
+            A = np.zeros((K, len(unk), len(unk)))
+            a0, _ = self.layout[f"A:{k}"]
+            for e, (i, j) in enumerate(lay["A"]):
+                A[:, i, j] = pts[a0 + e]
+            b0, b1 = self.layout[f"b:{k}"]
+            b = np.stack(pts[b0:b1], axis=1)
+            c0, _ = self.layout[f"C:{k}"]
+            for e, (i, fi) in enumerate(lay["C"]):
+                b[:, i] -= pts[c0 + e] * Fv[fi]
+            with np.errstate(invalid="ignore", divide="ignore"):
+                Fv[unk] = np.linalg.solve(A, b[..., None])[..., 0].T
+        return Fv
+
+    def force_index(self, name):
+        return self.art["force_names"].index(name)
+
+    def slide_unit(self, sol, joint):
+        a, _ = self.layout[f"slide:{joint}"]
+        return sol.points[a], sol.points[a + 1]
+
+    def point_rows(self, key):
+        a, b = self.layout[key]
+        return a, b
+
+    def reaction(self, sol, joint) -> np.ndarray:
+        """Magnitude (n, N) of the reaction at ``joint`` (an ``R`` joint's force, a ``P``
+        joint's normal force)."""
+        n = ident(joint)
+        j = self.scene.joint(joint)
+        if j.type == "R":
+            return np.hypot(sol.forces[self.force_index(f"R_{n}x")],
+                            sol.forces[self.force_index(f"R_{n}y")])
+        return np.abs(sol.forces[self.force_index(f"N_{n}")])
+
+    def effort(self, sol, driver) -> np.ndarray:
+        d = next(d for d in self.scene.drivers if d.joint == driver)
+        return sol.forces[self.force_index(("tau_" if d.kind == "R" else "f_") + ident(driver))]
+
+    def rate_at(self, P, d, t, col):
+        """The rate along the steps of coordinate ``col`` of designs ``d`` at fractional
+        steps ``t`` (arrays (B,)), the positions by the closed forms there; with the rate's
+        own rate and the coordinate's value."""
+        i = np.clip(np.floor(t).astype(int), 0, max(self.N - 2, 0))
+        f = t - i
+        Q = [r[i] + f * (r[np.minimum(i + 1, self.N - 1)] - r[i]) for r in self.Q]
+        B = len(t)
+        Pd = [v[d] if np.ndim(v) else v for v in P]
+        X = self.positions(Pd, Q, B)
+        CS = (list(np.cos(X)), list(np.sin(X)))
+        QD = [np.full(B, s) for s in self.slope]
+        A, rhs = self.rates(Pd, X, Q, QD, CS)
+        XD = self.solve_blocks(A, rhs)
+        r = self.call("accelerations", Pd, X=list(X), XD=list(XD), Q=Q, QD=QD,
+                      QDD=[np.zeros(B)] * len(Q), CS=CS)
+        XDD = self.solve_blocks(A, [_full(v, B) for v in r])
+        return XD[col], XDD[col], X[col]
+
+
+def _unwrap_rows(A, valid, start):
+    """``np.unwrap`` of each row of ``A`` over its ``valid`` entries (the others NaN),
+    preceded by ``start`` (n,) when given (the assembly configuration)."""
+    n, K = A.shape
+    pos = np.where(valid, np.arange(K)[None, :], -1)
+    last = np.maximum.accumulate(pos, axis=1)
+    prev = np.empty_like(last)
+    prev[:, 0] = -1
+    prev[:, 1:] = last[:, :-1]
+    pv = np.take_along_axis(A, np.maximum(prev, 0), axis=1)
+    if start is not None:
+        pv = np.where(prev >= 0, pv, start[:, None])
+        has = valid
+    else:
+        has = valid & (prev >= 0)
+    dd = np.where(has, A - pv, 0.0)
+    ddmod = np.mod(dd + math.pi, 2 * math.pi) - math.pi
+    ddmod[(ddmod == -math.pi) & (dd > 0)] = math.pi
+    corr = ddmod - dd
+    corr[np.abs(dd) < math.pi] = 0.0
+    out = A + np.cumsum(corr, axis=1)
+    out[~valid] = np.nan
+    return out

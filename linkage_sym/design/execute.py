@@ -1,0 +1,155 @@
+"""Where the chunks of a sweep run: in this process, in local worker processes, or on Dask.
+
+The designs are cut into chunks of whole designs whose boundaries depend only
+on the chunk size, never on who evaluates them; every backend evaluates a
+chunk by the same function (:func:`evaluate_chunk`), so the table is the same
+bit for bit whichever ran it.  Each process builds the compiled mechanism once
+(:func:`_state`, cached per sweep specification; loaded from the on-disk cache
+of compiled topologies, without SymPy) and reuses it for all its chunks.
+
+* in-process (default): chunk after chunk, with a progress bar on a terminal
+  (tqdm, the ``progress`` extra);
+* ``workers=N``: a :class:`concurrent.futures.ProcessPoolExecutor` of ``N``
+  processes (started by ``spawn``: a fresh interpreter each);
+* ``dask=ADDRESS``: the chunks go to a ``dask.distributed`` scheduler
+  (``"local"`` starts a :class:`~dask.distributed.LocalCluster` of ``workers``
+  processes, one thread each); dask's distributed scheduler is the ``sweep`` extra.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+import sys
+from dataclasses import dataclass
+
+import numpy as np
+
+from linkage_sym.design.errors import SweepError
+
+__all__ = ["Spec", "evaluate_chunk", "run_chunks", "chunk_bounds"]
+
+TARGET_ENTRIES = 1 << 16
+"""Designs x path points per chunk by default: the arrays of one generated-function call stay
+in the processor's cache (larger chunks are slower, not faster)."""
+
+
+@dataclass(frozen=True)
+class Spec:
+    """What a worker needs to evaluate chunks: the scene, the varied names, the metrics."""
+
+    scene: object
+    names: tuple
+    metrics: tuple
+    output: str | None = None
+    trace: tuple | None = None
+
+
+@functools.lru_cache(maxsize=4)
+def _state(spec: Spec):
+    from linkage_sym.design.evaluate import Model
+    from linkage_sym.design.metrics import MetricPlan
+
+    plan = MetricPlan(spec.scene, spec.metrics, spec.output, spec.trace)
+    model = Model(spec.scene, forces=plan.forces)
+    return model, plan
+
+
+def evaluate_chunk(spec: Spec, values: np.ndarray) -> dict:
+    """The metric columns of the designs ``values`` (n, k) of one chunk."""
+    model, plan = _state(spec)
+    P = model.params(spec.names, values)
+    sol = model.solve(P, len(values), plan.need, plan.unwrap(model))
+    return plan.compute(model, sol)
+
+
+def chunk_bounds(n: int, size: int) -> list[tuple[int, int]]:
+    """``(start, stop)`` of the chunks of ``n`` designs, ``size`` designs each."""
+    return [(a, min(n, a + size)) for a in range(0, n, size)]
+
+
+def _bar(total: int, enabled: bool):
+    if not enabled or not sys.stderr.isatty():
+        return None
+    try:
+        from tqdm import tqdm
+    except ImportError:  # the optional extra `progress` is not installed: no bar
+        return None
+    return tqdm(total=total, unit="design", unit_scale=True, file=sys.stderr, delay=1.0,
+                leave=False, dynamic_ncols=True)
+
+
+def run_chunks(spec: Spec, values: np.ndarray, size: int, workers=None, dask=None,
+               progress: bool = False) -> list[dict]:
+    """Evaluate every chunk; the chunks' column dicts in order."""
+    bounds = chunk_bounds(len(values), size)
+    parts = [np.ascontiguousarray(values[a:b]) for a, b in bounds]
+    bar = _bar(len(values), progress)
+    out: list = [None] * len(parts)
+
+    def done(k, res):
+        out[k] = res
+        if bar is not None:
+            bar.update(len(parts[k]))
+
+    try:
+        if dask is not None:
+            _run_dask(spec, parts, dask, workers, done)
+        elif workers is not None and workers > 1:
+            _run_workers(spec, parts, workers, done)
+        else:
+            for k, p in enumerate(parts):
+                done(k, evaluate_chunk(spec, p))
+    finally:
+        if bar is not None:
+            bar.close()
+    return out
+
+
+def _run_workers(spec, parts, workers, done):
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    with ProcessPoolExecutor(max_workers=workers,
+                             mp_context=multiprocessing.get_context("spawn")) as ex:
+        futs = {ex.submit(evaluate_chunk, spec, p): k for k, p in enumerate(parts)}
+        for f in as_completed(futs):
+            done(futs[f], f.result())
+
+
+def dask_client(address, workers=None):
+    """A client of the scheduler at ``address`` (``"local"``: a new LocalCluster of
+    ``workers`` processes, one thread each) and what to close afterwards."""
+    try:
+        from dask.distributed import Client, LocalCluster
+    except ImportError:
+        raise SweepError("--dask", "needs dask's distributed scheduler, which is not installed: "
+                                   "pip install 'linkage_sym[sweep]'") from None
+    if address == "local":
+        cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
+                               processes=True, dashboard_address=None)
+        client = Client(cluster)
+        return client, [client, cluster]
+    try:
+        client = Client(address, timeout=30)
+    except OSError as err:
+        raise SweepError("--dask", f"cannot reach the scheduler at {address!r}: {err}") from None
+    return client, [client]
+
+
+def _run_dask(spec, parts, address, workers, done):
+    from dask.distributed import as_completed
+
+    client = address if hasattr(address, "map") else None
+    closing = []
+    if client is None:
+        client, closing = dask_client(address, workers)
+    try:
+        spec_f = client.scatter(spec, broadcast=True)
+        futs = [client.submit(evaluate_chunk, spec_f, p, pure=False) for p in parts]
+        index = {f.key: k for k, f in enumerate(futs)}
+        for f in as_completed(futs):
+            done(index[f.key], f.result())
+    finally:
+        for c in closing:
+            c.close()

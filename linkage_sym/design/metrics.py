@@ -1,0 +1,370 @@
+"""What a sweep reports about each design: the metrics, from one chunk's solution.
+
+==========================  ===============================================================
+``assemblable``             fraction of the sweep's steps that are ``ok`` (assembled and
+                            not singular); 0 for a design that cannot be assembled at the
+                            scene's driver values
+``grashof``                 Grashof class of each loop of four links and four ``R`` joints
+                            (:func:`linkage_sym.structure.grashof.classify` on the design's
+                            lengths); ``""`` when the design cannot be assembled
+``K``, ``swing``            the output's limit positions (roots of its rate along the sweep,
+                            located between ``ok`` samples as ``analyze --extremes`` does):
+                            ``swing_deg`` its largest minus smallest rotation (degrees);
+                            ``K`` the stroke-time ratio, the larger over the smaller driver
+                            interval between the two limit positions of the driver's first
+                            turn (NaN unless the sweep turns the one driver fully, every step
+                            of that turn is ``ok`` and it has exactly two limit positions)
+``min_transmission_deg``    the smallest ``min(gamma, 180 - gamma)`` of every RRR dyad's
+                            transmission angle (:mod:`linkage_sym.numeric.transmission`) over
+                            the steps with positions (degrees)
+``peak_driving``            per driver: largest ``|effort|`` over the ``ok`` steps (N m or N)
+``rms_driving``             per driver: root mean square of the effort over the ``ok`` steps
+``peak_reaction``           per joint: largest reaction magnitude over the ``ok`` steps (N)
+``rms_shaking_force``       RMS over the ``ok`` steps of ``|sum m a_G|`` (N): the frame force
+                            with inertia as the only effect
+``rms_shaking_moment``      RMS of the shaking moment about the origin, ``-dH_O/dt`` (N m)
+``path``                    a traced point's ``x``, ``y`` at every step (NaN where not ``ok``)
+==========================  ===============================================================
+
+Forces are those of the scene's effects (inertia, gravity, loads) at its
+speeds; each design's masses, loads and dimensions are its own.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from linkage_sym.design.errors import SweepError
+from linkage_sym.model import GROUND
+from linkage_sym.numeric.transmission import rrr_dyads
+from linkage_sym.structure.grashof import classify, four_bar_loops
+
+__all__ = ["METRICS", "DEFAULT_METRICS", "MetricPlan"]
+
+METRICS = ("assemblable", "grashof", "K", "swing", "min_transmission_deg", "peak_driving",
+           "rms_driving", "peak_reaction", "rms_shaking_force", "rms_shaking_moment", "path")
+"""Every metric a sweep computes (see the module docstring)."""
+
+DEFAULT_METRICS = ("assemblable", "grashof", "K", "swing", "min_transmission_deg")
+
+_NEEDS = {"K": {"rate_t"}, "swing": {"rate_t"}, "peak_driving": {"forces"},
+          "rms_driving": {"forces"}, "peak_reaction": {"forces"},
+          "rms_shaking_force": {"points"}, "rms_shaking_moment": {"points"}, "path": {"points"}}
+
+XTOL = 1e-12
+"""Limit positions are located to this many steps (plus 4 ulp of the position)."""
+MAX_ITER = 100
+
+
+def _fmax(a):
+    return np.fmax.reduce(a, axis=1) if a.shape[1] else np.full(len(a), np.nan)
+
+
+def _fmin(a):
+    return np.fmin.reduce(a, axis=1) if a.shape[1] else np.full(len(a), np.nan)
+
+
+def _rms(v, ok):
+    cnt = ok.sum(axis=1)
+    s = np.where(ok, v * v, 0.0).sum(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(cnt > 0, np.sqrt(s / np.maximum(cnt, 1)), np.nan)
+
+
+class MetricPlan:
+    """The metrics asked for, checked against the scene: their columns and what the
+    solution must hold for them.
+
+    Parameters
+    ----------
+    scene : Scene
+    metrics : sequence of str
+        Names from :data:`METRICS`.
+    output : str, optional
+        The link whose limit positions give ``K`` and ``swing``; default the last link
+        of the scene pivoted on the ground by an ``R`` joint that is not driven.
+    trace : sequence of str, optional
+        The traced points (scene ``points``) of ``path``; default all.
+    """
+
+    def __init__(self, scene, metrics=DEFAULT_METRICS, output=None, trace=None):
+        self.scene = scene
+        metrics = [metrics] if isinstance(metrics, str) else list(metrics)
+        if not metrics:
+            raise SweepError("metrics", f"no metric asked for; choose from {', '.join(METRICS)}")
+        for m in metrics:
+            if m not in METRICS:
+                raise SweepError("metrics", f"unknown metric {m!r}; the metrics are "
+                                            f"{', '.join(METRICS)}")
+        self.metrics = list(dict.fromkeys(metrics))
+        self.need = set().union(*(_NEEDS.get(m, set()) for m in self.metrics))
+        self.forces = "forces" in self.need
+        if "rate_t" in self.need:
+            self.output = self._output(output)
+        self.dyads = []
+        if "min_transmission_deg" in self.metrics:
+            for inner, e1, e2 in rrr_dyads(scene):
+                a = _common(scene, inner, e1)
+                b = _common(scene, inner, e2)
+                self.dyads.append((inner, e1, e2, a, b))
+            if not self.dyads:
+                raise SweepError("metrics", f"min_transmission_deg: scene {scene.name!r} has no "
+                                            "RRR dyad, whose transmission angle it measures")
+        self.loops = four_bar_loops(scene) if "grashof" in self.metrics else []
+        if "grashof" in self.metrics and not self.loops:
+            raise SweepError("metrics", f"grashof: scene {scene.name!r} has no loop of four links "
+                                        "and four R joints")
+        self.trace = []
+        if "path" in self.metrics:
+            names = [p.name for p in scene.points]
+            if not names:
+                raise SweepError("metrics", f"path: scene {scene.name!r} has no traced point "
+                                            "(its `points` section)")
+            trace = names if trace is None else ([trace] if isinstance(trace, str) else list(trace))
+            for t in trace:
+                if t not in names:
+                    raise SweepError("trace", f"unknown traced point {t!r}; the scene's are "
+                                              f"{', '.join(names)}")
+            self.trace = trace
+        if "rms_shaking_force" in self.metrics or "rms_shaking_moment" in self.metrics:
+            if not any(lk.com is not None and (lk.mass > 0 or lk.inertia > 0) for lk in scene.links):
+                raise SweepError("metrics", f"rms_shaking_force/rms_shaking_moment: no link of "
+                                            f"scene {scene.name!r} has a mass")
+
+    def _output(self, output):
+        scene = self.scene
+        driven = {d.joint for d in scene.drivers}
+        if output is None:
+            cands = [lk for lk in scene.link_names
+                     if any(j.type == "R" and GROUND in j.links and lk in j.links
+                            and j.name not in driven for j in scene.joints)]
+            if not cands:
+                raise SweepError("output", f"K/swing: scene {scene.name!r} has no link pivoted "
+                                           "on the ground besides the driven one; name the "
+                                           "output link")
+            return cands[-1]
+        if output not in scene.link_names:
+            raise SweepError("output", f"unknown link {output!r}; the moving links are "
+                                       f"{', '.join(scene.link_names)}")
+        return output
+
+    def unwrap(self, model) -> list:
+        """The coordinates whose angles must be continuous along the sweep (the output's)."""
+        return [model.angle_of[self.output]] if "rate_t" in self.need else []
+
+    def columns(self, N: int) -> list[str]:
+        """The metric columns of the table, in order."""
+        out = []
+        for m in self.metrics:
+            if m == "grashof":
+                out += self._grashof_names()
+            elif m == "swing":
+                out.append("swing_deg")
+            elif m in ("peak_driving", "rms_driving"):
+                out += [f"{m}_{d.joint}" for d in self.scene.drivers]
+            elif m == "peak_reaction":
+                out += [f"peak_reaction_{j.name}" for j in self.scene.joints]
+            elif m == "path":
+                out += [f"path_{p}_{c}_{i}" for p in self.trace for c in "xy" for i in range(N)]
+            else:
+                out.append(m)
+        return out
+
+    def _grashof_names(self):
+        if len(self.loops) == 1:
+            return ["grashof"]
+        return ["grashof_" + "".join(lp.joints) for lp in self.loops]
+
+    # -- computing -----------------------------------------------------------------------------
+    def compute(self, model, sol) -> dict:
+        """The metric columns (arrays of the chunk's designs) of a :class:`Solution`."""
+        cols = {}
+        ok = sol.ok
+        for m in self.metrics:
+            if m == "assemblable":
+                cols[m] = ok.sum(axis=1) / sol.N
+            elif m == "grashof":
+                cols.update(self._grashof(sol))
+            elif m in ("K", "swing"):
+                if "swing_deg" not in cols:
+                    K, swing = self._limits(model, sol)
+                    cols["K"], cols["swing_deg"] = K, swing
+            elif m == "min_transmission_deg":
+                cols[m] = self._transmission(model, sol)
+            elif m in ("peak_driving", "rms_driving"):
+                for d in self.scene.drivers:
+                    e = np.where(ok, model.effort(sol, d.joint), np.nan)
+                    cols[f"{m}_{d.joint}"] = (_fmax(np.abs(e)) if m == "peak_driving"
+                                              else _rms(e, ok))
+            elif m == "peak_reaction":
+                for j in self.scene.joints:
+                    cols[f"peak_reaction_{j.name}"] = _fmax(np.where(ok, model.reaction(sol, j.name), np.nan))
+            elif m in ("rms_shaking_force", "rms_shaking_moment"):
+                if "rms_shaking_force" not in cols:
+                    fx, fy, mz = self._shaking(model, sol)
+                    cols["rms_shaking_force"] = _rms(np.hypot(fx, fy), ok)
+                    cols["rms_shaking_moment"] = _rms(mz, ok)
+            elif m == "path":
+                cols.update(self._path(model, sol))
+        return {c: cols[c] for c in self.columns(sol.N)}
+
+    def _grashof(self, sol) -> dict:
+        out = {}
+        for name, lp in zip(self._grashof_names(), self.loops):
+            pts = [sol.joints0[j] for j in lp.joints]
+            lengths = np.array([np.hypot(*(pts[i] - pts[i - 1])) for i in range(4)])  # (4, n)
+            fixed = 0 if lp.links[0] == GROUND else None
+            col = np.empty(sol.n, dtype=object)
+            for d in range(sol.n):
+                col[d] = (classify(lengths[:, d], fixed, lp.links).name
+                          if sol.assembled[d] and np.isfinite(lengths[:, d]).all() else "")
+            out[name] = col.astype(str)
+        return out
+
+    def _transmission(self, model, sol):
+        """``min(gamma, pi - gamma) = atan(|sin gamma| / |cos gamma|)``, smallest over the steps:
+        the angle of ``J -> E1`` is link ``a``'s angle plus a constant of the design, so
+        ``gamma``'s sine and cosine come from the coordinates' (no trigonometric call per step)."""
+        best = np.full(sol.n, np.inf)
+        for inner, e1, e2, a, b in self.dyads:
+            J = sol.joints0[inner]
+            ia, ib = model.angle_of[a], model.angle_of[b]
+            c1 = np.arctan2(*(sol.joints0[e1] - J)[::-1]) - sol.X0[ia]
+            c2 = np.arctan2(*(sol.joints0[e2] - J)[::-1]) - sol.X0[ib]
+            cc, sc = np.cos(c2 - c1)[:, None], np.sin(c2 - c1)[:, None]
+            ca, sa, cb, sb = sol.C[ia], sol.S[ia], sol.C[ib], sol.S[ib]
+            cd = cb * ca + sb * sa  # cos, sin of X_b - X_a
+            sd = sb * ca - cb * sa
+            with np.errstate(divide="ignore", invalid="ignore"):
+                ratio = np.abs(sd * cc + cd * sc) / np.abs(cd * cc - sd * sc)
+            best = np.fmin(best, _fmin(ratio))
+        best[~np.isfinite(best) & ~(best == np.inf)] = np.nan
+        out = np.degrees(np.arctan(best))
+        out[~sol.pos_ok.any(axis=1)] = np.nan
+        return out
+
+    def _shaking(self, model, sol):
+        fx = np.zeros((sol.n, sol.N))
+        fy = np.zeros((sol.n, sol.N))
+        mz = np.zeros((sol.n, sol.N))
+        for lk in self.scene.links:
+            if lk.com is None:
+                continue
+            m = _col(model.value(sol.P, ("m", lk.name), lk.mass))
+            inertia = _col(model.value(sol.P, ("I", lk.name), lk.inertia))
+            a0, _ = model.point_rows(f"com:{lk.name}:0")
+            a2, _ = model.point_rows(f"com:{lk.name}:2")
+            rx, ry = sol.points[a0], sol.points[a0 + 1]
+            ax, ay = sol.points[a2], sol.points[a2 + 1]
+            alpha = sol.XDD[model.angle_of[lk.name]]
+            fx -= m * ax
+            fy -= m * ay
+            mz -= m * (rx * ay - ry * ax) + inertia * alpha
+        return fx, fy, mz
+
+    def _path(self, model, sol) -> dict:
+        out = {}
+        frames = model.frames
+        for p in self.trace:
+            pt = next(q for q in self.scene.points if q.name == p)
+            fr = frames[pt.link]
+            c, s = math.cos(fr.theta0), math.sin(fr.theta0)
+            dx, dy = pt.at[0] - fr.origin[0], pt.at[1] - fr.origin[1]
+            lx, ly = c * dx + s * dy, -s * dx + c * dy  # in the link frame (u, u -> v)
+            a, _ = model.point_rows(f"origin:{pt.link}:0")
+            th = sol.X[model.angle_of[pt.link]]
+            x = sol.points[a] + np.cos(th) * lx - np.sin(th) * ly
+            y = sol.points[a + 1] + np.sin(th) * lx + np.cos(th) * ly
+            for name, v in (("x", x), ("y", y)):
+                v = np.where(sol.ok, v, np.nan)
+                for i in range(sol.N):
+                    out[f"path_{p}_{name}_{i}"] = v[:, i]
+        return out
+
+    def _limits(self, model, sol):
+        """``K`` and the swing (degrees) of the output link (see the module docstring)."""
+        n, N = sol.n, sol.N
+        col = model.angle_of[self.output]
+        rot = sol.X[col] - sol.X0[col][:, None]
+        r = sol.rate_t[col]
+        ok = sol.ok
+        both = ok[:, :-1] & ok[:, 1:]
+        ra, rb = r[:, :-1], r[:, 1:]
+        with np.errstate(invalid="ignore"):
+            change = both & ((ra == 0) | (rb == 0) | ((ra < 0) != (rb < 0)))
+        d, i = np.nonzero(change)
+        t, kind = _roots(model, sol.P, d, i.astype(float), ra[d, i], rb[d, i], col)
+        # values at the roots, continuous with the sample before
+        raw = model.rate_at(sol.P, d, t, col)[2] if len(d) else np.zeros(0)
+        v = raw - sol.X0[col][d]
+        v = v + 2 * math.pi * np.round((rot[d, i] - v) / (2 * math.pi))
+        hi = _fmax(np.where(ok, rot, np.nan))
+        lo = _fmin(np.where(ok, rot, np.nan))
+        good = np.isfinite(v)
+        np.fmax.at(hi, d[good], v[good])
+        np.fmin.at(lo, d[good], v[good])
+        swing = np.degrees(hi - lo)
+        K = np.full(n, np.nan)
+        if len(model.qnames) == 1 and model.scene.joint(model.qnames[0]).type == "R" and N > 1:
+            step = abs(model.slope[0])
+            if step > 0 and step * (N - 1) >= 2 * math.pi * (1 - 1e-12):
+                T = 2 * math.pi / step  # steps of one turn
+                last = min(N - 1, int(math.ceil(T)))
+                full = ok[:, : last + 1].all(axis=1)
+                first = good & (t < T)
+                cnt = np.bincount(d[first], minlength=n)
+                for k in np.flatnonzero(full & (cnt == 2)):
+                    sel = np.flatnonzero(first & (d == k))
+                    if kind[sel[0]] == kind[sel[1]]:
+                        continue
+                    dq = abs(t[sel[1]] - t[sel[0]]) * step
+                    a, b = dq, 2 * math.pi - dq
+                    K[k] = max(a, b) / min(a, b)
+        return K, swing
+
+
+def _col(v):
+    return v[:, None] if np.ndim(v) else v
+
+
+def _common(scene, j1, j2):
+    a = set(scene.joint(j1).links) & set(scene.joint(j2).links)
+    return next(lk for lk in scene.joint(j1).links if lk in a and lk != GROUND)
+
+
+def _roots(model, P, d, a, fa, fb, col):
+    """Roots of the output's rate between steps ``a`` and ``a + 1`` of designs ``d``, every
+    bracket at once: Newton on the rate (its derivative from the accelerations), kept in
+    the bracket by bisection.  Returns ``(t, kind)``, ``kind`` +1 at a maximum, -1 at a
+    minimum, ``t`` NaN where the rate is not defined or does not converge."""
+    b = a + 1.0
+    kind = np.where((fa > 0) | (fb < 0), 1, -1)
+    t = np.where(fa == 0, a, b)
+    act = np.flatnonzero(~((fa == 0) | (fb == 0)))
+    lo, hi = a.copy(), b.copy()
+    flo = fa.copy()
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = np.where(fb != fa, b - fb * (b - a) / (fb - fa), 0.5 * (a + b))  # secant start
+        for _ in range(MAX_ITER):
+            if not len(act):
+                break
+            X = x[act]
+            f, df, _ = model.rate_at(P, d[act], X, col)
+            bad = ~np.isfinite(f)
+            t[act[bad]] = np.nan
+            same = (f < 0) == (flo[act] < 0)  # the root lies above X
+            lo[act] = np.where(same, X, lo[act])
+            flo[act] = np.where(same, f, flo[act])
+            hi[act] = np.where(same, hi[act], X)
+            step = f / df
+            xn = X - step
+            L, H = lo[act], hi[act]
+            conv = (f == 0) | (np.abs(step) <= XTOL + 4 * np.finfo(float).eps * np.abs(X))
+            t[act] = np.where(f == 0, X, xn)
+            xn = np.where((xn > L) & (xn < H), xn, 0.5 * (L + H))
+            x[act] = xn
+            act = act[~(conv | bad)]
+    t[act] = np.nan  # no convergence
+    return t, kind

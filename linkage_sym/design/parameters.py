@@ -1,0 +1,272 @@
+"""Design spaces: which named parameters of a scene vary, and the designs to evaluate.
+
+A *design* is the scene with some of its named parameters (the symbolic
+layer's names, :mod:`linkage_sym.structure.parameters`: ``l_AB``, ``x_D``,
+``m_coupler`` ...) set to other values.  A :class:`Designs` holds them as a
+table, one row per design, one column per varied name:
+
+* :func:`grid` -- the product of axes of values (``--vary NAME=LO:HI:N``);
+* :func:`monte_carlo` -- normal deviations around the scene's values
+  (``--monte-carlo N --tolerance NAME=SIGMA``), reproducible from a
+  ``random_state``;
+* :func:`read_samples` -- a CSV file whose header names the parameters
+  (``--samples FILE.csv``).
+
+The assembly angles ``theta0_<link>`` are not design parameters: each design's
+are those of its own assembly configuration (:mod:`linkage_sym.design.evaluate`).
+
+Examples
+--------
+>>> d = grid({"l_AB": [0.02, 0.024], "l_BC": [0.06, 0.065, 0.07]})
+>>> d.names, d.values.shape
+(('l_AB', 'l_BC'), (6, 2))
+>>> d.values[:3].tolist()
+[[0.02, 0.06], [0.02, 0.065], [0.02, 0.07]]
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from linkage_sym.design.errors import SweepError
+
+__all__ = ["Designs", "grid", "monte_carlo", "read_samples", "parse_axis", "parse_tolerance",
+           "check_names", "parameter_list"]
+
+
+@dataclass(frozen=True)
+class Designs:
+    """Designs to evaluate: ``values[i, k]`` is parameter ``names[k]`` of design ``i``.
+
+    ``kind``: ``"grid"``, ``"monte-carlo"`` or ``"samples"``; ``axes``: a grid's
+    ``(name, values)`` per axis (the first varies slowest).
+    """
+
+    names: tuple
+    values: np.ndarray
+    kind: str
+    axes: tuple = field(default=())
+
+    def __len__(self) -> int:
+        return len(self.values)
+
+
+def _finite(where: str, v) -> float:
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        raise SweepError(where, f"a number is expected, got {v!r}") from None
+    if not math.isfinite(x):
+        raise SweepError(where, f"a finite number is expected, got {v!r}")
+    return x
+
+
+def grid(axes) -> Designs:
+    """The product of the ``axes`` (a mapping ``name -> values``), the first varying slowest.
+
+    Examples
+    --------
+    >>> grid({"l_AB": [0.02, 0.03]}).values.ravel().tolist()
+    [0.02, 0.03]
+    """
+    names = tuple(axes)
+    if not names:
+        raise SweepError("parameters", "no parameter to vary")
+    vals = []
+    for n in names:
+        v = np.atleast_1d(np.asarray([_finite(f"parameters[{n!r}]", x)
+                                      for x in np.ravel(np.asarray(axes[n], dtype=object))], float))
+        if len(v) == 0:
+            raise SweepError(f"parameters[{n!r}]", "no value given")
+        vals.append(v)
+    mesh = np.meshgrid(*vals, indexing="ij")
+    table = np.stack([m.ravel() for m in mesh], axis=1)
+    return Designs(names, table, "grid", tuple(zip(names, vals)))
+
+
+def parse_axis(text: str) -> tuple[str, np.ndarray]:
+    """``NAME=LO:HI:N`` (``N`` values from ``LO`` to ``HI``) or ``NAME=V1,V2,...``.
+
+    Examples
+    --------
+    >>> name, v = parse_axis("l_AB=0.02:0.03:3")
+    >>> name, v.tolist()
+    ('l_AB', [0.02, 0.025, 0.03])
+    >>> parse_axis("l_AB=0.02:0.03")
+    Traceback (most recent call last):
+    ...
+    linkage_sym.design.errors.SweepError: --vary: 'l_AB=0.02:0.03': NAME=LO:HI:N (N values from LO to HI) or NAME=V1,V2,... is expected
+    """
+    form = "NAME=LO:HI:N (N values from LO to HI) or NAME=V1,V2,... is expected"
+    name, sep, rest = text.partition("=")
+    name = name.strip()
+    if not sep or not name or not rest.strip():
+        raise SweepError("--vary", f"{text!r}: {form}")
+    if ":" in rest:
+        parts = rest.split(":")
+        if len(parts) != 3:
+            raise SweepError("--vary", f"{text!r}: {form}")
+        lo, hi = (_finite(f"--vary {name}", p) for p in parts[:2])
+        try:
+            n = int(parts[2])
+        except ValueError:
+            raise SweepError("--vary", f"{text!r}: N must be a whole number, got {parts[2]!r}") from None
+        if n < 1:
+            raise SweepError("--vary", f"{text!r}: N must be at least 1")
+        return name, np.linspace(lo, hi, n)
+    return name, np.array([_finite(f"--vary {name}", p) for p in rest.split(",")])
+
+
+def parse_tolerance(text: str) -> tuple[str, float]:
+    """``NAME=SIGMA`` of ``--tolerance`` (the standard deviation, in the parameter's unit).
+
+    Examples
+    --------
+    >>> parse_tolerance("l_AB=5e-5")
+    ('l_AB', 5e-05)
+    """
+    name, sep, rest = text.partition("=")
+    if not sep or not name.strip():
+        raise SweepError("--tolerance", f"{text!r}: NAME=SIGMA is expected")
+    sigma = _finite(f"--tolerance {name.strip()}", rest)
+    if sigma < 0:
+        raise SweepError("--tolerance", f"{text!r}: SIGMA is a standard deviation, >= 0")
+    return name.strip(), sigma
+
+
+def monte_carlo(base, tolerance, n: int, random_state: int = 0) -> Designs:
+    """``n`` designs with every parameter of ``tolerance`` (``name -> sigma``) drawn from a
+    normal distribution about its value in ``base`` (``name -> value``).
+
+    The draws are ``numpy.random.default_rng(random_state).standard_normal((n, k))``,
+    so the same ``random_state`` gives the same designs.
+
+    Examples
+    --------
+    >>> d = monte_carlo({"l_AB": 0.024}, {"l_AB": 5e-5}, 4, random_state=1)
+    >>> d.values.shape, bool(abs(d.values - 0.024).max() < 5e-4)
+    ((4, 1), True)
+    """
+    if not tolerance:
+        raise SweepError("--tolerance", "a Monte Carlo sweep needs at least one NAME=SIGMA")
+    try:
+        n = int(n)
+    except (TypeError, ValueError):
+        raise SweepError("--monte-carlo", f"a number of designs is expected, got {n!r}") from None
+    if n < 1:
+        raise SweepError("--monte-carlo", f"at least one design is needed, got {n}")
+    names = tuple(tolerance)
+    for k in names:
+        if k not in base:
+            raise SweepError("--tolerance", f"unknown parameter {k!r}")
+    mean = np.array([float(base[k]) for k in names])
+    sigma = np.array([float(tolerance[k]) for k in names])
+    z = np.random.default_rng(random_state).standard_normal((n, len(names)))
+    return Designs(names, mean + sigma * z, "monte-carlo")
+
+
+def read_samples(path) -> Designs:
+    """Designs from a CSV file: a header of parameter names, then one row of numbers per design.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> f = pathlib.Path(tempfile.mkdtemp()) / "s.csv"
+    >>> _ = f.write_text("l_AB,l_BC\\n0.02,0.06\\n0.025,0.065\\n")
+    >>> read_samples(f).values.tolist()
+    [[0.02, 0.06], [0.025, 0.065]]
+    """
+    p = Path(path)
+    try:
+        text = p.read_text()
+    except OSError as err:
+        raise SweepError("--samples", f"{str(path)!r}: {err.strerror or err}") from None
+    rows = [r for r in csv.reader(text.splitlines()) if any(c.strip() for c in r)]
+    if not rows:
+        raise SweepError("--samples", f"{str(path)!r} is empty; a header of parameter names is expected")
+    names = tuple(c.strip() for c in rows[0])
+    if len(set(names)) != len(names) or not all(names):
+        raise SweepError("--samples", f"{str(path)!r}: the header must name each parameter once")
+    values = []
+    for i, r in enumerate(rows[1:], start=2):
+        if len(r) != len(names):
+            raise SweepError("--samples", f"{str(path)!r} line {i}: {len(r)} values for "
+                                          f"{len(names)} parameters")
+        values.append([_finite(f"--samples {str(path)!r} line {i} column {names[k]!r}", c)
+                       for k, c in enumerate(r)])
+    if not values:
+        raise SweepError("--samples", f"{str(path)!r} has a header but no design")
+    return Designs(names, np.array(values, float), "samples")
+
+
+def check_names(designs: Designs, valid, field_name: str = "parameters") -> None:
+    """Refuse names that are not design parameters of the scene, listing the valid ones."""
+    valid = [n for n in valid if not n.startswith("theta0_")]
+    for n in designs.names:
+        if n.startswith("theta0_"):
+            raise SweepError(field_name, f"{n!r} is the angle of a link in the assembly "
+                                         "configuration: each design's is computed from its own "
+                                         "assembly, so it cannot be varied")
+        if n not in valid:
+            raise SweepError(field_name, f"unknown parameter {n!r}; the scene's parameters are "
+                                         f"{', '.join(valid)} (`linkage-sym sweep SCENE --list` "
+                                         "prints them with their values)")
+
+
+def parameter_list(scene, names, values) -> list[tuple[str, float, str]]:
+    """``(name, value, meaning)`` of every design parameter of the compiled ``scene``
+    (``names``, ``values``: the compiled mechanism's), the assembly angles left out."""
+    from linkage_sym.structure.parameters import ParameterTable
+
+    table = ParameterTable(scene)
+    out = []
+    for name, value in zip(names, values):
+        if name.startswith("theta0_"):
+            continue
+        out.append((name, float(value), _meaning(table, name)))
+    return out
+
+
+def _meaning(table, name: str) -> str:
+    """The meaning the symbolic layer gives ``name`` (registered through its recipe)."""
+    scene = table.scene
+    kind, _, rest = name.partition("_")
+    try:
+        if kind in ("l", "beta"):
+            for link in scene.link_names:
+                for j in scene.joints:
+                    if link in j.links:
+                        table.point(link, j.name)
+        elif kind in ("x", "y"):
+            for j in scene.joints:
+                if "ground" in j.links:
+                    table.ground_point(j.name)
+        elif kind == "gamma":
+            for j in scene.joints:
+                if j.type == "P":
+                    table.gamma(j.name)
+        elif kind == "delta":
+            for d in scene.drivers:
+                if d.toward is not None:
+                    table.delta(d.joint, d.toward)
+        elif kind in ("m", "I"):
+            for link in scene.link_names:
+                table.mass(link)
+        elif kind in ("p", "q"):
+            for link in scene.links:
+                if link.com is not None:
+                    table.com(link.name)
+        elif kind == "g":
+            table.gravity()
+        else:
+            for i in range(len(scene.loads)):
+                table.load(i)
+    except (KeyError, ValueError, TypeError):
+        pass
+    p = table.params.get(name)
+    return p.meaning if p is not None else ""
