@@ -76,6 +76,7 @@ from linkage_sym.cli_common import OptionError, check_outputs as _check_outputs,
 from linkage_sym.cli_common import stem as _stem, write as _write
 from linkage_sym.errors import BalanceError, SceneError
 from linkage_sym.synthesis import cli as synthesis_cli
+from linkage_sym.design import cli as design_cli  # linkage-sym sweep
 
 DEMO_EXAMPLES = ("crank_rocker", "shaper")
 
@@ -425,6 +426,7 @@ def build_parser() -> argparse.ArgumentParser:
     synthesis_cli.register(sub)
     cli_balance.register(sub)
     cli_centres.register(sub)
+    design_cli.register(sub)  # linkage-sym sweep
     return p
 
 

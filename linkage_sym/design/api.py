@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from pathlib import Path
@@ -129,11 +130,15 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
         metrics = default_metrics(scene, output)
     metrics = [metrics] if isinstance(metrics, str) else list(metrics)
     plan = MetricPlan(scene, metrics, output, trace)
-    spec = Spec(scene, tuple(designs.names), tuple(plan.metrics), plan.__dict__.get("output"),
-                None if trace is None else tuple([trace] if isinstance(trace, str) else trace))
     from linkage_sym.design.execute import _state
 
+    spec = Spec(scene, tuple(designs.names), tuple(plan.metrics), plan.__dict__.get("output"),
+                None if trace is None else tuple([trace] if isinstance(trace, str) else trace))
     model, _ = _state(spec)
+    if write_scenes is not None or any(n not in model.names for n in designs.names):
+        # a mass, inertia or load is a parameter of the force blocks only
+        spec = dataclasses.replace(spec, forces=True)
+        model, _ = _state(spec)
     check_names(designs, model.names, "parameters" if monte_carlo is None else "--tolerance")
     if workers is not None:
         if not isinstance(workers, int) or isinstance(workers, bool) or workers < 1:
@@ -185,7 +190,7 @@ def _designs(scene, parameters, samples, monte_carlo, tolerance, random_state) -
         return read_samples(samples)
     from linkage_sym.design.execute import Spec as _S, _state
 
-    model, _ = _state(_S(scene, (), ("assemblable",)))
+    model, _ = _state(_S(scene, (), ("assemblable",), forces=True))
     base = {n: v for n, v in zip(model.names, model.base)}
     for n in (tolerance or {}):
         if n not in base or n.startswith("theta0_"):

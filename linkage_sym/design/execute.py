@@ -43,6 +43,7 @@ class Spec:
     metrics: tuple
     output: str | None = None
     trace: tuple | None = None
+    forces: bool = False  # compile the force blocks (a varied mass or load, or force metrics)
 
 
 @functools.lru_cache(maxsize=4)
@@ -51,7 +52,7 @@ def _state(spec: Spec):
     from linkage_sym.design.metrics import MetricPlan
 
     plan = MetricPlan(spec.scene, spec.metrics, spec.output, spec.trace)
-    model = Model(spec.scene, forces=plan.forces)
+    model = Model(spec.scene, forces=plan.forces or spec.forces)
     return model, plan
 
 

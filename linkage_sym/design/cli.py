@@ -1,0 +1,222 @@
+"""``linkage-sym sweep``: many designs of one scene (registered by :func:`register`).
+
+::
+
+    linkage-sym sweep SCENE.json --list
+    linkage-sym sweep SCENE.json (--vary NAME=LO:HI:N ... | --samples FILE.csv |
+                                  --monte-carlo N --tolerance NAME=SIGMA ... [--random-state K])
+                      [--metrics LIST] [--output-link LINK] [--trace POINT]
+                      [-o OUT.parquet|OUT.csv|-] [--workers N] [--dask ADDRESS|local]
+                      [--plots DIR] [--write-scenes DIR] [--chunk-designs N]
+
+Options are checked (and output paths tested) before anything is computed; a
+problem is one line naming the option, exit status 2.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+
+import numpy as np
+
+from linkage_sym.cli_common import OptionError, check_outputs, load
+from linkage_sym.design.errors import SweepError
+
+__all__ = ["register", "cmd_sweep"]
+
+
+def register(sub) -> None:
+    """Add the ``sweep`` command to the ``linkage-sym`` sub-parsers."""
+    import argparse
+
+    from linkage_sym.design.metrics import DEFAULT_METRICS, METRICS
+
+    p = sub.add_parser(
+        "sweep", help="evaluate many designs of a scene: a grid, samples or a Monte Carlo spread",
+        description="Evaluate many designs of one scene: its named parameters (--list prints "
+        "them) varied over a grid (--vary), read from a CSV file (--samples) or drawn about "
+        "their values (--monte-carlo with --tolerance). One row per design: its parameters and "
+        "the metrics. Each design is assembled at the scene's driver values in the scene's "
+        "assembly mode; one that cannot be is marked (assemblable 0, its metrics empty).",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog="metrics: " + ", ".join(METRICS) + " (definitions: linkage_sym.design.metrics)",
+    )
+    p.add_argument("scene", help="scene JSON file")
+    p.add_argument("--list", action="store_true",
+                   help="print the scene's parameters with their values and meanings, and stop")
+    p.add_argument("--vary", action="append", metavar="NAME=LO:HI:N",
+                   help="a grid axis: N values from LO to HI (or NAME=V1,V2,...); repeat for "
+                   "more axes, the grid is their product")
+    p.add_argument("--samples", metavar="FILE.csv",
+                   help="designs from a CSV file: a header of parameter names, a row per design")
+    p.add_argument("--monte-carlo", type=int, metavar="N",
+                   help="N designs with the --tolerance parameters drawn from normal "
+                   "distributions about the scene's values")
+    p.add_argument("--tolerance", action="append", metavar="NAME=SIGMA",
+                   help="standard deviation of a parameter for --monte-carlo (repeatable)")
+    p.add_argument("--random-state", type=int, default=0, metavar="K",
+                   help="state of the random generator of --monte-carlo (default 0): the same "
+                   "K gives the same designs")
+    p.add_argument("--metrics", metavar="LIST",
+                   help="comma-separated metrics (default: those of "
+                   f"{','.join(DEFAULT_METRICS)} the scene has)")
+    p.add_argument("--output-link", metavar="LINK",
+                   help="the link whose limit positions give K and swing (default: the last "
+                   "link pivoted on the ground that is not driven)")
+    p.add_argument("--trace", action="append", metavar="POINT",
+                   help="traced point of the path metric (repeatable; default all)")
+    p.add_argument("-o", "--output", metavar="FILE",
+                   help="the table: .parquet (pyarrow) or .csv; '-' writes CSV to standard "
+                   "output; default: a summary only")
+    p.add_argument("--workers", type=int, metavar="N", help="local processes (default: this one)")
+    p.add_argument("--dask", metavar="ADDRESS",
+                   help="send the chunks to a dask.distributed scheduler at ADDRESS; 'local' "
+                   "starts a LocalCluster (of --workers processes); pip install "
+                   "'linkage_sym[sweep]'")
+    p.add_argument("--plots", metavar="DIR",
+                   help="a map of each metric over the first two varied parameters (a grid), "
+                   "or a histogram per metric (Monte Carlo, samples)")
+    p.add_argument("--write-scenes", metavar="DIR",
+                   help="write each design's own scene into DIR (design_<i>.json), to analyse it "
+                   "alone")
+    p.add_argument("--chunk-designs", type=int, metavar="N", help="designs per chunk")
+    p.set_defaults(func=cmd_sweep)
+
+
+def cmd_sweep(args) -> int:
+    try:
+        return _sweep(args)
+    except SweepError as err:
+        raise OptionError(_option(err)) from err
+
+
+def _option(err: SweepError) -> str:
+    names = {"parameters": "--vary", "output": "--output-link", "trace": "--trace",
+             "metrics": "--metrics", "chunk_designs": "--chunk-designs", "scene": "scene"}
+    return f"{names.get(err.field, err.field)}: {err.reason}"
+
+
+def _sweep(args) -> int:
+    from linkage_sym.design.api import scene_parameters, sweep
+    from linkage_sym.design.parameters import parse_axis, parse_tolerance
+    from linkage_sym.design.table import table_format
+
+    if args.list:
+        scene = load(args.scene)
+        rows = scene_parameters(scene)
+        w = max(len(n) for n, _, _ in rows)
+        print(f"parameters of {scene.name!r} (SI units, angles in rad):")
+        for n, v, meaning in rows:
+            print(f"  {n:<{w}}  {v:< 14.8g}  {meaning}")
+        return 0
+    if args.tolerance and args.monte_carlo is None:
+        raise OptionError("--tolerance: used only with --monte-carlo N")
+    given = [o for o, v in (("--vary", args.vary), ("--samples", args.samples),
+                            ("--monte-carlo", args.monte_carlo)) if v is not None]
+    if len(given) != 1:
+        raise OptionError("--vary: give exactly one of --vary, --samples or --monte-carlo"
+                          + (f" (got {', '.join(given)})" if given else " (or --list)"))
+    if args.tolerance and args.monte_carlo is None:
+        raise OptionError("--tolerance: used only with --monte-carlo N")
+    if args.output not in (None, "-"):
+        table_format(args.output)
+    if args.workers is not None and args.workers < 1:
+        raise OptionError(f"--workers: at least 1 process, got {args.workers}")
+    if args.chunk_designs is not None and args.chunk_designs < 1:
+        raise OptionError(f"--chunk-designs: at least 1 design, got {args.chunk_designs}")
+    check_outputs(files=[("-o/--output", args.output)],
+                  folders=[("--plots", args.plots), ("--write-scenes", args.write_scenes)])
+    if args.dask is not None:  # the extra's check, before the work
+        _require_dask()
+    if args.output not in (None, "-") and table_format(args.output) == "parquet":
+        _require_pyarrow()
+    scene = load(args.scene)
+    axes = None
+    if args.vary:
+        axes = {}
+        for text in args.vary:
+            name, values = parse_axis(text)
+            if name in axes:
+                raise OptionError(f"--vary: {name!r} given twice")
+            axes[name] = values
+    tol = None
+    if args.tolerance:
+        tol = dict(parse_tolerance(t) for t in args.tolerance)
+    metrics = None
+    if args.metrics:
+        metrics = [m.strip() for m in args.metrics.split(",") if m.strip()]
+    res = sweep(scene, axes, metrics, samples=args.samples, monte_carlo=args.monte_carlo,
+                tolerance=tol, random_state=args.random_state, output=args.output_link,
+                trace=args.trace, workers=args.workers, dask=args.dask,
+                chunk_designs=args.chunk_designs, write_scenes=args.write_scenes,
+                progress=True)
+    out = sys.stdout if args.output != "-" else sys.stderr
+    if args.output == "-":
+        sys.stdout.write(res.to_csv())
+    elif args.output:
+        res.write(args.output)
+    written = ([args.output] if args.output not in (None, "-") else [])
+    if args.plots:
+        from linkage_sym.design.plots import sweep_plots
+
+        written += sweep_plots(res, args.plots)
+    for line in summary(res):
+        print(line, file=out)
+    if args.write_scenes:
+        print(f"wrote {len(res.files)} design scene(s) into {args.write_scenes}", file=out)
+    for w in written:
+        print(f"wrote {w}", file=out)
+    return 0
+
+
+def _require_dask():
+    try:
+        import dask.distributed  # noqa: F401
+    except ImportError:
+        raise OptionError("--dask: needs dask's distributed scheduler, which is not installed: "
+                          "pip install 'linkage_sym[sweep]'") from None
+
+
+def _require_pyarrow():
+    try:
+        import pyarrow  # noqa: F401
+    except ImportError:
+        raise OptionError("-o/--output: a Parquet file needs pyarrow, which is not installed: "
+                          "pip install 'linkage_sym[sweep]'") from None
+
+
+def summary(res) -> list[str]:
+    """What ``sweep`` prints: the designs, how many assemble, each metric's range."""
+    n = len(res)
+    how = {"grid": "grid " + " x ".join(f"{k} {len(v)}" for k, v in res.axes),
+           "monte-carlo": "Monte Carlo", "samples": "samples"}[res.kind]
+    lines = [f"sweep of {res.scene!r}: {n} design(s) ({how})"]
+    if "assemblable" in res.columns:
+        a = res["assemblable"]
+        lines.append(f"  assembled at the scene's driver values: {int((a > 0).sum())}; every step "
+                     f"ok: {int((a == 1).sum())}")
+    paths = [c for c in res.metrics if c.startswith("path_")]
+    for c in res.metrics:
+        if c.startswith("path_") or c == "assemblable":
+            continue
+        v = res[c]
+        if v.dtype.kind in "US":
+            kinds, counts = np.unique(v[v != ""], return_counts=True)
+            lines.append(f"  {c}: " + ", ".join(f"{k} {m}" for k, m in zip(kinds, counts)))
+            continue
+        fin = v[np.isfinite(v)]
+        if not len(fin):
+            lines.append(f"  {c}: no value")
+            continue
+        i_lo, i_hi = int(np.nanargmin(np.where(np.isfinite(v), v, np.nan))), int(np.nanargmax(np.where(np.isfinite(v), v, np.nan)))
+        extra = f" ({n - len(fin)} without a value)" if len(fin) < n else ""
+        lines.append(f"  {c}: {_g(fin.min())} (design {i_lo}) .. {_g(fin.max())} (design {i_hi}), "
+                     f"mean {_g(fin.mean())}{extra}")
+    if paths:
+        lines.append(f"  path: {len(paths) // 2} coordinates per point in the table")
+    return lines
+
+
+def _g(x: float) -> str:
+    return f"{x:.6g}" if math.isfinite(x) else "nan"

@@ -1,0 +1,88 @@
+"""``linkage-sym sweep``: the table it writes (CSV, Parquet, standard output) is the API's,
+``--list``, and every refusal is one line naming the option (exit 2, no traceback)."""
+
+from __future__ import annotations
+
+import sys
+
+import numpy as np
+import pytest
+
+import linkage_sym
+from linkage_sym.cli import main
+from linkage_sym.design.table import read_table
+from linkage_sym.examples import example_path
+
+CRANK = str(example_path("crank_rocker"))
+
+
+def test_list_prints_names_values_and_meanings(capsys):
+    assert main(["sweep", CRANK, "--list"]) == 0
+    out = capsys.readouterr().out
+    assert "l_AB        0.024" in out and "distance from joint A to B on link crank" in out
+    assert "m_coupler" in out and "theta0" not in out
+
+
+def test_csv_and_parquet_tables_are_the_api_s(tmp_path, capsys):
+    res = linkage_sym.sweep(linkage_sym.load_example("crank_rocker"),
+                            {"l_AB": np.linspace(0.02, 0.03, 3), "l_BC": np.linspace(0.06, 0.07, 2)},
+                            ["assemblable", "grashof", "K", "peak_driving"])
+    args = ["sweep", CRANK, "--vary", "l_AB=0.02:0.03:3", "--vary", "l_BC=0.06:0.07:2",
+            "--metrics", "assemblable,grashof,K,peak_driving"]
+    assert main(args + ["-o", str(tmp_path / "t.csv")]) == 0
+    assert main(args + ["-o", str(tmp_path / "t.parquet")]) == 0
+    out = capsys.readouterr().out
+    assert "sweep of 'crank-rocker': 6 design(s) (grid l_AB 3 x l_BC 2)" in out
+    for f in ("t.csv", "t.parquet"):
+        t = read_table(tmp_path / f)
+        assert list(t) == list(res.columns)
+        for c in res.columns:
+            if res[c].dtype.kind == "U":
+                assert t[c].tolist() == res[c].tolist()
+            else:
+                np.testing.assert_array_equal(np.asarray(t[c], float), res[c])
+    assert main(args + ["-o", "-"]) == 0
+    assert capsys.readouterr().out == res.to_csv()
+
+
+def test_samples_and_monte_carlo(tmp_path, capsys):
+    f = tmp_path / "s.csv"
+    f.write_text("l_AB,m_coupler\n0.02,0.5\n0.025,0.6\n")
+    assert main(["sweep", CRANK, "--samples", str(f), "--metrics", "rms_driving",
+                 "-o", str(tmp_path / "a.csv")]) == 0
+    t = read_table(tmp_path / "a.csv")
+    assert t["m_coupler"].tolist() == [0.5, 0.6] and np.isfinite(t["rms_driving_A"]).all()
+    args = ["sweep", CRANK, "--monte-carlo", "5", "--tolerance", "l_AB=5e-5", "--random-state", "2"]
+    assert main(args + ["-o", str(tmp_path / "m1.csv")]) == 0
+    assert main(args + ["-o", str(tmp_path / "m2.csv")]) == 0
+    assert (tmp_path / "m1.csv").read_text() == (tmp_path / "m2.csv").read_text()
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--vary", "l_XY=1:2:3"], "--vary: unknown parameter 'l_XY'; the scene's parameters are x_A"),
+    (["--vary", "l_AB=1:2"], "--vary: 'l_AB=1:2': NAME=LO:HI:N"),
+    (["--vary", "l_AB=0.02:0.03:2", "-o", "t.txt"], "-o/--output: 't.txt': a .csv or .parquet"),
+    (["--tolerance", "l_AB=1e-5"], "--tolerance: used only with --monte-carlo N"),
+    (["--monte-carlo", "3"], "--tolerance: a Monte Carlo sweep needs at least one NAME=SIGMA"),
+    (["--vary", "l_AB=0.02:0.03:2", "--metrics", "K,speed"], "--metrics: unknown metric 'speed'"),
+    (["--vary", "l_AB=0.02:0.03:2", "--workers", "0"], "--workers: at least 1 process"),
+    (["--samples", "missing.csv"], "--samples: 'missing.csv'"),
+    ([], "--vary: give exactly one of --vary, --samples or --monte-carlo"),
+])
+def test_refusals_name_the_option(capsys, args, message, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["sweep", CRANK] + args) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("linkage-sym sweep: " + message), err
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1
+
+
+def test_newton_groups_and_missing_extras_are_refused(capsys, monkeypatch):
+    assert main(["sweep", str(example_path("sixbar_class3")), "--vary", "l_AB=0.02:0.03:2"]) == 2
+    assert "has no closed form" in capsys.readouterr().err
+    monkeypatch.setitem(sys.modules, "dask.distributed", None)
+    assert main(["sweep", CRANK, "--vary", "l_AB=0.02:0.03:2", "--dask", "local"]) == 2
+    assert "pip install 'linkage_sym[sweep]'" in capsys.readouterr().err
+    monkeypatch.setitem(sys.modules, "pyarrow", None)
+    assert main(["sweep", CRANK, "--vary", "l_AB=0.02:0.03:2", "-o", "x.parquet"]) == 2
+    assert "-o/--output: a Parquet file needs pyarrow" in capsys.readouterr().err
