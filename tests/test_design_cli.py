@@ -86,3 +86,14 @@ def test_newton_groups_and_missing_extras_are_refused(capsys, monkeypatch):
     monkeypatch.setitem(sys.modules, "pyarrow", None)
     assert main(["sweep", CRANK, "--vary", "l_AB=0.02:0.03:2", "-o", "x.parquet"]) == 2
     assert "-o/--output: a Parquet file needs pyarrow" in capsys.readouterr().err
+
+
+def test_plots_a_map_per_metric_of_a_grid_and_histograms(tmp_path, capsys):
+    assert main(["sweep", CRANK, "--vary", "l_AB=0.015:0.045:6", "--vary", "l_BC=0.05:0.09:5",
+                 "--metrics", "grashof,K", "--plots", str(tmp_path / "g")]) == 0
+    assert sorted(p.name for p in (tmp_path / "g").iterdir()) == ["crank-rocker_sweep_K.png"]
+    assert main(["sweep", CRANK, "--monte-carlo", "12", "--tolerance", "l_AB=5e-5",
+                 "--metrics", "K,peak_driving", "--plots", str(tmp_path / "h")]) == 0
+    names = sorted(p.name for p in (tmp_path / "h").iterdir())
+    assert names == ["crank-rocker_sweep_K.png", "crank-rocker_sweep_peak_driving_A.png"]
+    assert all((tmp_path / "h" / n).read_bytes()[:4] == b"\x89PNG" for n in names)
