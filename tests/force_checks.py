@@ -37,6 +37,34 @@ def _axis(a, joint, angle):
     return np.stack(np.broadcast_arrays(np.cos(th), np.sin(th)), axis=-1)
 
 
+def load_factor(ld, a) -> np.ndarray | float:
+    """A load's factor at the steps of ``a`` (loads over the cycle, an extension of the
+    format), written out here: the driver's value brought into the table's first period,
+    the bracketing table interval found, the factor interpolated on it; zero outside an
+    ``active`` range (brought into the period after its start)."""
+    if ld.driver is None:
+        return 1.0
+    x = np.asarray(a.drivers[ld.driver]["q"], float)
+    f = np.ones_like(x)
+    if ld.table is not None:
+        q = list(ld.table.q)
+        s = list(ld.table.scale)
+        if ld.period is not None:
+            x = q[0] + (x - q[0]) - ld.period * np.floor((x - q[0]) / ld.period)
+            q, s = q + [q[0] + ld.period], s + [s[0]]
+        f = np.empty_like(x)
+        for i, v in enumerate(x):
+            k = max(j for j in range(len(q) - 1) if q[j] <= v) if v < q[-1] else len(q) - 2
+            f[i] = s[k] + (s[k + 1] - s[k]) * (v - q[k]) / (q[k + 1] - q[k])
+    if ld.active is not None:
+        lo, hi = ld.active
+        y = np.asarray(a.drivers[ld.driver]["q"], float)
+        if ld.period is not None:
+            y = lo + (y - lo) - ld.period * np.floor((y - lo) / ld.period)
+        f = f * ((y >= lo) & (y <= hi))
+    return f
+
+
 def applied(scene, a, inertia=None, gravity=None, loads=None):
     """Per link: list of (force (N,2), point (N,2)) and list of couples (N,)."""
     eff = scene.effects
@@ -59,11 +87,12 @@ def applied(scene, a, inertia=None, gravity=None, loads=None):
         for ld in scene.loads:
             lk = a.links[ld.link]
             forces, couples = out[ld.link]
+            k = np.reshape(load_factor(ld, a), (-1, 1))
             if ld.force is not None:
                 p = lk.point(ld.at)
-                forces.append((np.broadcast_to(np.asarray(ld.force, float), p.shape), p))
+                forces.append((k * np.broadcast_to(np.asarray(ld.force, float), p.shape), p))
             if ld.torque:
-                couples.append(np.full(a.n_steps, ld.torque))
+                couples.append(k[:, 0] * np.full(a.n_steps, ld.torque))
     return out
 
 
@@ -135,39 +164,61 @@ def kinetic_energy_rate(scene, a):
 
 
 def power_residual(scene, a):
-    """``sum effort qd - (dT/dt - P_gravity - P_loads)`` and the sum of the terms' magnitudes."""
+    """``sum effort qd - (dT/dt - P_gravity - P_loads)`` and its scale at each step.
+
+    The scale is what rounding is relative to: for each power term ``F . v`` the
+    product of the magnitudes ``|F| |v|`` (not ``|F . v|``, which vanishes where
+    the two are perpendicular, e.g. at a dead centre, while their rounding does
+    not), and for a driver's ``effort x qd`` the largest reaction at the step
+    times the mechanism's size (for a torque) times ``|qd|`` (the effort is computed
+    from those reactions).
+    """
+    L = scene.characteristic_length() or 1.0
+    rs = reaction_scale(scene, a.forces)
     terms = []
     drive = np.zeros(a.n_steps)
     for d in scene.drivers:
-        p = a.forces.driving[d.joint] * a.drivers[d.joint]["qd"]
+        qd = a.drivers[d.joint]["qd"]
+        p = a.forces.driving[d.joint] * qd
         drive = drive + p
-        terms.append(p)
+        arm = L if d.kind == "R" else 1.0  # a torque's reactions act at lever arms up to L
+        terms.append(np.abs(p) + rs * arm * np.abs(qd))
+
+    def mag(v):
+        return np.hypot(v[:, 0], v[:, 1])
+
     rhs = np.zeros(a.n_steps)
     if scene.effects.inertia:
-        dT, t = kinetic_energy_rate(scene, a)
+        dT, _ = kinetic_energy_rate(scene, a)
         rhs = rhs + dT
-        terms += t
+        for link in scene.links:
+            lk = a.links[link.name]
+            if link.mass > 0:
+                terms.append(link.mass * mag(lk.com_acceleration) * mag(lk.com_velocity))
+            if link.inertia > 0:
+                terms.append(np.abs(link.inertia * lk.alpha * lk.omega))
     g = scene.effects.gravity
     if g:
         for link in scene.links:
             if link.mass > 0:
-                p = link.mass * (a.links[link.name].com_velocity @ np.asarray(g, float))
-                rhs = rhs - p
-                terms.append(p)
+                v = a.links[link.name].com_velocity
+                rhs = rhs - link.mass * (v @ np.asarray(g, float))
+                terms.append(link.mass * mag(v) * np.hypot(*g))
     if scene.effects.loads:
         for ld in scene.loads:
             lk = a.links[ld.link]
+            k = load_factor(ld, a)
             if ld.force is not None:
-                p = lk.point_velocity(ld.at) @ np.asarray(ld.force, float)
-                rhs = rhs - p
-                terms.append(p)
+                v = lk.point_velocity(ld.at)
+                rhs = rhs - k * (v @ np.asarray(ld.force, float))
+                terms.append(np.abs(k) * mag(v) * np.hypot(*ld.force))
             if ld.torque:
-                p = ld.torque * lk.omega
+                p = k * ld.torque * lk.omega
                 rhs = rhs - p
-                terms.append(p)
+                terms.append(np.abs(p))
     scale = np.zeros(a.n_steps)
     for t in terms:
-        scale = scale + np.abs(t)
+        scale = scale + t
     return drive - rhs, scale
 
 

@@ -31,10 +31,12 @@ from linkage_sym.examples import example_dict, example_names, example_path
 
 EXPECTED = [
     "crank_rocker",
+    "engine_four_stroke",
     "fivebar",
     "guide_bar_quick_return",
     "hydraulic_boom",
     "printing_mechanism",
+    "printing_mechanism_stroke",
     "shaper",
     "sixbar_class3",
     "slider_crank_offset",

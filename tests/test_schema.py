@@ -18,6 +18,8 @@ from pathlib import Path
 
 import pytest
 
+from linkage_sym.scene.schedules import SCHEDULE_KEYS
+
 jsonschema = pytest.importorskip("jsonschema")
 
 from linkage_sym import load_scene  # noqa: E402
@@ -283,7 +285,7 @@ def test_schema_lists_the_validators_keys():
     assert set(schema["properties"]) == set(v.TOP_KEYS)
     assert set(defs["link"]["properties"]) == set(v.LINK_KEYS)
     assert set(defs["joint"]["properties"]) == set(v.JOINT_KEYS)
-    assert set(defs["load"]["properties"]) == set(v.LOAD_KEYS)
+    assert set(defs["load"]["properties"]) == set(v.LOAD_KEYS) | set(SCHEDULE_KEYS)
     assert set(defs["point"]["properties"]) == set(v.POINT_KEYS)
     assert set(defs["effects"]["properties"]) == set(v.EFFECTS_KEYS)
     driver_keys = set().union(*(set(d["properties"]) for d in defs["driver"]["oneOf"]))

@@ -152,6 +152,33 @@ def parameter_mp(scene: Scene, recipe: tuple, mframes):
     raise ValueError(f"unknown parameter recipe {recipe!r}")
 
 
+def _factor_mp(load, x):
+    """A load's factor at the driver value ``x`` (mpf), as
+    :func:`linkage_sym.numeric.loads.load_factor` defines it, in mpmath."""
+    f = mp.mpf(1)
+    period = None if load.period is None else mp.mpf(float(load.period))
+    if load.table is not None:
+        tq = [mp.mpf(float(v)) for v in load.table.q]
+        ts = [mp.mpf(float(v)) for v in load.table.scale]
+        if period is not None:  # periodic: the table's first point again a period on
+            x = tq[0] + mp.fmod(mp.fmod(x - tq[0], period) + period, period)
+            tq, ts = tq + [tq[0] + period], ts + [ts[0]]
+        if not tq[0] <= x <= tq[-1]:
+            raise ValueError(f"load on {load.link}: driver {load.driver} at {float(x):g} is outside "
+                             "its table, where the factor is not defined")
+        k = max(i for i in range(len(tq) - 1) if tq[i] <= x) if x < tq[-1] else len(tq) - 2
+        f = ts[k] + (ts[k + 1] - ts[k]) * (x - tq[k]) / (tq[k + 1] - tq[k])
+    if load.active is not None:
+        lo, hi = (mp.mpf(float(v)) for v in load.active)
+        if period is not None:
+            inside = mp.fmod(mp.fmod(x - lo, period) + period, period) <= hi - lo
+        else:
+            inside = lo <= x <= hi
+        if not inside:
+            f = mp.mpf(0)
+    return f
+
+
 # ------------------------------------------------------------------ the generated functions
 
 
@@ -239,8 +266,19 @@ class PreciseMechanism:
             self.P = params + [mp.mpf(float(s)) for s in sig]
         self.m = cm.m
         self.pattern = [tuple(p) for p in self.art["pattern"]]
+        self.scaled = [(i, ld) for i, ld in enumerate(cm.scene.loads) if ld.driver is not None]
 
     # -- one step -------------------------------------------------------------------
+    def _scaled_params(self, q) -> list:
+        """The parameters with each load over the cycle scaled by its factor at ``q`` (mpf)."""
+        P = list(self.P)
+        for i, ld in self.scaled:
+            k = _factor_mp(ld, q[ld.driver])
+            for j, (_, recipe) in enumerate(self.art["params"]):
+                if recipe[0] in ("Fx", "Fy", "T") and recipe[1] == i:
+                    P[j] = P[j] * k
+        return P
+
     def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, CS=(None, None)):
         return self.f[name](X, XD, XDD, Q, QD, QDD, F, self.P, CS[0], CS[1])
 
@@ -309,7 +347,13 @@ class PreciseMechanism:
             if "acceleration" in stages:
                 r = self._call("accelerations", X=X, XD=XD, Q=Q, QD=QD, QDD=QDD, CS=CS)
                 XDD = self._solve_blocks(A, r)
-        pts = self._call("points", X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
+        P = self.P
+        if self.scaled and "forces" in stages:  # loads over the cycle: scaled at this step
+            self.P = self._scaled_params(dict(zip(self.art["q"], Q)))
+        try:
+            pts = self._call("points", X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
+        finally:
+            self.P = P
         rec = {"x": X, "xd": XD, "xdd": XDD, "pts": pts}
         if rates and "forces" in stages:
             rec["F"] = self._forces(pts, X, CS)

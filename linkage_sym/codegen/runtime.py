@@ -31,6 +31,7 @@ from linkage_sym.codegen import cache
 from linkage_sym.errors import SceneError
 from linkage_sym.numeric import accuracy, continuation
 from linkage_sym.numeric.block import ResultLayout
+from linkage_sym.numeric.loads import load_factor
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
 from linkage_sym.numeric.state import LinkState
 from linkage_sym.model import GROUND, Scene
@@ -497,7 +498,7 @@ class CompiledMechanism:
         with np.errstate(invalid="ignore"):
             pts = self._call(
                 "points", X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk, QD=QDk, QDD=QDDk,
-                CS=(list(CS[0]), list(CS[1])),
+                CS=(list(CS[0]), list(CS[1])), P=self._load_params(dict(zip(art["q"], Qk))),
             )
         pts = [np.broadcast_to(np.asarray(v, float), (K,)) for v in pts]
         forces = None
@@ -511,6 +512,20 @@ class CompiledMechanism:
         indicator[idx] = ratio_min
         res.accuracy = self._accuracy(res, indicator)
         return res
+
+    def _load_params(self, q) -> list | None:
+        """The parameters with the forces and torques of loads that vary over the cycle
+        scaled by their factors at the driver values ``q`` (``None``: no such load)."""
+        scaled = [(i, ld) for i, ld in enumerate(self.scene.loads) if ld.driver is not None]
+        if not scaled or "forces" not in self.art["stages"]:
+            return None
+        P = list(self.params)
+        for i, ld in scaled:
+            k = load_factor(ld, q)
+            for j, (_, recipe) in enumerate(self.art["params"]):
+                if recipe[0] in ("Fx", "Fy", "T") and recipe[1] == i:
+                    P[j] = self.params[j] * k
+        return P
 
     def _get(self, pts, key):
         a, b = self.art["layout"][key]

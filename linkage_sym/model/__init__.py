@@ -9,9 +9,10 @@ from linkage_sym.model.scene import (
     Joint,
     Link,
     Load,
+    LoadTable,
     Scene,
     TracedPoint,
 )
 
-__all__ = ["GROUND", "OUTPUTS", "STAGES", "Driver", "Effects", "Joint", "Link", "Load", "Scene",
+__all__ = ["GROUND", "OUTPUTS", "STAGES", "Driver", "Effects", "Joint", "Link", "Load", "LoadTable", "Scene",
            "TracedPoint"]

@@ -87,13 +87,40 @@ class Driver:
 
 
 @dataclass(frozen=True)
+class LoadTable:
+    """A load's factor against one driver's value (an extension of the format).
+
+    ``q`` in radians for an ``R`` driver, metres for a ``P`` driver, strictly
+    increasing; the factor between two values is interpolated linearly.  For
+    an ``R`` driver the table repeats with the load's ``period``; a ``P``
+    driver's table covers its sweep.
+    """
+
+    q: tuple[float, ...]
+    scale: tuple[float, ...]
+
+
+@dataclass(frozen=True)
 class Load:
-    """An external load on one link: a force at a point and/or a torque."""
+    """An external load on one link: a force at a point and/or a torque.
+
+    A load acts with the given force and torque at every step, unless it
+    varies over the cycle (an extension of the format): ``table`` scales it
+    by a factor of one driver's value, ``active`` limits it to a range
+    ``(from, to)`` of that driver's value (radians or metres), and ``driver``
+    names that driver's joint.  For an ``R`` driver both repeat with
+    ``period`` (radians: one turn unless given, two for a four-stroke engine's
+    cycle); for a ``P`` driver ``period`` is ``None``.
+    """
 
     link: str
     force: Point | None = None
     at: Point | None = None
     torque: float = 0.0
+    table: LoadTable | None = None
+    active: tuple[float, float] | None = None
+    driver: str | None = None
+    period: float | None = None
 
 
 @dataclass(frozen=True)

@@ -157,7 +157,7 @@ class ForcePlan:
                 else:
                     self.routines.append(_DenseRoutine(scene, g))
 
-    def run(self, S, ok, method="dyad") -> Forces:
+    def run(self, S, ok, method="dyad", q=None) -> Forces:
         """Forces at the steps where ``ok`` is true (NaN elsewhere).
 
         Parameters
@@ -166,6 +166,8 @@ class ForcePlan:
             Solved link states over all N steps.
         ok : ndarray of bool, shape (N,)
         method : {"dyad", "global"}
+        q : dict of ndarray, optional
+            Driver values over the N steps, for loads that vary over the cycle.
         """
         check_method(method)
         scene = self.scene
@@ -174,7 +176,9 @@ class ForcePlan:
         K = N if idx is None else len(idx)
         Sk = S if idx is None else {n: (st.take(idx) if n != GROUND else st) for n, st in S.items()}
         geo = Geometry(scene, Sk)
-        W = applied_wrenches(scene, Sk)
+        qk = None if q is None else {k: np.asarray(v, float) if idx is None else np.asarray(v, float)[idx]
+                                     for k, v in q.items()}
+        W = applied_wrenches(scene, Sk, q=qk)
         groups = []
         if K == 0:
             reactions = {j.name: (np.zeros(0),) * 3 for j in scene.joints}

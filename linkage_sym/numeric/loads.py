@@ -14,7 +14,10 @@ All fields are arrays over the steps (or Python floats that broadcast).
 
 from __future__ import annotations
 
+import numpy as np
+
 from linkage_sym.model import GROUND, Scene
+from linkage_sym.model.scene import Load
 
 
 class Wrench:
@@ -72,7 +75,53 @@ def reference_local(scene: Scene) -> dict:
     return out
 
 
-def applied_wrenches(scene: Scene, S, *, inertia=None, gravity=None, loads=None) -> dict:
+def load_factor(load: Load, q: dict | None):
+    """The factor of a load's force and torque at the driver values ``q`` (an extension of
+    the format: loads over the cycle, :mod:`linkage_sym.scene.schedules`).
+
+    ``1.0`` for a load that acts alike at every step; else an array over the
+    steps: the table's factor, linearly interpolated (for an ``R`` driver
+    periodically, with the load's period), times 0 outside its ``active``
+    range (the range's ends included).
+
+    Examples
+    --------
+    >>> import math
+    >>> from linkage_sym.model import Load, LoadTable
+    >>> press = Load("ram", torque=1.0, driver="A", period=2 * math.pi,
+    ...              table=LoadTable((0.0, math.pi), (0.0, 1.0)), active=(0.0, math.pi))
+    >>> load_factor(press, {"A": np.radians([45.0, 90.0, 270.0, 405.0])}).tolist()
+    [0.25, 0.5, 0.0, 0.25]
+    """
+    if load.driver is None:
+        return 1.0
+    if q is None or load.driver not in q:
+        raise ValueError(f"load on {load.link}: its factor follows driver {load.driver}, whose "
+                         "values were not given")
+    x = np.asarray(q[load.driver], dtype=float)
+    f = np.ones_like(x)
+    if load.table is not None:
+        tq, ts = load.table.q, load.table.scale
+        if load.period is not None:
+            f = np.interp(x, tq, ts, period=load.period)
+        else:
+            outside = (x < tq[0]) | (x > tq[-1])
+            if outside.any():
+                raise ValueError(
+                    f"load on {load.link}: driver {load.driver} at {x[outside][0]:g} m is outside "
+                    f"its table ({tq[0]:g} to {tq[-1]:g} m), where the factor is not defined")
+            f = np.interp(x, tq, ts)
+    if load.active is not None:
+        lo, hi = load.active
+        if load.period is not None:
+            inside = np.mod(x - lo, load.period) <= hi - lo
+        else:
+            inside = (x >= lo) & (x <= hi)
+        f = np.where(inside, f, 0.0)
+    return f
+
+
+def applied_wrenches(scene: Scene, S, *, inertia=None, gravity=None, loads=None, q=None) -> dict:
     """The known loads of every moving link, as one :class:`Wrench` per link.
 
     Parameters
@@ -83,6 +132,9 @@ def applied_wrenches(scene: Scene, S, *, inertia=None, gravity=None, loads=None)
         inertia acts).
     inertia, gravity, loads
         Override the scene's ``effects`` (``None``: as the scene says).
+    q : dict of ndarray, optional
+        Driver values at the steps of ``S``, for loads that vary over the cycle
+        (:func:`load_factor`); needed only by those.
 
     Returns
     -------
@@ -122,9 +174,10 @@ def applied_wrenches(scene: Scene, S, *, inertia=None, gravity=None, loads=None)
         for load in scene.loads:
             st = S[load.link]
             w = W[load.link]
+            k = load_factor(load, q)
             if load.force is not None:
                 px, py = st.point(load.at)
-                w.add_force(load.force[0], load.force[1], px, py)
+                w.add_force(k * load.force[0], k * load.force[1], px, py)
             if load.torque:
-                w.add_couple(load.torque)
+                w.add_couple(k * load.torque)
     return W

@@ -204,7 +204,7 @@ class Plan:
             S[link.name].fill_rates()
         forces = None
         if self.force_plan is not None:
-            forces = self.force_plan.run(S, ok, method)
+            forces = self.force_plan.run(S, ok, method, q)
         res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
         finish(res, self.scene, [n for sv in self.solvers for n in sv.notes], path_index,
                self.decomposition)

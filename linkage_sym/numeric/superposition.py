@@ -111,7 +111,7 @@ def superposition_terms(plan, analysis, choice: int, group: int | None = None) -
         S[name] = st
     S[GROUND] = LinkState()
     geo = Geometry(scene, S)
-    W = applied_wrenches(scene, S)
+    W = applied_wrenches(scene, S, q={k: np.asarray(d["q"])[idx] for k, d in analysis.drivers.items()})
     forces = analysis.forces
     for later in groups[group + 1:]:  # solved before this one: their reactions load it
         inside = set(later.links)

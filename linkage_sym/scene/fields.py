@@ -135,6 +135,41 @@ class FieldReader:
             return None
         return number
 
+    def numbers(
+        self,
+        obj: Mapping[str, Any],
+        key: str,
+        path: str,
+        *,
+        length: int | None = None,
+        min_length: int = 1,
+        angle: bool = False,
+    ) -> list[float] | None:
+        """An array of finite numbers (``angle``: degrees, within their limit)."""
+        values = self.array(obj, key, path)
+        if values is None:
+            return None
+        where = _join(path, key)
+        if length is not None and len(values) != length:
+            self.add(where, f"must be an array of {length} numbers, got {len(values)}")
+            return None
+        if len(values) < min_length:
+            self.add(where, f"must have at least {min_length} numbers, got {len(values)}")
+            return None
+        limit, why = (MAX_ANGLE_DEG, _ANGLE_WHY) if angle else (MAX_MAGNITUDE, _MAGNITUDE_WHY)
+        out, ok = [], True
+        for i, v in enumerate(values):
+            x = _finite(v)
+            if x is None:
+                self.add(f"{where}[{i}]", f"must be a finite number, got {_show(v)}")
+                ok = False
+            elif abs(x) > limit:
+                self.add(f"{where}[{i}]", f"{why}, got {_show(v)}")
+                ok = False
+            else:
+                out.append(x)
+        return out if ok else None
+
     def integer(self, obj: Mapping[str, Any], key: str, path: str, *, minimum: int) -> int | None:
         if not self.present(obj, key, path, _REQUIRED, ""):
             return None

@@ -207,6 +207,17 @@ def _dump_load(load: Load) -> dict[str, Any]:
         out["at"] = list(load.at)
     if load.torque != 0.0 or load.force is None:
         out["torque"] = load.torque
+    if load.driver is not None:  # a load over the cycle (an extension of the format)
+        out["driver"] = load.driver
+        R = load.period is not None
+        unit = math.degrees if R else float
+        if R and load.period != 2 * math.pi:
+            out["period_deg"] = math.degrees(load.period)
+        if load.table is not None:
+            out["table"] = {"q_deg" if R else "q": [unit(v) for v in load.table.q],
+                            "scale": list(load.table.scale)}
+        if load.active is not None:
+            out["active_deg" if R else "active"] = [unit(v) for v in load.active]
     return out
 
 

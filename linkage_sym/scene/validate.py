@@ -19,6 +19,7 @@ from collections.abc import Mapping
 from typing import Any, NamedTuple
 
 from linkage_sym.errors import SceneError
+from linkage_sym.scene.schedules import SCHEDULE_KEYS, read_schedule
 from linkage_sym.scene.fields import (
     _ANGLE,
     _POINT,
@@ -175,7 +176,7 @@ class _SceneReader(FieldReader):
         links = self.read_links(data)
         joints = self.read_joints(data)
         drivers = self.read_drivers(data)
-        loads = self.read_loads(data)
+        loads = self.read_loads(data, drivers)
         effects = self.read_effects(data)
         outputs = self.read_outputs(data)
         points = self.read_points(data)
@@ -345,7 +346,7 @@ class _SceneReader(FieldReader):
             self.number(entry, key, path, default=None)
         return None, None, None
 
-    def read_loads(self, data: Mapping[str, Any]) -> tuple[Load, ...]:
+    def read_loads(self, data: Mapping[str, Any], drivers=()) -> tuple[Load, ...]:
         if "loads" not in data:
             return ()
         entries = self.array(data, "loads", "")
@@ -357,7 +358,7 @@ class _SceneReader(FieldReader):
             before = len(self.problems)
             if not self.object(entry, path):
                 continue
-            self.keys(entry, path, LOAD_KEYS)
+            self.keys(entry, path, LOAD_KEYS + SCHEDULE_KEYS)
             link = self.name(entry, "link", path)
             if link == GROUND:
                 self.add(f"{path}.link", f"loads act on moving links, not on '{GROUND}'")
@@ -372,8 +373,10 @@ class _SceneReader(FieldReader):
                 self.missing(f"{path}.force", "an 'at' point is given")
             elif "force" not in entry and "torque" not in entry:
                 self.add(path, "a load needs a 'force' (with 'at') or a 'torque'")
+            schedule = read_schedule(self, entry, path, drivers)
             if len(self.problems) == before:
-                loads.append(Load(link, force, at, torque))
+                table, active, driver, period = schedule
+                loads.append(Load(link, force, at, torque, table, active, driver, period))
         return tuple(loads)
 
     def read_points(self, data: Mapping[str, Any]) -> tuple[TracedPoint, ...]:
