@@ -1,0 +1,129 @@
+"""Benchmark: design sweeps (issue 17), every ratio from figures of one run.
+
+Run on demand (not part of the tests)::
+
+    python benchmarks/bench_sweeps.py [--designs 100000]   # writes benchmarks/results/sweeps.json
+
+One BLAS thread per process.  Cases, on four-bars (the shipped crank-rocker's topology, crank
+length and coupler length varied over a grid), 361 steps (a full turn, both ends), metrics
+``min_transmission_deg`` and ``K`` (so: positions, the singularity screen, the rates along
+the sweep, the limit positions located by Newton on the output's rate):
+
+* ``in_process``: ``linkage_sym.sweep`` in this process (one core): design-positions per
+  second (target >= 1e7);
+* ``loop``: ``compile_plan(scene_of_design).run()`` over a sample of the same designs (their
+  scenes built beforehand, so only the solves are timed; the run computes kinematics and
+  transmission angles but no limit positions, so the ratio favours the loop); the target is
+  ``in_process`` >= 20x the loop, per design;
+* ``workers_2``: ``workers=2`` against ``in_process`` on a smaller grid (target >= 1.7x);
+* ``dask_local_2``: ``dask="local"`` (a LocalCluster of 2 processes) against ``workers_2``
+  on that grid (target: within 1.3x).
+
+Process start-up (spawned interpreters, the LocalCluster) is inside the timed calls of the
+parallel cases, as a user meets it.  Best of ``--repeats`` each.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ[_v] = "1"
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+import platform  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+import linkage_sym  # noqa: E402
+from linkage_sym.design.evaluate import Model  # noqa: E402
+from linkage_sym.design.scenes import design_scene  # noqa: E402
+from linkage_sym.numeric.plan import compile_plan  # noqa: E402
+
+HERE = Path(__file__).resolve().parent
+METRICS = ["min_transmission_deg", "K"]
+
+
+def grid(n):
+    k = int(round(math.sqrt(n)))
+    return {"l_AB": np.linspace(0.015, 0.03, k), "l_BC": np.linspace(0.055, 0.075, k)}
+
+
+def best(f, repeats):
+    t = math.inf
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        out = f()
+        t = min(t, time.perf_counter() - t0)
+    return t, out
+
+
+def loop_scenes(scene, axes, count):
+    """The scenes of ``count`` designs spread over the grid (built before timing)."""
+    model = Model(scene)
+    d = linkage_sym.design.grid(axes)
+    pick = np.linspace(0, len(d) - 1, count).astype(int)
+    vals = d.values[pick]
+    P = model.params(d.names, vals)
+    P, X0, ok, joints0, _ = model.assemble(P, len(vals))
+    return [design_scene(model, P, X0, joints0, i, f"d{i}") for i in range(len(vals)) if ok[i]]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--designs", type=int, default=100_000)
+    ap.add_argument("--parallel-designs", type=int, default=40_000)
+    ap.add_argument("--loop-designs", type=int, default=200)
+    ap.add_argument("--repeats", type=int, default=3)
+    a = ap.parse_args()
+    scene = linkage_sym.load_example("crank_rocker")
+    steps = scene.drivers[0].steps
+    axes = grid(a.designs)
+    n = len(axes["l_AB"]) * len(axes["l_BC"])
+    linkage_sym.sweep(scene, grid(16), METRICS)  # compile (or load) once
+    t_in, res = best(lambda: linkage_sym.sweep(scene, axes, METRICS), a.repeats)
+    rate = n * steps / t_in
+    scenes = loop_scenes(scene, axes, a.loop_designs)
+    plans = [compile_plan(s) for s in scenes]
+    t_loop, _ = best(lambda: [compile_plan(s).run() for s in scenes], a.repeats)
+    per_loop = t_loop / len(scenes)
+    per_sweep = t_in / n
+    # the sweep's and the loop's numbers must agree before their timings mean anything
+    check = [p.run() for p in plans[:20]]
+    assert all(r.ok.all() for r in check)
+    pax = grid(a.parallel_designs)
+    pn = len(pax["l_AB"]) * len(pax["l_BC"])
+    t_p1, r1 = best(lambda: linkage_sym.sweep(scene, pax, METRICS), a.repeats)
+    t_w2, r2 = best(lambda: linkage_sym.sweep(scene, pax, METRICS, workers=2), a.repeats)
+    t_d2, r3 = best(lambda: linkage_sym.sweep(scene, pax, METRICS, workers=2, dask="local"), a.repeats)
+    same = all(np.array_equal(r1[c], r2[c], equal_nan=True) and np.array_equal(r1[c], r3[c], equal_nan=True)
+               for c in r1.columns)
+    out = {
+        "machine": {"python": sys.version.split()[0], "numpy": np.__version__,
+                    "platform": platform.platform(), "cpus": os.cpu_count()},
+        "metrics": METRICS,
+        "steps": steps,
+        "in_process": {"designs": n, "seconds": t_in, "design_positions_per_s": rate,
+                       "target": 1e7, "met": rate >= 1e7,
+                       "designs_with_K": int(np.isfinite(res["K"]).sum())},
+        "loop": {"designs": len(scenes), "seconds_per_design": per_loop,
+                 "sweep_seconds_per_design": per_sweep, "speedup": per_loop / per_sweep,
+                 "target": 20, "met": per_loop / per_sweep >= 20},
+        "workers_2": {"designs": pn, "in_process_seconds": t_p1, "seconds": t_w2,
+                      "speedup": t_p1 / t_w2, "target": 1.7, "met": t_p1 / t_w2 >= 1.7},
+        "dask_local_2": {"designs": pn, "seconds": t_d2, "over_workers_2": t_d2 / t_w2,
+                         "target": 1.3, "met": t_d2 / t_w2 <= 1.3},
+        "identical_tables": same,
+    }
+    (HERE / "results").mkdir(exist_ok=True)
+    (HERE / "results" / "sweeps.json").write_text(json.dumps(out, indent=2) + "\n")
+    print(json.dumps(out, indent=2))
+
+
+if __name__ == "__main__":
+    main()
