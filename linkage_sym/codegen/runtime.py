@@ -37,6 +37,7 @@ from linkage_sym.numeric.state import LinkState
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.result import OK, Analysis, Forces, GroupForces
 from linkage_sym.numeric.sweep import (
+    _unwrap,
     Calibration,
     finish,
     mark_singular,
@@ -45,6 +46,7 @@ from linkage_sym.numeric.sweep import (
     solving_path,
     step_status,
 )
+from linkage_sym.structure import decompose
 from linkage_sym.structure.parameters import driver_q0, evaluate, ident, link_frames
 
 SCREEN = 1e-3
@@ -123,6 +125,14 @@ def load_functions(artifact: dict, label: str) -> dict:
     return out
 
 
+def _full(v, K):
+    """A generated function's output as an array over the ``K`` steps (a constant
+    output comes back as a scalar: broadcast, read-only)."""
+    if isinstance(v, np.ndarray) and v.shape == (K,) and v.dtype == np.float64:
+        return v
+    return np.broadcast_to(np.asarray(v, float), (K,))
+
+
 def _wrap(a):
     return (a + np.pi) % (2 * np.pi) - np.pi
 
@@ -188,6 +198,7 @@ class CompiledMechanism:
         self._pose_constraints = None
         self._calibration = Calibration()  # accuracy: the indicator-to-condition ratio
         self._layout = None  # the result block's layout, made on the first run
+        self._decomposition = None
 
     # -- positions -----------------------------------------------------------------
     def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, P=None,
@@ -259,7 +270,7 @@ class CompiledMechanism:
                 if step["kind"] == "closed":
                     out = self._call(step["function"], X=X, Q=Q)
                     for c, v in zip(step["x"], out):
-                        X[c] = np.array(np.broadcast_to(np.asarray(v, float), (K,)))
+                        X[c] = np.array(_full(v, K))
                         bad = ~np.isfinite(X[c]) & (failed < 0)
                         failed[bad] = gidx[c]
                 else:
@@ -413,7 +424,7 @@ class CompiledMechanism:
         Xp, failed_p = self.positions(Qpath)
         valid = failed_p < 0
         for c in np.flatnonzero(self.is_angle):
-            th = np.unwrap(Xp[c, valid])
+            th = _unwrap(Xp[c, valid])
             # continuous from the assembly configuration (path point 0)
             Xp[c, valid] = th - 2 * np.pi * np.round((th[0] - self.x0[c]) / (2 * np.pi))
         return Qs, QDs, QDDs, Xp[:, out], failed_p[out], out
@@ -459,10 +470,9 @@ class CompiledMechanism:
                     a, b = A[:, r0, c0], A[:, r0, c0 + 1]
                     c, d = A[:, r0 + 1, c0], A[:, r0 + 1, c0 + 1]
                     det = np.abs(a * d - b * c)
-                    ratio = np.fmin(
-                        det / (np.hypot(a, b) * np.hypot(c, d)),
-                        det / (np.hypot(a, c) * np.hypot(b, d)),
-                    )
+                    a2, b2, c2, d2 = a * a, b * b, c * c, d * d
+                    # the smaller ratio is the one over the larger product of norms
+                    ratio = det / np.sqrt(np.fmax((a2 + b2) * (c2 + d2), (a2 + c2) * (b2 + d2)))
                 else:
                     M = A[:, r0:r1, c0:c1]
                     det = np.abs(np.linalg.det(M))
@@ -500,12 +510,14 @@ class CompiledMechanism:
                 "points", X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk, QD=QDk, QDD=QDDk,
                 CS=(list(CS[0]), list(CS[1])), P=self._load_params(dict(zip(art["q"], Qk))),
             )
-        pts = [np.broadcast_to(np.asarray(v, float), (K,)) for v in pts]
+        pts = [_full(v, K) for v in pts]
         forces = None
         if "forces" in stages:
             forces = self._forces(pts, Xk, CS, rate_ok, idx, N)
         res = self._analysis(X, XD, XDD, pts, idx, status, messages, condition, forces, q, qd, qdd)
-        finish(res, self.scene, self.newton_notes, out)
+        if self._decomposition is None:  # for the transmission angles, made once
+            self._decomposition = decompose(self.scene)
+        finish(res, self.scene, self.newton_notes, out, self._decomposition)
         # accuracy (numeric.accuracy): K of the pose Jacobian (the numeric solver's), exact
         # where a block was screened, else from the blocks' ratios calibrated on it
         indicator = np.full(N, np.inf)
