@@ -84,9 +84,16 @@ class _GroupProblem:
     def blend(self, a, b, t):
         return (1 - t) * a[0] + t * b[0], (1 - t) * a[1] + t * b[1]
 
+    def available(self):
+        return self.failed < 0
+
     def evaluate(self, u, ctx):
         r, J = self.evaluate_many(u[None, :], ctx)
         return r[0], J[0]
+
+    def evaluate_points(self, U, idx):
+        """Rows of ``U`` at the path points ``idx`` (drivers and known coordinates there)."""
+        return self.evaluate_many(U, (self.Q[:, idx], [self.X[c][idx] for c in self.known]))
 
     def evaluate_many(self, U, ctx):
         q, xk = ctx

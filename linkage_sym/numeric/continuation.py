@@ -37,6 +37,13 @@ and slides) -- hand this module a :class:`Problem` and get the same policy:
   assembly sign exists past it, the group goes on there (the assembly mode is
   the determinant sign, as for a closed-form dyad) and the jump is reported.
 
+**Many points at once.**  By default (:data:`BATCHED`) :func:`solve_path`
+hands continuous stretches and gaps to :mod:`linkage_sym.numeric.batched_path`,
+which evaluates this policy on blocks of points (the same predictors, the
+same Newton iteration, the same acceptance test and root searches) and
+leaves every point where the direct step is not taken to :meth:`Walk.step`:
+the results are the point-by-point walk's (tested against it).
+
 Everything is dimensionless: a :class:`Problem` evaluates the scaled
 residual (length rows over the mechanism size ``L``) and its Jacobian with
 respect to the scaled unknowns ``u`` (lengths over ``L``, angles as they
@@ -98,6 +105,17 @@ class Problem(Protocol):
     def evaluate_many(self, U: np.ndarray, ctx: Any) -> tuple[np.ndarray, np.ndarray]:
         """The same for the rows of ``U`` (k, n) at once: (k, n) and (k, n, n)."""
 
+    def evaluate_points(self, U: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Residual (k, n) and Jacobian (k, n, n) of row ``U[j]`` at path point ``idx[j]``.
+
+        Row ``j`` equals ``evaluate(U[j], at(idx[j]))``; used by the batched walk
+        (:mod:`linkage_sym.numeric.batched_path`).  Optional: a problem without it
+        is solved point by point.
+        """
+
+    def available(self) -> np.ndarray:
+        """(n_points,) bool: the path points whose inputs are known (``at(i)`` is not ``None``)."""
+
 
 @dataclass
 class Solution:
@@ -155,14 +173,16 @@ def newton(problem: Problem, u: np.ndarray, ctx):
     return u, res, J
 
 
-def _newton_search(problem: Problem, U: np.ndarray, ctx):
+def plain_newton(evaluate, U: np.ndarray):
     """Plain (undamped) Newton from every row of ``U`` at once, for a re-entry search.
 
     Damped Newton from a seed far from every root stalls at least-squares
     minima of the residual; full steps reach a root from many more seeds
     (the search keeps only roots, and checks their sign, so where it lands
-    is all that matters).  Returns the ``(u, J)`` of each seed that reached a
-    root, polished by :func:`newton`.
+    is all that matters).  ``evaluate(V, rows)`` gives the residuals and
+    Jacobians of the rows ``V`` of ``U[rows]``; each row's iteration depends
+    on that row alone.  Returns the last iterates and which rows reached
+    :data:`TOL`.
     """
     U = np.array(U, dtype=float)
     active = np.ones(len(U), bool)
@@ -172,7 +192,7 @@ def _newton_search(problem: Problem, U: np.ndarray, ctx):
         idx = np.flatnonzero(active)
         if not len(idx):
             break
-        R, J = problem.evaluate_many(U[idx], ctx)
+        R, J = evaluate(U[idx], idx)
         with np.errstate(invalid="ignore", over="ignore"):
             res = np.linalg.norm(R, axis=1)
         if res0 is None:
@@ -189,6 +209,13 @@ def _newton_search(problem: Problem, U: np.ndarray, ctx):
         k = idx[keep]
         if len(k):
             U[k] -= np.linalg.solve(J[keep], R[keep][..., None])[..., 0]
+    return U, done
+
+
+def _newton_search(problem: Problem, U: np.ndarray, ctx):
+    """:func:`plain_newton` from every row of ``U`` at ``ctx``; returns the ``(u, J)``
+    of each seed that reached a root, polished by :func:`newton`."""
+    U, done = plain_newton(lambda V, rows: problem.evaluate_many(V, ctx), U)
     out = []
     for u in U[done]:
         v, res, Jv = newton(problem, u, ctx)  # polish
@@ -283,67 +310,115 @@ def _angle_distance(u, v, angles):
     return float(np.max(np.abs(u[angles] - v[angles]), initial=0.0))
 
 
-def roots_near(problem: Problem, ctx, ref, others, sign):
-    """Roots of the group at ``ctx`` found from seeds around ``ref``: ``(same_sign, other_sign)``.
+def search_seeds(ref, others, angles) -> np.ndarray:
+    """The seeds of a root search around ``ref``: ``ref``, ``others``, ``ref`` turned."""
+    return np.array([ref, *others, *_turned_seeds(ref, angles)])
 
-    Seeds: ``ref``, the configurations ``others``, and ``ref`` with its
-    angles turned by fixed offsets (:func:`_turned_seeds`), each with its
-    lengths fitted to its angles (:func:`_project`); plain Newton from each
-    (:func:`_newton_search`).  Every root is shifted by whole turns to the
-    angles nearest ``ref``; duplicates are dropped.  Each list holds
-    ``(u, J)`` pairs sorted by the distance of their angles from ``ref``
-    (then of all unknowns), so both runtimes choose alike.
+
+def distinct_roots(roots, ref, angles, sign):
+    """The roots of a search (``(u, J)`` pairs in seed order) as :func:`roots_near` returns them.
+
+    Each shifted by whole turns to the angles nearest ``ref``, duplicates
+    dropped, sorted by the distance of their angles from ``ref`` (then of all
+    unknowns), split by determinant sign: ``(same_sign, other_sign)``.
     """
     found = []
-    seeds = [_project(problem, v, ctx) for v in [ref, *others, *_turned_seeds(ref, problem.angles)]]
-    for u, J in _newton_search(problem, np.array(seeds), ctx):
-        u = _nearest_turns(u, ref, problem.angles)
+    for u, J in roots:
+        u = _nearest_turns(u, ref, angles)
         if not any(float(np.max(np.abs(u - z))) <= SAME_ROOT for z, _ in found):
             found.append((u, J))
-    found.sort(key=lambda p: (round(_angle_distance(p[0], ref, problem.angles), 9),
+    found.sort(key=lambda p: (round(_angle_distance(p[0], ref, angles), 9),
                               float(np.max(np.abs(p[0] - ref)))))
     same = [(u, J) for u, J in found if _det_sign(J) == sign]
     other = [(u, J) for u, J in found if _det_sign(J) != sign]
     return same, other
 
 
-def solve_path(problem: Problem, n_points: int, u_assembly: np.ndarray) -> Solution:
-    """Solve the group at every path point (point 0 is the assembly configuration's inputs).
+def roots_near(problem: Problem, ctx, ref, others, sign):
+    """Roots of the group at ``ctx`` found from seeds around ``ref``: ``(same_sign, other_sign)``.
 
-    Raises nothing for points without a solution: they are listed in
-    ``Solution.failures``; jumps after a limit or a gap are listed in
-    ``Solution.notes``; the caller words the messages.
+    Seeds: ``ref``, the configurations ``others``, and ``ref`` with its
+    angles turned by fixed offsets (:func:`_turned_seeds`), each with its
+    lengths fitted to its angles (:func:`_project`); plain Newton from each
+    (:func:`plain_newton`).  Every root is shifted by whole turns to the
+    angles nearest ``ref``; duplicates are dropped.  Each list holds
+    ``(u, J)`` pairs sorted by the distance of their angles from ``ref``
+    (then of all unknowns), so both runtimes choose alike
+    (:func:`distinct_roots`).
     """
-    n = len(u_assembly)
-    U = np.full((n_points, n), np.nan)
-    ind = np.full(n_points, np.nan)
-    sol = Solution(U, ind)
-    _, J = problem.evaluate(u_assembly, problem.at(0))
-    sign = _det_sign(J)
-    last = None  # (point index, u, inputs) of the last solved point
-    before = None  # u at the point before ``last`` when consecutive with it
-    stop = None  # the configuration where the continuation stopped (a limit)
-    for i in range(n_points):
+    seeds = [_project(problem, v, ctx) for v in search_seeds(ref, others, problem.angles)]
+    return distinct_roots(_newton_search(problem, np.array(seeds), ctx), ref, problem.angles, sign)
+
+
+BATCHED = True
+"""Whether :func:`solve_path` solves continuous stretches many points at once
+(:mod:`linkage_sym.numeric.batched_path`: the same policy and the same results)
+or point after point.  The point-by-point walk stays for comparison and for
+problems without :meth:`Problem.evaluate_points`."""
+
+
+class Walk:
+    """The walk along the path: the state of the continuation and one point's step.
+
+    :meth:`step` is the policy at one path point (continuation from the last
+    solved point, else the root search); :meth:`accept` records points the
+    batched walk solved at once, exactly as :meth:`step` would have.
+    """
+
+    def __init__(self, problem: Problem, n_points: int, u_assembly: np.ndarray):
+        n = len(u_assembly)
+        self.problem = problem
+        self.u_assembly = u_assembly
+        self.sol = Solution(np.full((n_points, n), np.nan), np.full(n_points, np.nan))
+        _, J = problem.evaluate(u_assembly, problem.at(0))
+        self.sign = _det_sign(J)
+        self.last = None  # (point index, u, inputs or None until needed) of the last solved point
+        self.before = None  # u at the point before ``last`` when consecutive with it
+        self.stop = None  # the configuration where the continuation stopped (a limit)
+        self.stretch = None  # first point of the continuous stretch that ends at ``last``
+
+    def last_inputs(self):
+        i, u, ctx = self.last
+        if ctx is None:
+            ctx = self.problem.at(i)
+            self.last = (i, u, ctx)
+        return ctx
+
+    def search_from(self):
+        """``(ref, others)`` of a root search now: the configuration where the branch
+        ended (resolution-independent up to the bisection), else the last solved
+        one, else the assembly; and the last solved one and the assembly."""
+        last = self.last
+        ref = self.stop if self.stop is not None else (
+            last[1] if last is not None else self.u_assembly)
+        others = ([last[1]] if last is not None else []) + [self.u_assembly]
+        return ref, others
+
+    def fail(self, i: int, failure) -> None:
+        """Record that point ``i`` has no solution in the assembly mode."""
+        self.sol.failures[i] = failure
+        self.before = None
+
+    def step(self, i: int) -> None:
+        """Solve path point ``i`` by the policy, from the state left by point ``i - 1``."""
+        problem, sol, last, sign = self.problem, self.sol, self.last, self.sign
         ctx = problem.at(i)
         if ctx is None:  # an upstream group failed here; reported there
-            continue
+            return
         limit = None
         ok = False
         if i == 0:
-            u, res, J = newton(problem, u_assembly.copy(), ctx)
+            u, res, J = newton(problem, self.u_assembly.copy(), ctx)
             ok = res <= TOL and _det_sign(J) == sign
         elif last is not None and last[0] == i - 1:
-            u, J, limit = continue_to(problem, last[1], last[2], ctx, sign, before)
+            u, J, limit = continue_to(problem, last[1], self.last_inputs(), ctx, sign, self.before)
             ok = limit is None
-            stop = None if ok else u
+            self.stop = None if ok else u
         if not ok:
             # no continuous path from the last solved point (a gap, or a limit or
             # singular position passed in this interval): every root near the known
             # configurations, in the assembly mode's determinant sign
-            # the configuration where the branch ended (resolution-independent up to
-            # the bisection), else the last solved one
-            ref = stop if stop is not None else (last[1] if last is not None else u_assembly)
-            others = ([last[1]] if last is not None else []) + [u_assembly]
+            ref, others = self.search_from()
             same, other = roots_near(problem, ctx, ref, others, sign)
             if same:
                 u, J = same[0]
@@ -354,18 +429,53 @@ def solve_path(problem: Problem, n_points: int, u_assembly: np.ndarray) -> Solut
             else:
                 sol.failures[i] = ("other_mode", len(other)) if other else ("no_root", None)
         if not ok:
-            before = None
-            continue
+            self.before = None
+            return
         sv = np.linalg.svd(J, compute_uv=False)
-        ind[i] = sv[-1] / sv[0]
-        U[i] = u
+        sol.indicator[i] = sv[-1] / sv[0]
+        sol.u[i] = u
         # the predictor extrapolates only along a continuous stretch
         continued = i > 0 and last is not None and last[0] == i - 1 and not (
             sol.notes and sol.notes[-1][0] == i
         )
-        before = last[1] if continued else None
-        last = (i, u, ctx)
-    return sol
+        self.before = last[1] if continued else None
+        if not continued:
+            self.stretch = i
+        self.last = (i, u, ctx)
+
+    def accept(self, idx: np.ndarray, U: np.ndarray, indicator: np.ndarray) -> None:
+        """Record the consecutive points ``idx`` (the first one after ``last``), each
+        reached from the one before it by :func:`continue_to`'s direct step."""
+        self.sol.u[idx] = U
+        self.sol.indicator[idx] = indicator
+        self.before = U[-2] if len(idx) > 1 else self.last[1]
+        self.last = (int(idx[-1]), U[-1], None)
+        self.stop = None
+
+
+def solve_path(problem: Problem, n_points: int, u_assembly: np.ndarray,
+               batched: bool | None = None) -> Solution:
+    """Solve the group at every path point (point 0 is the assembly configuration's inputs).
+
+    Raises nothing for points without a solution: they are listed in
+    ``Solution.failures``; jumps after a limit or a gap are listed in
+    ``Solution.notes``; the caller words the messages.
+
+    ``batched`` (default :data:`BATCHED`): solve continuous stretches many
+    points at once (:func:`linkage_sym.numeric.batched_path.walk_path`), with the
+    same results as the point-by-point walk; ``False`` walks point by point.
+    """
+    walk = Walk(problem, n_points, u_assembly)
+    if batched is None:
+        batched = BATCHED
+    if batched and hasattr(problem, "evaluate_points"):
+        from linkage_sym.numeric import batched_path  # it builds on this module
+
+        batched_path.walk_path(walk, n_points)
+    else:
+        for i in range(n_points):
+            walk.step(i)
+    return walk.sol
 
 
 def failure_message(label: str, links, failure, where) -> str:

@@ -151,9 +151,20 @@ class _PoseProblem:
         }
         return S, {k: (1 - t) * v + t * qb[k] for k, v in qa.items()}
 
+    def available(self):
+        ok = np.ones(len(next(iter(self.q.values()))), bool)
+        for st in self.known.values():
+            ok &= np.isfinite(st.dx)
+        return ok
+
     def evaluate(self, u, ctx):
         r, J = self.evaluate_many(u[None, :], ctx)
         return r[0], J[0]
+
+    def evaluate_points(self, U, idx):
+        """Rows of ``U`` at the path points ``idx``: the known poses and drivers taken there."""
+        Sk = {n: st.take(idx) for n, st in self.known.items()}
+        return self.evaluate_many(U, (Sk, {k: v[idx] for k, v in self.q.items()}))
 
     def evaluate_many(self, U, ctx):
         Sk, qk = ctx
