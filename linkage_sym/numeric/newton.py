@@ -15,7 +15,8 @@ from __future__ import annotations
 import numpy as np
 
 from linkage_sym.errors import SceneError
-from linkage_sym.numeric import continuation
+from linkage_sym.model import GROUND
+from linkage_sym.numeric import batched_path, continuation
 from linkage_sym.numeric.constraints import jacobian, stack_rows
 from linkage_sym.numeric.state import LinkState
 
@@ -53,12 +54,17 @@ class NewtonSolver:
         self.det_sign = float(np.sign(np.linalg.det(J)))
         self.driver_kinds = {d.joint: scene.joint(d.joint).type for d in scene.drivers}
         self.notes = []
+        # the links whose poses enter the group's equations (its own and those it is attached to)
+        self._involved = [n for n in [GROUND, *scene.link_names]
+                          if any(c.involves(n) for c in cons)]
+        self._rates_cache = None
 
     # -- positions -----------------------------------------------------------
     def position(self, S, q):
         """Poses of the group's links at every path point (continuation policy:
         :mod:`linkage_sym.numeric.continuation`); returns the indicator."""
         n_steps = len(next(iter(q.values())))
+        self._rates_cache = None
         problem = _PoseProblem(self, S, q)
         sol = continuation.solve_path(problem, n_steps, np.zeros(self.nvar))
         out = sol.u * problem.scale
@@ -85,6 +91,28 @@ class NewtonSolver:
 
 
     # -- rates ---------------------------------------------------------------
+    def _rate_block(self, S, n_steps):
+        """The group block ``J`` of the rate problems at the poses of ``S``, and the
+        steps where it is solvable; computed once for the velocities and the
+        accelerations (the same poses: the same arrays)."""
+        poses = [getattr(S[n], a) for n in self._involved for a in ("th", "dx", "dy")]
+        cached = self._rates_cache
+        if cached is not None and all(a is b for a, b in zip(cached[0], poses)):
+            return cached[1], cached[2]
+        J = jacobian(self.cons, S, self.links, n_steps)
+        solvable = np.isfinite(J).all(axis=(1, 2))
+        if solvable.any():
+            # steps whose group block is (numerically) singular get no rates; judged on
+            # the dimensionless block (rows over L, translation columns times L), so a
+            # mechanism's size does not decide it
+            row = np.where(self.length_rows, 1.0 / self.L, 1.0)
+            col = np.tile([self.L, self.L, 1.0], len(self.links))
+            good = np.flatnonzero(solvable)
+            ratio = batched_path.reciprocal_condition(J[good] * row[:, None] * col[None, :])
+            solvable[good] = ratio > SINGULAR_IND
+        self._rates_cache = (poses, J, solvable)
+        return J, solvable
+
     def _solve_rates(self, S, rows_fn, attrs):
         n_steps = len(np.atleast_1d(S[self.links[0]].dx))
         for n in self.links:
@@ -92,18 +120,10 @@ class NewtonSolver:
                 setattr(S[n], a, 0.0)
         rhs = -stack_rows([v for c in self.cons for v in rows_fn(c)])
         rhs = np.broadcast_to(rhs, (n_steps, rhs.shape[-1]))
-        J = jacobian(self.cons, S, self.links, n_steps)
+        J, solvable = self._rate_block(S, n_steps)
         x = np.full((n_steps, self.nvar), np.nan)
-        good = np.isfinite(J).all(axis=(1, 2)) & np.isfinite(rhs).all(axis=1)
-        if good.any():
-            # steps whose group block is (numerically) singular get no rates; judged on
-            # the dimensionless block (rows over L, translation columns times L), so a
-            # mechanism's size does not decide it
-            row = np.where(self.length_rows, 1.0 / self.L, 1.0)
-            col = np.tile([self.L, self.L, 1.0], len(self.links))
-            sv = np.linalg.svd(J[good] * row[:, None] * col[None, :], compute_uv=False)
-            ok = sv[:, -1] > SINGULAR_IND * sv[:, 0]
-            idx = np.flatnonzero(good)[ok]
+        idx = np.flatnonzero(solvable & np.isfinite(rhs).all(axis=1))
+        if len(idx):
             x[idx] = np.linalg.solve(J[idx], rhs[idx][..., None])[..., 0]
         for k, n in enumerate(self.links):
             for m, a in enumerate(attrs):
@@ -114,6 +134,7 @@ class NewtonSolver:
 
     def acceleration(self, S, q, qd, qdd):
         self._solve_rates(S, lambda c: c.accel(S, qdd), ("al", "ax", "ay"))
+        self._rates_cache = None  # the last rate stage: its block is not needed any more
 
 
 class _PoseProblem:
