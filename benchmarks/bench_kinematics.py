@@ -42,7 +42,14 @@ Contenders:
   this one mechanism (circle intersection, eqs. 3-13/3-14/3-16 of seed 003),
   no checks.
 * six-bar (the shipped Watt six-bar), 3600 and 100,000 steps.
-* the class-III six-bar (Newton, step by step), 360 steps.
+* the class-III six-bar (a Newton group), 3600 steps, in both runtimes
+  (``Plan.run`` and ``CompiledMechanism.run``): the batched continuation
+  (:mod:`linkage_sym.numeric.batched_path`) and the point-by-point walk, in
+  the same run, against the Watt six-bar in the same runtime (target: within
+  10x of it);
+* the root searches at the unassemblable steps of a knee linkage's Newton
+  group (two turns of the knee, 721 steps), batched and point by point: their
+  time per unassemblable step.
 """
 
 from __future__ import annotations
@@ -158,6 +165,130 @@ def handwritten_fourbar(scene):
     return run
 
 
+def with_outputs(scene, steps, outputs):
+    drivers = tuple(dataclasses.replace(d, steps=steps) for d in scene.drivers)
+    return dataclasses.replace(scene, drivers=drivers, outputs=tuple(outputs))
+
+
+def _runtimes(scene):
+    """``{runtime: run}``: the numeric plan and the compiled symbolic mechanism."""
+    return {"numeric": compile_plan(scene).run,
+            "symbolic": linkage_sym.compile_mechanism(scene).run}
+
+
+def _agree(a, b, size, what):
+    """Statuses equal, positions within 1e-10 of the size: timings compare like with like."""
+    assert np.array_equal(a.status, b.status), what
+    for name, j in a.joints.items():
+        err = float(np.nanmax(np.abs(j.position - b.joints[name].position), initial=0.0))
+        assert err <= 1e-10 * size, (what, name, err)
+
+
+def newton_groups(outputs, steps=3600, repeats=5, slow_repeats=2):
+    """The class-III six-bar (a Newton group) against the Watt six-bar (dyads), both runtimes.
+
+    For each runtime (``Plan.run``, ``CompiledMechanism.run``): the class-III
+    six-bar with the batched continuation (the default) and point by point
+    (``continuation.BATCHED = False``, what every version before it did), and
+    the Watt six-bar, all ``steps`` steps with ``outputs``; the batched and
+    point-by-point results are checked to agree first.  The batched and Watt
+    calls alternate, best of ``repeats`` each.
+    """
+    from linkage_sym.numeric import continuation
+
+    tri = with_outputs(linkage_sym.load_example("sixbar_class3"), steps, outputs)
+    six = with_outputs(linkage_sym.load_example("watt_sixbar"), steps, outputs)
+    tri_runs, six_runs = _runtimes(tri), _runtimes(six)
+    out = {"steps": steps, "outputs": list(outputs)}
+    for runtime, run in tri_runs.items():
+        continuation.BATCHED = False
+        seq = run()
+        continuation.BATCHED = True
+        _agree(seq, run(), tri.characteristic_length(), runtime)
+        t_bat = t_six = np.inf
+        for _ in range(repeats):
+            t_bat = min(t_bat, best_time(run, 1))
+            t_six = min(t_six, best_time(six_runs[runtime], 1))
+        continuation.BATCHED = False
+        t_seq = best_time(run, slow_repeats)
+        continuation.BATCHED = True
+        us = 1e6 / steps
+        out[runtime] = {
+            "class3_batched_us_per_position": t_bat * us,
+            "class3_point_by_point_us_per_position": t_seq * us,
+            "watt_sixbar_us_per_position": t_six * us,
+            "batched_speedup": t_seq / t_bat,
+            "class3_batched_over_watt": t_bat / t_six,
+            "target_within_10x_watt_met": bool(t_bat / t_six <= 10.0),
+        }
+    return out
+
+
+def knee_scene(steps=721):
+    """A knee linkage (thigh on a hip pivot, shin driven at the knee, a rocker from the ankle
+    to the ground: one driven Newton group) over two turns of the knee: limit positions and
+    unassemblable stretches (the tests' ``scenes.knee_scene``)."""
+    K, A, G = (0.3, 0.5), (0.7, 0.2), (0.6, -0.2)
+    mid = lambda p, q: [(p[0] + q[0]) / 2, (p[1] + q[1]) / 2]  # noqa: E731
+    return linkage_sym.load_scene({
+        "name": "knee",
+        "links": [{"name": "thigh", "mass": 1.0, "com": mid((0, 0), K), "inertia": 0.01},
+                  {"name": "shin", "mass": 1.0, "com": mid(K, A), "inertia": 0.01},
+                  {"name": "rocker", "mass": 0.5, "com": mid(A, G), "inertia": 0.005}],
+        "joints": [{"name": "H", "type": "R", "links": ["ground", "thigh"], "at": [0.0, 0.0]},
+                   {"name": "K", "type": "R", "links": ["thigh", "shin"], "at": list(K)},
+                   {"name": "A", "type": "R", "links": ["shin", "rocker"], "at": list(A)},
+                   {"name": "G", "type": "R", "links": ["rocker", "ground"], "at": list(G)}],
+        "drivers": [{"joint": "K", "toward": "A", "start_deg": -180, "stop_deg": 540,
+                     "steps": steps, "speed": 1.0, "acceleration": 0.5}],
+        "outputs": ["kinematics"],
+    })
+
+
+def newton_gaps(repeats=2):
+    """What unassemblable steps of a Newton group cost: the root searches of the knee
+    linkage's gaps (time inside them over the number of unassemblable steps), batched and
+    point by point, both runtimes; and the whole run."""
+    from linkage_sym.numeric import batched_path, continuation
+
+    scene = knee_scene()
+    spent = {"search": 0.0}
+
+    def timed(f):
+        def g(*a, **k):
+            t0 = time.perf_counter()
+            try:
+                return f(*a, **k)
+            finally:
+                spent["search"] += time.perf_counter() - t0
+        return g
+
+    originals = (continuation.roots_near, batched_path._gap)
+    continuation.roots_near, batched_path._gap = (timed(f) for f in originals)
+    out = {"steps": 721}
+    try:
+        for runtime, run in _runtimes(scene).items():
+            res = run()
+            n_gap = int((res.status == "unassemblable").sum())
+            out["unassemblable_steps"] = n_gap
+            for mode, batched in (("point_by_point", False), ("batched", True)):
+                continuation.BATCHED = batched
+                best = (np.inf, np.inf)
+                for _ in range(repeats):
+                    spent["search"] = 0.0
+                    t0 = time.perf_counter()
+                    run()
+                    best = min(best, (time.perf_counter() - t0, spent["search"]))
+                out[f"{runtime}_{mode}"] = {
+                    "run_ms": 1e3 * best[0],
+                    "search_ms_per_unassemblable_step": 1e3 * best[1] / n_gap,
+                }
+    finally:
+        continuation.roots_near, batched_path._gap = originals
+        continuation.BATCHED = True
+    return out
+
+
 def fourbar_contenders():
     four = with_steps(linkage_sym.load_example("crank_rocker"), 3600)
     plan = compile_plan(four)
@@ -259,10 +390,8 @@ def main():
         t = best_time(p.run, repeats=5)
         cases[f"sixbar_{n}"] = {"us_per_position": 1e6 * t / n, "seconds": t}
 
-    tri = with_steps(linkage_sym.load_example("sixbar_class3"), 360)
-    p = compile_plan(tri)
-    t = best_time(p.run, repeats=3)
-    cases["class3_sixbar_360_newton"] = {"us_per_position": 1e6 * t / 360, "seconds": t}
+    cases["class3_sixbar_3600_newton"] = newton_groups(("kinematics",))
+    cases["knee_gaps_newton"] = newton_gaps()
 
     out = HERE / "results"
     out.mkdir(exist_ok=True)
