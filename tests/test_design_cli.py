@@ -77,9 +77,16 @@ def test_refusals_name_the_option(capsys, args, message, tmp_path, monkeypatch):
     assert "Traceback" not in err and len(err.strip().splitlines()) == 1
 
 
-def test_newton_groups_and_missing_extras_are_refused(capsys, monkeypatch):
-    assert main(["sweep", str(example_path("sixbar_class3")), "--vary", "l_AB=0.02:0.03:2"]) == 2
-    assert "has no closed form" in capsys.readouterr().err
+def test_newton_groups_say_one_design_at_a_time(capsys, tmp_path):
+    assert main(["sweep", str(example_path("sixbar_class3")), "--vary", "l_AB=0.05,0.052",
+                 "--metrics", "assemblable,swing", "-o", str(tmp_path / "t.csv")]) == 0
+    out = capsys.readouterr().out
+    assert ("one design at a time: the triad (class III) of 'sixbar-class3' has no closed "
+            "form") in out, out
+    assert read_table(tmp_path / "t.csv")["assemblable"].tolist() == [1.0, 1.0]
+
+
+def test_missing_extras_are_refused(capsys, monkeypatch):
     monkeypatch.setitem(sys.modules, "dask.distributed", None)
     assert main(["sweep", CRANK, "--vary", "l_AB=0.02:0.03:2", "--dask", "local"]) == 2
     assert "pip install 'linkage_sym[sweep]'" in capsys.readouterr().err

@@ -3,6 +3,8 @@
 * :mod:`~linkage_sym.design.parameters` -- the design space (grid, samples, Monte Carlo);
 * :mod:`~linkage_sym.design.evaluate` -- the compiled mechanism's functions on chunks of
   designs x steps;
+* :mod:`~linkage_sym.design.newton_groups` -- designs whose groups have no closed form,
+  one at a time by the numeric plan;
 * :mod:`~linkage_sym.design.metrics` -- what is reported per design;
 * :mod:`~linkage_sym.design.execute` -- in-process, local processes or Dask;
 * :mod:`~linkage_sym.design.scenes` -- each design as a scene of its own;

@@ -12,6 +12,7 @@ import numpy as np
 from linkage_sym.design.errors import SweepError
 from linkage_sym.design.execute import TARGET_ENTRIES, Spec, run_chunks
 from linkage_sym.design.metrics import DEFAULT_METRICS, MetricPlan
+from linkage_sym.design.newton_groups import DEFAULT_CHUNK as ONE_AT_A_TIME_CHUNK
 from linkage_sym.design.parameters import Designs, check_names, grid, monte_carlo as _mc
 from linkage_sym.design.parameters import read_samples
 from linkage_sym.design.table import SweepResult
@@ -62,7 +63,11 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     lists them) set to other values, assembled at the scene's driver values in
     the scene's assembly mode, and solved over the scene's sweep by the
     compiled mechanism's functions, many designs per call
-    (:mod:`linkage_sym.design.evaluate`).
+    (:mod:`linkage_sym.design.evaluate`).  A scene with groups without a closed
+    form (class-III triads, actuator groups) has its designs solved one at a
+    time, each by the numeric plan of its own scene
+    (:mod:`linkage_sym.design.newton_groups`; the result's ``one_at_a_time``
+    names those groups).
 
     Parameters
     ----------
@@ -93,7 +98,8 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
         A scheduler address, ``"local"`` (a LocalCluster of ``workers`` processes)
         or a client: the chunks run there.
     chunk_designs : int, optional
-        Designs per chunk (default: about 65,000 design-steps a chunk).
+        Designs per chunk (default: about 65,000 design-steps a chunk; 8 designs when
+        they run one at a time).
     write_scenes : path, optional
         A folder: each design's own scene is written there as
         ``design_<i>.json`` (:mod:`linkage_sym.design.scenes`).
@@ -109,7 +115,7 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     ------
     SweepError
         Input it cannot use, naming the argument (an unknown parameter lists the
-        valid ones; a scene whose groups have no closed form).
+        valid ones).
 
     Examples
     --------
@@ -144,7 +150,8 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
         if not isinstance(workers, int) or isinstance(workers, bool) or workers < 1:
             raise SweepError("--workers", f"a number of processes >= 1 is expected, got {workers!r}")
     if chunk_designs is None:
-        chunk_designs = max(1, TARGET_ENTRIES // model.path.shape[1])
+        chunk_designs = (ONE_AT_A_TIME_CHUNK if model.one_at_a_time
+                         else max(1, TARGET_ENTRIES // model.path.shape[1]))
     elif not isinstance(chunk_designs, int) or chunk_designs < 1:
         raise SweepError("chunk_designs", f"a number of designs >= 1 is expected, got {chunk_designs!r}")
     files = []
@@ -158,7 +165,7 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     for c in mcols:
         columns[c] = np.concatenate([p[c] for p in parts])
     return SweepResult(columns, tuple(designs.names), tuple(mcols), designs.kind, designs.axes,
-                       scene.name, files)
+                       scene.name, files, tuple(model.newton_groups))
 
 
 def default_metrics(scene, output=None) -> list:

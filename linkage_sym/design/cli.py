@@ -38,7 +38,10 @@ def register(sub) -> None:
         "them) varied over a grid (--vary), read from a CSV file (--samples) or drawn about "
         "their values (--monte-carlo with --tolerance). One row per design: its parameters and "
         "the metrics. Each design is assembled at the scene's driver values in the scene's "
-        "assembly mode; one that cannot be is marked (assemblable 0, its metrics empty).",
+        "assembly mode; one that cannot be is marked (assemblable 0, its metrics empty). "
+        "Scenes whose groups all have closed forms are evaluated many designs per call; "
+        "groups without one (class-III triads, actuator groups) make the designs run one at "
+        "a time, each by the numeric plan of its own scene.",
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog="metrics: " + ", ".join(METRICS) + " (definitions: linkage_sym.design.metrics)",
     )
@@ -192,6 +195,10 @@ def summary(res) -> list[str]:
     how = {"grid": "grid " + " x ".join(f"{k} {len(v)}" for k, v in res.axes),
            "monte-carlo": "Monte Carlo", "samples": "samples"}[res.kind]
     lines = [f"sweep of {res.scene!r}: {n} design(s) ({how})"]
+    if res.one_at_a_time:
+        lines.append(f"  one design at a time: the {', '.join(res.one_at_a_time)} of {res.scene!r} "
+                     "has no closed form, so each design is solved by the numeric plan of its "
+                     "own scene (Newton continuation from its assembly configuration)")
     if "assemblable" in res.columns:
         a = res["assemblable"]
         lines.append(f"  assembled at the scene's driver values: {int((a > 0).sum())}; every step "

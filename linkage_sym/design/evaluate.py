@@ -28,7 +28,9 @@ function.  For a chunk of designs :meth:`Model.solve` does what
 Every operation is elementwise per design or a per-matrix LAPACK call, and
 chunks are made of whole designs: a design's numbers do not depend on the
 chunk that carried it.  Groups without a closed form (class-III triads,
-actuator groups) are refused here: their Newton continuation is step by step.
+actuator groups) are continued from the scene's assembly configuration to each
+design's, and such designs are then solved one at a time by the numeric plan
+(:mod:`linkage_sym.design.newton_groups`).
 """
 
 from __future__ import annotations
@@ -39,7 +41,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from linkage_sym.design.errors import SweepError
 from linkage_sym.model import OUTPUTS
 from linkage_sym.numeric.sweep import SCREEN, SINGULAR_COND, scene_sweep, solving_path
 from linkage_sym.structure.parameters import driver_q0, ident
@@ -88,6 +89,45 @@ class Solution:
     forces: np.ndarray | None = None  # (nF, n, N) reactions and efforts
     C: np.ndarray | None = None  # (m, n, N) cosines of the coordinates (NaN where no position)
     S: np.ndarray | None = None
+    model: object = None  # the Model that solved it
+
+    # what the metrics read, (n, N) each; a subclass reads them from another runtime's result
+    def reaction(self, joint) -> np.ndarray:
+        """Magnitude of the reaction at ``joint`` (see :meth:`Model.reaction`)."""
+        return self.model.reaction(self, joint)
+
+    def effort(self, driver) -> np.ndarray:
+        """The driving torque or force at ``driver``."""
+        return self.model.effort(self, driver)
+
+    def com(self, link):
+        """``(x, y, ax, ay)``: the centre of mass of ``link`` and its acceleration."""
+        a0, _ = self.model.point_rows(f"com:{link}:0")
+        a2, _ = self.model.point_rows(f"com:{link}:2")
+        return self.points[a0], self.points[a0 + 1], self.points[a2], self.points[a2 + 1]
+
+    def alpha(self, link) -> np.ndarray:
+        """The angular acceleration of ``link`` at the scene's speeds."""
+        return self.XDD[self.model.angle_of[link]]
+
+    def traced(self, point):
+        """``(x, y)`` of the traced point ``point`` (NaN where the step is not ``ok``)."""
+        model = self.model
+        pt = next(q for q in model.scene.points if q.name == point)
+        fr = model.frames[pt.link]
+        c, s = math.cos(fr.theta0), math.sin(fr.theta0)
+        dx, dy = pt.at[0] - fr.origin[0], pt.at[1] - fr.origin[1]
+        lx, ly = c * dx + s * dy, -s * dx + c * dy  # in the link frame (u, u -> v)
+        a, _ = model.point_rows(f"origin:{pt.link}:0")
+        th = self.X[model.angle_of[pt.link]]
+        x = self.points[a] + np.cos(th) * lx - np.sin(th) * ly
+        y = self.points[a + 1] + np.sin(th) * lx + np.cos(th) * ly
+        return np.where(self.ok, x, np.nan), np.where(self.ok, y, np.nan)
+
+    def rate_at(self, d, t, col):
+        """The rate along the steps of coordinate ``col`` of designs ``d`` at fractional
+        steps ``t``, its own rate and the coordinate (:meth:`Model.rate_at`)."""
+        return self.model.rate_at(self.P, d, t, col)
 
 
 class Model:
@@ -105,12 +145,9 @@ class Model:
         kin = dataclasses.replace(scene, outputs=OUTPUTS if forces else ("kinematics",))
         self.cm = cm = compiled(kin)
         art = self.art = cm.art
-        newton = [g["label"] for g in art["groups"] if not g["closed"]]
-        if newton:
-            raise SweepError("scene", f"the {', '.join(newton)} of {scene.name!r} has no closed "
-                             "form (its positions are found by Newton continuation, step by "
-                             "step); a sweep evaluates four-bars and dyad chains, whose groups "
-                             "have closed forms")
+        self.newton_groups = [g["label"] for g in art["groups"] if not g["closed"]]
+        self.one_at_a_time = bool(self.newton_groups)
+        self._continuations = None  # the Newton groups' ParameterContinuation, made on first use
         self.names = list(cm.param_names)
         self.index = {n: i for i, n in enumerate(self.names)}
         self.recipes = {tuple(tuple(x) if isinstance(x, list) else x for x in r): i
@@ -160,14 +197,45 @@ class Model:
     def call(self, name, P, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, CS=(None, None)):
         return self.cm.functions[name](X, XD, XDD, Q, QD, QDD, F, P, CS[0], CS[1])
 
-    def positions(self, P, Q, E) -> np.ndarray:
-        """Coordinates (m, E) from the closed forms at driver values ``Q`` (list of (E,))."""
+    def positions(self, P, Q, E, newton=None) -> np.ndarray:
+        """Coordinates (m, E) from the closed forms at driver values ``Q`` (list of (E,));
+        ``newton(step, X)`` gives a Newton group's coordinates (at assembly only)."""
         X = [None] * self.m
         with np.errstate(invalid="ignore", divide="ignore"):
             for st in self.art["steps"]:
-                for c, v in zip(st["x"], self.call(st["function"], P, X=X, Q=Q)):
+                if st["kind"] == "newton":
+                    vals = newton(st, X)
+                else:
+                    vals = self.call(st["function"], P, X=X, Q=Q)
+                for c, v in zip(st["x"], vals):
                     X[c] = _full(v, E)
         return np.array(X)
+
+    def _newton_at_q0(self, P, Q, n, first=None):
+        """A ``newton`` argument of :meth:`positions` at the scene's driver values: each
+        design's Newton groups continued in the parameters from the scene's assembly
+        configuration (:class:`~linkage_sym.design.newton_groups.ParameterContinuation`),
+        or from ``first`` (a previous call's record) when given.  Records the designs'
+        inputs and roots in the returned dict."""
+        from linkage_sym.design.newton_groups import ParameterContinuation
+
+        if self._continuations is None:
+            self._continuations = {st["function"]: ParameterContinuation(self, st)
+                                   for st in self.art["steps"] if st["kind"] == "newton"}
+        record = {}
+
+        def solve(step, X):
+            pc = self._continuations[step["function"]]
+            start = None
+            if first is not None:
+                x1, c1 = first[step["function"]]
+                start = lambda d: ((None, None) if c1[d] is None or not np.isfinite(x1[:, d]).all()  # noqa: E731
+                                   else (x1[:, d] / pc.scale, c1[d]))
+            x, ctxs = pc.solve(P, Q, X, n, start)
+            record[step["function"]] = (x, ctxs)
+            return list(x)
+
+        return solve, record
 
     def rates(self, P, X, Q, QD, CS):
         """The nonzero entries of ``A`` (dict ``(i, j) -> (E,)``) and ``B qd`` (list of (E,))."""
@@ -255,12 +323,15 @@ class Model:
         """The designs' assembly configurations at ``q0`` (see the module docstring):
         ``(P with the designs' theta0, X0 (m, n), assembled (n,), joints0, L)``."""
         Q = [np.full(n, v) for v in self.q0]
-        X0 = self.positions(P, Q, n)
+        newton, first = self._newton_at_q0(P, Q, n) if self.one_at_a_time else (None, None)
+        X0 = self.positions(P, Q, n, newton)
         if self.theta0:
             P = list(P)
             for i, c in self.theta0:
                 P[i] = X0[c].copy()
-            X0 = self.positions(P, Q, n)
+            if self.one_at_a_time:
+                newton, _ = self._newton_at_q0(P, Q, n, first)
+            X0 = self.positions(P, Q, n, newton)
         assembled = np.isfinite(X0).all(axis=0)
         z = [np.zeros(n)] * self.m
         zq = [np.zeros(n)] * len(self.qnames)
@@ -315,12 +386,18 @@ class Model:
 
         ``need``: a set of ``"rate_t"`` (rates along the steps), ``"velocity"``,
         ``"acceleration"``, ``"points"``, ``"forces"``; ``unwrap``: the coordinates
-        whose angles must be continuous from the assembly configuration.
+        whose angles must be continuous from the assembly configuration.  Designs
+        with groups without a closed form are solved one at a time
+        (:func:`~linkage_sym.design.newton_groups.solve_designs`).
         """
+        if self.one_at_a_time:
+            from linkage_sym.design.newton_groups import solve_designs
+
+            return solve_designs(self, P, n, need)
         P, X0, assembled, joints0, L = self.assemble(P, n)
         N, m, E = self.N, self.m, n * self.N
         X, pos_ok, Ps = self.positions_at_steps(P, X0, assembled, n, unwrap)
-        sol = Solution(n, N, P, assembled, X0, joints0, L, X, pos_ok, pos_ok.copy())
+        sol = Solution(n, N, P, assembled, X0, joints0, L, X, pos_ok, pos_ok.copy(), model=self)
         flat = pos_ok.ravel()
         every = bool(flat.all())
         tiles = self._steps(n)

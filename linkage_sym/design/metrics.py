@@ -195,12 +195,12 @@ class MetricPlan:
                 cols[m] = self._transmission(model, sol)
             elif m in ("peak_driving", "rms_driving"):
                 for d in self.scene.drivers:
-                    e = np.where(ok, model.effort(sol, d.joint), np.nan)
+                    e = np.where(ok, sol.effort(d.joint), np.nan)
                     cols[f"{m}_{d.joint}"] = (_fmax(np.abs(e)) if m == "peak_driving"
                                               else _rms(e, ok))
             elif m == "peak_reaction":
                 for j in self.scene.joints:
-                    cols[f"peak_reaction_{j.name}"] = _fmax(np.where(ok, model.reaction(sol, j.name), np.nan))
+                    cols[f"peak_reaction_{j.name}"] = _fmax(np.where(ok, sol.reaction(j.name), np.nan))
             elif m in ("rms_shaking_force", "rms_shaking_moment"):
                 if "rms_shaking_force" not in cols:
                     fx, fy, mz = self._shaking(model, sol)
@@ -254,11 +254,8 @@ class MetricPlan:
                 continue
             m = _col(model.value(sol.P, ("m", lk.name), lk.mass))
             inertia = _col(model.value(sol.P, ("I", lk.name), lk.inertia))
-            a0, _ = model.point_rows(f"com:{lk.name}:0")
-            a2, _ = model.point_rows(f"com:{lk.name}:2")
-            rx, ry = sol.points[a0], sol.points[a0 + 1]
-            ax, ay = sol.points[a2], sol.points[a2 + 1]
-            alpha = sol.XDD[model.angle_of[lk.name]]
+            rx, ry, ax, ay = sol.com(lk.name)
+            alpha = sol.alpha(lk.name)
             fx -= m * ax
             fy -= m * ay
             mz -= m * (rx * ay - ry * ax) + inertia * alpha
@@ -266,19 +263,9 @@ class MetricPlan:
 
     def _path(self, model, sol) -> dict:
         out = {}
-        frames = model.frames
         for p in self.trace:
-            pt = next(q for q in self.scene.points if q.name == p)
-            fr = frames[pt.link]
-            c, s = math.cos(fr.theta0), math.sin(fr.theta0)
-            dx, dy = pt.at[0] - fr.origin[0], pt.at[1] - fr.origin[1]
-            lx, ly = c * dx + s * dy, -s * dx + c * dy  # in the link frame (u, u -> v)
-            a, _ = model.point_rows(f"origin:{pt.link}:0")
-            th = sol.X[model.angle_of[pt.link]]
-            x = sol.points[a] + np.cos(th) * lx - np.sin(th) * ly
-            y = sol.points[a + 1] + np.sin(th) * lx + np.cos(th) * ly
+            x, y = sol.traced(p)
             for name, v in (("x", x), ("y", y)):
-                v = np.where(sol.ok, v, np.nan)
                 for i in range(sol.N):
                     out[f"path_{p}_{name}_{i}"] = v[:, i]
         return out
@@ -295,9 +282,9 @@ class MetricPlan:
         with np.errstate(invalid="ignore"):
             change = both & ((ra == 0) | (rb == 0) | ((ra < 0) != (rb < 0)))
         d, i = np.nonzero(change)
-        t, kind = _roots(model, sol.P, d, i.astype(float), ra[d, i], rb[d, i], col)
+        t, kind = _roots(sol, d, i.astype(float), ra[d, i], rb[d, i], col)
         # values at the roots, continuous with the sample before
-        raw = model.rate_at(sol.P, d, t, col)[2] if len(d) else np.zeros(0)
+        raw = sol.rate_at(d, t, col)[2] if len(d) else np.zeros(0)
         v = raw - sol.X0[col][d]
         v = v + 2 * math.pi * np.round((rot[d, i] - v) / (2 * math.pi))
         hi = _fmax(np.where(ok, rot, np.nan))
@@ -334,7 +321,7 @@ def _common(scene, j1, j2):
     return next(lk for lk in scene.joint(j1).links if lk in a and lk != GROUND)
 
 
-def _roots(model, P, d, a, fa, fb, col):
+def _roots(sol, d, a, fa, fb, col):
     """Roots of the output's rate between steps ``a`` and ``a + 1`` of designs ``d``, every
     bracket at once: Newton on the rate (its derivative from the accelerations), kept in
     the bracket by bisection.  Returns ``(t, kind)``, ``kind`` +1 at a maximum, -1 at a
@@ -351,7 +338,7 @@ def _roots(model, P, d, a, fa, fb, col):
             if not len(act):
                 break
             X = x[act]
-            f, df, _ = model.rate_at(P, d[act], X, col)
+            f, df, _ = sol.rate_at(d[act], X, col)
             bad = ~np.isfinite(f)
             t[act[bad]] = np.nan
             same = (f < 0) == (flo[act] < 0)  # the root lies above X

@@ -47,6 +47,11 @@ class SweepResult:
         A grid's ``(name, values)`` per axis (the first varies slowest).
     scene : str
         The scene's name.
+    files : list of str
+        The design scenes written (``write_scenes``).
+    one_at_a_time : tuple of str
+        The scene's groups without a closed form: when not empty, each design was
+        solved on its own by the numeric plan (:mod:`linkage_sym.design.newton_groups`).
     """
 
     columns: dict
@@ -56,6 +61,7 @@ class SweepResult:
     axes: tuple = ()
     scene: str = ""
     files: list = field(default_factory=list)
+    one_at_a_time: tuple = ()
 
     def __len__(self) -> int:
         return len(self.columns["design"])
