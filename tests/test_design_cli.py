@@ -67,6 +67,12 @@ def test_samples_and_monte_carlo(tmp_path, capsys):
     (["--vary", "l_AB=0.02:0.03:2", "--metrics", "K,speed"], "--metrics: unknown metric 'speed'"),
     (["--vary", "l_AB=0.02:0.03:2", "--workers", "0"], "--workers: at least 1 process"),
     (["--samples", "missing.csv"], "--samples: 'missing.csv'"),
+    (["--vary", "l_AB=0.02:0.03:2", "--scene-rows", "1"],
+     "--scene-rows: used only with --write-scenes DIR"),
+    (["--vary", "l_AB=0.02:0.03:2", "--write-scenes", "s", "--scene-rows", "0,2"],
+     "--scene-rows: no design 2: the designs are 0 to 1"),
+    (["--vary", "l_AB=0.02:0.03:2", "--write-scenes", "s", "--scene-rows", "0,x"],
+     "--scene-rows: 'x': design numbers (0,5,17) or ranges"),
     ([], "--vary: give exactly one of --vary, --samples or --monte-carlo"),
 ])
 def test_refusals_name_the_option(capsys, args, message, tmp_path, monkeypatch):
@@ -93,6 +99,20 @@ def test_missing_extras_are_refused(capsys, monkeypatch):
     monkeypatch.setitem(sys.modules, "pyarrow", None)
     assert main(["sweep", CRANK, "--vary", "l_AB=0.02:0.03:2", "-o", "x.parquet"]) == 2
     assert "-o/--output: a Parquet file needs pyarrow" in capsys.readouterr().err
+
+
+def test_write_scenes_of_some_designs(tmp_path, capsys):
+    args = ["sweep", CRANK, "--vary", "l_AB=0.02:0.03:3", "--vary", "l_BC=0.06,0.2",
+            "--metrics", "K", "--write-scenes", str(tmp_path / "s")]
+    assert main(args + ["--scene-rows", "5,0,3,0"]) == 0
+    out = capsys.readouterr().out
+    # l_BC = 0.2: no assembly; the rows named once each
+    assert "wrote 1 design scene(s)" in out and "no scene for design(s) 3, 5: not assembled" in out
+    assert [p.name for p in (tmp_path / "s").iterdir()] == ["design_0.json"]
+    assert main(args + ["--scene-rows", ":3"]) == 0
+    assert sorted(p.name for p in (tmp_path / "s").iterdir()) == ["design_0.json", "design_2.json"]
+    # why K has no value, counted
+    assert ("K_note: not assembled at the scene's driver values 3" in capsys.readouterr().out)
 
 
 def test_plots_a_map_per_metric_of_a_grid_and_histograms(tmp_path, capsys):

@@ -17,6 +17,7 @@ import pytest
 
 import linkage_sym
 from linkage_sym.design import SweepError, sweep
+from linkage_sym.design.metrics import K_NOTES
 from linkage_sym.model import OUTPUTS, Effects
 from linkage_sym.numeric.extremes import find_extremes
 from linkage_sym.numeric.transmission import transmission_angles
@@ -69,9 +70,13 @@ def _check_against_analyze(res, scenes, output=None):
                      else sh.forces.frame_moment[ok])
                 assert _close(v, np.sqrt(np.mean(s * s)), np.abs(s).max()), c
             elif c.startswith("path_"):
+                # every step with positions, singular ones too (analyze keeps them)
                 _, p, xy, k = c.split("_")
                 ref = an.points[p].position[int(k), "xy".index(xy)]
-                assert (math.isnan(v) and not ok[int(k)]) or _close(v, ref, sc.characteristic_length()), c
+                if an.status[int(k)] == "unassemblable":
+                    assert math.isnan(v), c
+                else:
+                    assert _close(v, ref, sc.characteristic_length()), c
         if "K" in res.columns or "swing_deg" in res.columns:
             ext = find_extremes(full, plan, an)
             mm = ext.values[("links", output, "rotation")]
@@ -85,10 +90,17 @@ def _check_against_analyze(res, scenes, output=None):
                 # of the output's angular velocity (the crank turns at a constant speed)
                 w = an.links[output].omega
                 turns = int(np.count_nonzero(np.sign(w[1:]) != np.sign(w[:-1])))
-                if ok.all() and turns == 2 and mm["max"].located == mm["min"].located == "rate root":
+                q = an.drivers["A"]["q"]
+                full_turn = abs(q[-1] - q[0]) >= 2 * np.pi * (1 - 1e-12)
+                if (full_turn and ok.all() and turns == 2
+                        and mm["max"].located == mm["min"].located == "rate root"):
                     assert _close(res["K"][i], K), (i, res["K"][i], K)
+                    assert res["K_note"][i] == ""
                 else:
                     assert math.isnan(res["K"][i])
+                    assert res["K_note"][i] in K_NOTES.values(), res["K_note"][i]
+                    if not full_turn:
+                        assert res["K_note"][i] == K_NOTES["partial"]
 
 
 def test_every_metric_equals_analyze_of_the_written_scene(tmp_path):
@@ -176,16 +188,15 @@ def test_grashof_and_K_of_random_fourbars_against_formulas():
     for i in range(n):
         a, b, c, g = (vals[k][i] for k in ("l_AB", "l_BC", "l_CD", "x_D"))
         cls = _grashof_formula(a, b, c, g)
-        if res["assemblable"][i] > 0:
-            assert res["grashof"][i] == cls, i
-            kinds.add(cls)
-        else:
-            assert res["grashof"][i] == ""
+        # the class of the lengths, whether or not the design assembles
+        assert res["grashof"][i] == cls, i
+        kinds.add((cls, bool(res["assemblable"][i] > 0)))
         if cls == "crank-rocker" and min(a, b, c, g) == a:
             assert abs(res["K"][i] - _K_formula(a, b, c, g)) <= TOL * _K_formula(a, b, c, g), i
+            assert res["K_note"][i] == ""
         else:
-            assert math.isnan(res["K"][i]), i
-    assert {"crank-rocker", "double-rocker"} <= kinds
+            assert math.isnan(res["K"][i]) and res["K_note"][i] != "", i
+    assert {("crank-rocker", True), ("double-rocker", True), ("double-rocker", False)} <= kinds
 
 
 def test_results_do_not_depend_on_the_chunks():
@@ -228,10 +239,36 @@ def test_bad_input_is_refused_by_name():
         sweep(scene, {"l_AB": [0.02]}, ["Kk"])
     with pytest.raises(SweepError, match="exactly one of"):
         sweep(scene, {"l_AB": [0.02]}, monte_carlo=3, tolerance={"l_AB": 1e-5})
+    with pytest.raises(SweepError, match="metrics: K: .* not driven by one R joint"):
+        sweep(linkage_sym.load_example("hydraulic_boom"), {"l_OR": [1.2]}, ["K"])
     with pytest.raises(SweepError, match="output: unknown link 'rockr'"):
         sweep(scene, {"l_AB": [0.02]}, ["K"], output="rockr")
     with pytest.raises(SweepError, match="--tolerance: unknown parameter 'l_ZZ'"):
         sweep(scene, monte_carlo=3, tolerance={"l_ZZ": 1e-5})
+
+
+def test_partial_sweep_and_singular_step(tmp_path):
+    """Half a turn of the crank: the swing over the steps it has (find_extremes over that
+    analysis), K without a value and K_note saying why.  A design whose dyad reaches its
+    dead centre at one step (coupler and rocker in line: singular): the traced point keeps
+    its position there, as analyze keeps it."""
+    scene = linkage_sym.load_example("crank_rocker")
+    half = dataclasses.replace(scene, drivers=(dataclasses.replace(scene.drivers[0], stop=math.pi,
+                                                                   steps=181),))
+    res = sweep(half, {"l_AB": [0.02, 0.024]}, ["assemblable", "K", "swing"],
+                write_scenes=tmp_path / "half")
+    assert res["K_note"].tolist() == [K_NOTES["partial"]] * 2
+    _check_against_analyze(res, _designs_of(tmp_path / "half"), output="rocker")
+    l_CD = dict((n, v) for n, v, _ in linkage_sym.design.scene_parameters(scene))["l_CD"]
+    # B at (-0.024, 0) at the crank's step 180: |BD| = 0.102 = l_BC + l_CD
+    res = sweep(scene, {"l_BC": [0.078 + 0.024 - l_CD]}, ["assemblable", "K", "path"],
+                write_scenes=tmp_path / "sing")
+    scenes = _designs_of(tmp_path / "sing")
+    an = linkage_sym.analyze(scenes[0])
+    assert an.status.tolist().count("singular") == 1 and (an.status != "unassemblable").all()
+    assert np.isfinite([res[c][0] for c in res.metrics if c.startswith("path_")]).all()
+    assert res["K_note"][0] == K_NOTES["steps"]
+    _check_against_analyze(res, scenes, output="rocker")
 
 
 def test_a_design_that_cannot_be_assembled_is_marked(tmp_path):
@@ -240,4 +277,5 @@ def test_a_design_that_cannot_be_assembled_is_marked(tmp_path):
                 write_scenes=tmp_path)
     assert res["assemblable"][1] == 0
     assert math.isnan(res["K"][1]) and math.isnan(res["min_transmission_deg"][1])
+    assert res["K_note"][1] == K_NOTES["assembly"]
     assert [p.name for p in tmp_path.iterdir()] == ["design_0.json"]

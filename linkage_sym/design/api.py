@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import math
 from pathlib import Path
 
 import numpy as np
@@ -55,7 +54,7 @@ def _has_forces(scene) -> bool:
 
 def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=None,
           tolerance=None, random_state=0, output=None, trace=None, workers=None, dask=None,
-          chunk_designs=None, write_scenes=None, progress=False) -> SweepResult:
+          chunk_designs=None, write_scenes=None, scene_rows=None, progress=False) -> SweepResult:
     """Evaluate many designs of a scene: a grid, samples or a Monte Carlo spread.
 
     Every design is the scene with some named parameters (the symbolic layer's
@@ -102,7 +101,11 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
         they run one at a time).
     write_scenes : path, optional
         A folder: each design's own scene is written there as
-        ``design_<i>.json`` (:mod:`linkage_sym.design.scenes`).
+        ``design_<i>.json`` (:mod:`linkage_sym.design.scenes`); a design that cannot
+        be assembled has none (the result's ``no_scene`` lists them).
+    scene_rows : sequence of int, optional
+        Only these designs' scenes (their ``design`` numbers, rows of the table);
+        default every design's.
     progress : bool
         A progress bar on a terminal (tqdm).
 
@@ -124,7 +127,7 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     >>> res = linkage_sym.sweep(scene, {"l_AB": [0.02, 0.024], "l_BC": [0.06, 0.065]},
     ...                         ["grashof", "K", "min_transmission_deg"])
     >>> list(res.columns)
-    ['design', 'l_AB', 'l_BC', 'grashof', 'K', 'min_transmission_deg']
+    ['design', 'l_AB', 'l_BC', 'grashof', 'K', 'K_note', 'min_transmission_deg']
     >>> res["grashof"].tolist()
     ['crank-rocker', 'crank-rocker', 'crank-rocker', 'crank-rocker']
     >>> [round(float(k), 4) for k in res["K"]]
@@ -154,9 +157,14 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
                          else max(1, TARGET_ENTRIES // model.path.shape[1]))
     elif not isinstance(chunk_designs, int) or chunk_designs < 1:
         raise SweepError("chunk_designs", f"a number of designs >= 1 is expected, got {chunk_designs!r}")
-    files = []
+    files, no_scene = [], []
+    if scene_rows is not None:
+        if write_scenes is None:
+            raise SweepError("scene_rows", "used only with write_scenes (--write-scenes DIR)")
+        scene_rows = _rows(scene_rows, len(designs))
     if write_scenes is not None:
-        files = _write_scenes(model, designs, Path(write_scenes), chunk_designs)
+        files, no_scene = _write_scenes(model, designs, Path(write_scenes), chunk_designs,
+                                        scene_rows)
     parts = run_chunks(spec, designs.values, chunk_designs, workers, dask, progress)
     columns = {"design": np.arange(len(designs))}
     for k, n in enumerate(designs.names):
@@ -165,7 +173,7 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     for c in mcols:
         columns[c] = np.concatenate([p[c] for p in parts])
     return SweepResult(columns, tuple(designs.names), tuple(mcols), designs.kind, designs.axes,
-                       scene.name, files, tuple(model.newton_groups))
+                       scene.name, files, tuple(model.newton_groups), tuple(no_scene))
 
 
 def default_metrics(scene, output=None) -> list:
@@ -205,23 +213,41 @@ def _designs(scene, parameters, samples, monte_carlo, tolerance, random_state) -
     return _mc(base, tolerance or {}, monte_carlo, random_state)
 
 
-def _write_scenes(model, designs, folder: Path, size: int) -> list:
+def _rows(rows, n: int) -> np.ndarray:
+    """The design numbers ``rows`` checked against the ``n`` designs, sorted, once each."""
+    try:
+        out = np.array([int(r) for r in rows], dtype=int)
+    except (TypeError, ValueError):
+        raise SweepError("scene_rows", f"design numbers are expected, got {rows!r}") from None
+    bad = [int(r) for r in out if not 0 <= r < n]
+    if bad:
+        raise SweepError("scene_rows", f"no design {bad[0]}: the designs are 0 to {n - 1}")
+    if not len(out):
+        raise SweepError("scene_rows", "no design named")
+    return np.unique(out)
+
+
+def _write_scenes(model, designs, folder: Path, size: int, rows=None):
+    """Write the scenes of the designs ``rows`` (default all); the files and the designs
+    that cannot be assembled (no scene)."""
     from linkage_sym.design.scenes import design_scene
     from linkage_sym.scene.load import dump_scene
 
     folder.mkdir(parents=True, exist_ok=True)
-    files = []
+    files, missing = [], []
     width = max(1, len(str(len(designs) - 1)))
-    for a in range(0, len(designs), size):
-        vals = designs.values[a:a + size]
+    rows = np.arange(len(designs)) if rows is None else rows
+    for a in range(0, len(rows), size):
+        which = rows[a:a + size]
+        vals = designs.values[which]
         P = model.params(designs.names, vals)
         P, X0, ok, joints0, _ = model.assemble(P, len(vals))
-        for d in range(len(vals)):
-            i = a + d
+        for d, i in enumerate(which.tolist()):
             if not ok[d]:
+                missing.append(i)
                 continue
             sc = design_scene(model, P, X0, joints0, d, f"{model.scene.name}-design-{i}")
             path = folder / f"design_{i:0{width}d}.json"
             path.write_text(json.dumps(dump_scene(sc), indent=1) + "\n")
             files.append(str(path))
-    return files
+    return files, missing

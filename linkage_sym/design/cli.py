@@ -7,7 +7,8 @@
                                   --monte-carlo N --tolerance NAME=SIGMA ... [--random-state K])
                       [--metrics LIST] [--output-link LINK] [--trace POINT]
                       [-o OUT.parquet|OUT.csv|-] [--workers N] [--dask ADDRESS|local]
-                      [--plots DIR] [--write-scenes DIR] [--chunk-designs N]
+                      [--plots DIR] [--write-scenes DIR [--scene-rows LIST]]
+                      [--chunk-designs N]
 
 Options are checked (and output paths tested) before anything is computed; a
 problem is one line naming the option, exit status 2.
@@ -82,7 +83,11 @@ def register(sub) -> None:
                    "or a histogram per metric (Monte Carlo, samples)")
     p.add_argument("--write-scenes", metavar="DIR",
                    help="write each design's own scene into DIR (design_<i>.json), to analyse it "
-                   "alone")
+                   "alone; with --scene-rows only some")
+    p.add_argument("--scene-rows", metavar="LIST",
+                   help="the designs whose scenes --write-scenes writes: design numbers (the "
+                   "table's 'design' column) and ranges, comma-separated: 0,5,17 or 10:20 (10 to "
+                   "19, as Python slices) or :100 (the first 100); default every design")
     p.add_argument("--chunk-designs", type=int, metavar="N", help="designs per chunk")
     p.set_defaults(func=cmd_sweep)
 
@@ -96,7 +101,8 @@ def cmd_sweep(args) -> int:
 
 def _option(err: SweepError) -> str:
     names = {"parameters": "--vary", "output": "--output-link", "trace": "--trace",
-             "metrics": "--metrics", "chunk_designs": "--chunk-designs", "scene": "scene"}
+             "metrics": "--metrics", "chunk_designs": "--chunk-designs", "scene": "scene",
+             "scene_rows": "--scene-rows"}
     return f"{names.get(err.field, err.field)}: {err.reason}"
 
 
@@ -130,6 +136,11 @@ def _sweep(args) -> int:
         raise OptionError(f"--chunk-designs: at least 1 design, got {args.chunk_designs}")
     check_outputs(files=[("-o/--output", args.output)],
                   folders=[("--plots", args.plots), ("--write-scenes", args.write_scenes)])
+    rows = None
+    if args.scene_rows is not None:
+        if args.write_scenes is None:
+            raise OptionError("--scene-rows: used only with --write-scenes DIR")
+        rows = parse_rows(args.scene_rows)
     if args.dask is not None:  # the extra's check, before the work
         _require_dask()
     if args.output not in (None, "-") and table_format(args.output) == "parquet":
@@ -153,6 +164,7 @@ def _sweep(args) -> int:
                 tolerance=tol, random_state=args.random_state, output=args.output_link,
                 trace=args.trace, workers=args.workers, dask=args.dask,
                 chunk_designs=args.chunk_designs, write_scenes=args.write_scenes,
+                scene_rows=rows,
                 progress=True)
     out = sys.stdout if args.output != "-" else sys.stderr
     if args.output == "-":
@@ -168,9 +180,41 @@ def _sweep(args) -> int:
         print(line, file=out)
     if args.write_scenes:
         print(f"wrote {len(res.files)} design scene(s) into {args.write_scenes}", file=out)
+        if res.no_scene:
+            shown = ", ".join(str(i) for i in res.no_scene[:10])
+            more = f" and {len(res.no_scene) - 10} more" if len(res.no_scene) > 10 else ""
+            print(f"  no scene for design(s) {shown}{more}: not assembled at the scene's driver "
+                  "values", file=out)
     for w in written:
         print(f"wrote {w}", file=out)
     return 0
+
+
+def parse_rows(text: str) -> list[int]:
+    """``--scene-rows``: design numbers and ranges ``A:B`` (A to B - 1; ``:B`` from 0),
+    comma-separated.
+
+    Examples
+    --------
+    >>> parse_rows("0,5,17"), parse_rows(":3"), parse_rows("10:12,4")
+    ([0, 5, 17], [0, 1, 2], [10, 11, 4])
+    """
+    out = []
+    for part in text.split(","):
+        part = part.strip()
+        a, sep, b = part.partition(":")
+        try:
+            if sep:
+                lo, hi = int(a) if a.strip() else 0, int(b)
+                if hi <= lo:
+                    raise OptionError(f"--scene-rows: {part!r}: an empty range (A:B is A to B - 1)")
+                out += list(range(lo, hi))
+            else:
+                out.append(int(part))
+        except ValueError:
+            raise OptionError(f"--scene-rows: {part!r}: design numbers (0,5,17) or ranges (10:20, "
+                              ":100) are expected") from None
+    return out
 
 
 def _require_dask():

@@ -111,7 +111,8 @@ class Solution:
         return self.XDD[self.model.angle_of[link]]
 
     def traced(self, point):
-        """``(x, y)`` of the traced point ``point`` (NaN where the step is not ``ok``)."""
+        """``(x, y)`` of the traced point ``point`` at every step with positions (``ok``
+        or singular; NaN where unassemblable)."""
         model = self.model
         pt = next(q for q in model.scene.points if q.name == point)
         fr = model.frames[pt.link]
@@ -122,7 +123,7 @@ class Solution:
         th = self.X[model.angle_of[pt.link]]
         x = self.points[a] + np.cos(th) * lx - np.sin(th) * ly
         y = self.points[a + 1] + np.sin(th) * lx + np.cos(th) * ly
-        return np.where(self.ok, x, np.nan), np.where(self.ok, y, np.nan)
+        return np.where(self.pos_ok, x, np.nan), np.where(self.pos_ok, y, np.nan)
 
     def rate_at(self, d, t, col):
         """The rate along the steps of coordinate ``col`` of designs ``d`` at fractional
@@ -419,8 +420,12 @@ class Model:
         CS = (list(C), list(S))
         A, Bqt = self.rates(Pk, Xk, Qk, Tk, CS)
         sing = self.screen(A, Lk)
+        singular = None
         if sing.any():
             bad = np.flatnonzero(sing) if idx is None else idx[sing]
+            # a singular step keeps its positions (as the runtimes' results do)
+            singular = (bad, Xk[:, sing], [v[sing] if np.ndim(v) else v for v in Pk],
+                        [r[sing] for r in Qk], C[:, sing], S[:, sing])
             sol.ok.ravel()[bad] = False
             keep = np.flatnonzero(~sing)
             idx = keep if idx is None else idx[keep]
@@ -452,10 +457,26 @@ class Model:
                             QD=QDo, QDD=QDDo, CS=CS)
         pts = [_full(v, Ko) for v in pts]
         sol.points = list(self._spread_rows(np.array(pts), idx, n))
+        if singular is not None:
+            self._positions_at(sol, *singular)
         if "forces" in need:
             F = self.forces(Pk, pts, Xk, CS, Ko)
             sol.forces = self._spread_rows(F, idx, n)
         return sol
+
+    def _positions_at(self, sol, where, X, P, Q, C, S):
+        """The points function's positions (joints, link frames' origins, centres of mass)
+        at the entries ``where`` of ``sol.points``, whose rates are not defined (singular
+        steps); the other rows stay NaN there."""
+        k = len(where)
+        z, zq = [np.zeros(k)] * self.m, [np.zeros(k)] * len(self.qnames)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            pts = self.call("points", P, X=list(X), XD=z, XDD=z, Q=Q, QD=zq, QDD=zq,
+                            CS=(list(C), list(S)))
+        for key, (a, b) in self.layout.items():
+            if key.endswith(":0") and key.startswith(("joint:", "origin:", "com:")):
+                for r in range(a, b):
+                    sol.points[r].ravel()[where] = _full(pts[r], k)
 
     def _spread_rows(self, V, idx, n):
         """Rows (r, E') at the entries ``idx`` (None: every entry) as (r, n, N), NaN elsewhere."""

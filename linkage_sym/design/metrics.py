@@ -6,14 +6,21 @@
                             scene's driver values
 ``grashof``                 Grashof class of each loop of four links and four ``R`` joints
                             (:func:`linkage_sym.structure.grashof.classify` on the design's
-                            lengths); ``""`` when the design cannot be assembled
+                            lengths, from its parameters: also for a design that cannot be
+                            assembled, the class being a property of the lengths)
 ``K``, ``swing``            the output's limit positions (roots of its rate along the sweep,
                             located between ``ok`` samples as ``analyze --extremes`` does):
-                            ``swing_deg`` its largest minus smallest rotation (degrees);
+                            ``swing_deg`` its largest minus smallest rotation (degrees) over
+                            the ``ok`` steps the design has and the limit positions between
+                            them (a sample wins at the ends of a partial sweep and at the
+                            edges of gaps, as in :func:`~linkage_sym.numeric.extremes.find_extremes`);
                             ``K`` the stroke-time ratio, the larger over the smaller driver
                             interval between the two limit positions of the driver's first
-                            turn (NaN unless the sweep turns the one driver fully, every step
-                            of that turn is ``ok`` and it has exactly two limit positions)
+                            turn, for a scene driven by one ``R`` joint.  ``K`` needs the
+                            sweep to turn the driver fully, every step of that turn ``ok``
+                            and exactly two limit positions in it, a maximum and a minimum:
+                            where it has no value, ``K_note`` says which of
+                            :data:`K_NOTES` failed (empty where ``K`` has a value)
 ``min_transmission_deg``    the smallest ``min(gamma, 180 - gamma)`` of every RRR dyad's
                             transmission angle (:mod:`linkage_sym.numeric.transmission`) over
                             the steps with positions (degrees)
@@ -23,11 +30,17 @@
 ``rms_shaking_force``       RMS over the ``ok`` steps of ``|sum m a_G|`` (N): the frame force
                             with inertia as the only effect
 ``rms_shaking_moment``      RMS of the shaking moment about the origin, ``-dH_O/dt`` (N m)
-``path``                    a traced point's ``x``, ``y`` at every step (NaN where not ``ok``)
+``path``                    a traced point's ``x``, ``y`` at every step with positions: ``ok``
+                            and singular steps (whose positions are defined, as ``analyze``
+                            keeps them); NaN at unassemblable steps
 ==========================  ===============================================================
 
 Forces are those of the scene's effects (inertia, gravity, loads) at its
-speeds; each design's masses, loads and dimensions are its own.
+speeds; each design's masses, loads and dimensions are its own.  A metric is
+empty (NaN) only where the design has no step it is computed from: every metric
+but ``grashof`` and ``K_note`` of a design that cannot be assembled (``assemblable``
+0), the force, shaking and path metrics of a design without an ``ok`` step, ``K``
+for the reason ``K_note`` gives.
 """
 
 from __future__ import annotations
@@ -40,6 +53,7 @@ from linkage_sym.design.errors import SweepError
 from linkage_sym.model import GROUND
 from linkage_sym.numeric.transmission import rrr_dyads
 from linkage_sym.structure.grashof import classify, four_bar_loops
+from linkage_sym.structure.parameters import ParameterTable, evaluate
 
 __all__ = ["METRICS", "DEFAULT_METRICS", "MetricPlan"]
 
@@ -52,6 +66,18 @@ DEFAULT_METRICS = ("assemblable", "grashof", "K", "swing", "min_transmission_deg
 _NEEDS = {"K": {"rate_t"}, "swing": {"rate_t"}, "peak_driving": {"forces"},
           "rms_driving": {"forces"}, "peak_reaction": {"forces"},
           "rms_shaking_force": {"points"}, "rms_shaking_moment": {"points"}, "path": {"points"}}
+
+K_NOTES = {
+    "assembly": "not assembled at the scene's driver values",
+    "no ok step": "no step is ok",
+    "partial": "the sweep does not turn the driver a full turn",
+    "steps": "a step of the driver's turn is not ok (unassemblable or singular)",
+    "not located": "a limit position was not located (Newton on the output's rate did not converge)",
+    "count": "the output has not exactly two limit positions in the driver's turn",
+    "kinds": "the two limit positions are both maxima or both minima",
+}
+"""Why ``K`` has no value: the ``K_note`` column holds one of these (empty where ``K`` has a
+value)."""
 
 XTOL = 1e-12
 """Limit positions are located to this many steps (plus 4 ulp of the position)."""
@@ -103,6 +129,11 @@ class MetricPlan:
         self.forces = "forces" in self.need
         if "rate_t" in self.need:
             self.output = self._output(output)
+        if "K" in self.metrics and not (len(scene.drivers) == 1
+                                        and scene.joint(scene.drivers[0].joint).type == "R"):
+            raise SweepError("metrics", f"K: the stroke-time ratio of a driver turning at a "
+                                        f"constant speed; scene {scene.name!r} is not driven by "
+                                        "one R joint")
         self.dyads = []
         if "min_transmission_deg" in self.metrics:
             for inner, e1, e2 in rrr_dyads(scene):
@@ -162,6 +193,8 @@ class MetricPlan:
                 out += self._grashof_names()
             elif m == "swing":
                 out.append("swing_deg")
+            elif m == "K":
+                out += ["K", "K_note"]
             elif m in ("peak_driving", "rms_driving"):
                 out += [f"{m}_{d.joint}" for d in self.scene.drivers]
             elif m == "peak_reaction":
@@ -186,11 +219,10 @@ class MetricPlan:
             if m == "assemblable":
                 cols[m] = ok.sum(axis=1) / sol.N
             elif m == "grashof":
-                cols.update(self._grashof(sol))
+                cols.update(self._grashof(model, sol))
             elif m in ("K", "swing"):
                 if "swing_deg" not in cols:
-                    K, swing = self._limits(model, sol)
-                    cols["K"], cols["swing_deg"] = K, swing
+                    cols["K"], cols["swing_deg"], cols["K_note"] = self._limits(model, sol)
             elif m == "min_transmission_deg":
                 cols[m] = self._transmission(model, sol)
             elif m in ("peak_driving", "rms_driving"):
@@ -210,16 +242,19 @@ class MetricPlan:
                 cols.update(self._path(model, sol))
         return {c: cols[c] for c in self.columns(sol.N)}
 
-    def _grashof(self, sol) -> dict:
+    def _grashof(self, model, sol) -> dict:
+        """The class of each loop from the design's lengths (its parameters: a property of
+        the lengths, given also for a design that cannot be assembled)."""
         out = {}
         for name, lp in zip(self._grashof_names(), self.loops):
-            pts = [sol.joints0[j] for j in lp.joints]
-            lengths = np.array([np.hypot(*(pts[i] - pts[i - 1])) for i in range(4)])  # (4, n)
+            lengths = np.array([np.broadcast_to(_distance_on(model, sol.P, lp.links[i],
+                                                             lp.joints[i - 1], lp.joints[i]),
+                                                (sol.n,)) for i in range(4)])  # (4, n)
             fixed = 0 if lp.links[0] == GROUND else None
             col = np.empty(sol.n, dtype=object)
             for d in range(sol.n):
                 col[d] = (classify(lengths[:, d], fixed, lp.links).name
-                          if sol.assembled[d] and np.isfinite(lengths[:, d]).all() else "")
+                          if np.isfinite(lengths[:, d]).all() else "")
             out[name] = col.astype(str)
         return out
 
@@ -294,22 +329,59 @@ class MetricPlan:
         np.fmin.at(lo, d[good], v[good])
         swing = np.degrees(hi - lo)
         K = np.full(n, np.nan)
-        if len(model.qnames) == 1 and model.scene.joint(model.qnames[0]).type == "R" and N > 1:
-            step = abs(model.slope[0])
-            if step > 0 and step * (N - 1) >= 2 * math.pi * (1 - 1e-12):
-                T = 2 * math.pi / step  # steps of one turn
-                last = min(N - 1, int(math.ceil(T)))
-                full = ok[:, : last + 1].all(axis=1)
-                first = good & (t < T)
-                cnt = np.bincount(d[first], minlength=n)
-                for k in np.flatnonzero(full & (cnt == 2)):
-                    sel = np.flatnonzero(first & (d == k))
-                    if kind[sel[0]] == kind[sel[1]]:
-                        continue
-                    dq = abs(t[sel[1]] - t[sel[0]]) * step
-                    a, b = dq, 2 * math.pi - dq
-                    K[k] = max(a, b) / min(a, b)
-        return K, swing
+        note = np.full(n, K_NOTES["no ok step"], dtype=object)
+        note[~sol.assembled] = K_NOTES["assembly"]
+        step = abs(model.slope[0]) if N > 1 else 0.0
+        if not (step > 0 and step * (N - 1) >= 2 * math.pi * (1 - 1e-12)):
+            note[ok.any(axis=1)] = K_NOTES["partial"]
+            return K, swing, note.astype(str)
+        T = 2 * math.pi / step  # steps of one turn
+        last = min(N - 1, int(math.ceil(T)))
+        full = ok[:, : last + 1].all(axis=1)
+        note[ok.any(axis=1) & ~full] = K_NOTES["steps"]
+        in_turn = i < T
+        first = good & (t < T)
+        cnt = np.bincount(d[first], minlength=n)
+        lost = np.bincount(d[in_turn & ~good], minlength=n) > 0
+        note[full & lost] = K_NOTES["not located"]
+        note[full & ~lost & (cnt != 2)] = K_NOTES["count"]
+        for k in np.flatnonzero(full & ~lost & (cnt == 2)):
+            sel = np.flatnonzero(first & (d == k))
+            if kind[sel[0]] == kind[sel[1]]:
+                note[k] = K_NOTES["kinds"]
+                continue
+            dq = abs(t[sel[1]] - t[sel[0]]) * step
+            a, b = dq, 2 * math.pi - dq
+            K[k] = max(a, b) / min(a, b)
+            note[k] = ""
+        return K, swing, note.astype(str)
+
+
+def _in_frame(model, P, link, joint):
+    """Coordinates of ``joint`` in ``link``'s frame (the ground's: global) from the designs'
+    parameters (:class:`~linkage_sym.structure.parameters.ParameterTable`'s recipes; the
+    scene's values where the derivation keeps a constant)."""
+    scene = model.scene
+    if link == GROUND:
+        at = scene.joint(joint).at
+        return model.value(P, ("x", joint), at[0]), model.value(P, ("y", joint), at[1])
+    names = ParameterTable(scene).point(link, joint)
+    if names is None:  # the frame's origin
+        return 0.0, 0.0
+    recipe = ("l", link, joint)
+    length = model.value(P, recipe, evaluate(scene, recipe))
+    angle = 0.0
+    if names[1] is not None:
+        recipe = ("beta", link, joint)
+        angle = model.value(P, recipe, evaluate(scene, recipe))
+    return length * np.cos(angle), length * np.sin(angle)
+
+
+def _distance_on(model, P, link, j1, j2):
+    """Distance between joints ``j1`` and ``j2`` of ``link`` in the designs ``P``."""
+    x1, y1 = _in_frame(model, P, link, j1)
+    x2, y2 = _in_frame(model, P, link, j2)
+    return np.hypot(np.subtract(x2, x1), np.subtract(y2, y1))
 
 
 def _col(v):

@@ -156,7 +156,7 @@ class PlanSolution(Solution):
     def traced(self, point):
         x = self._stack(lambda r: r.points[point].position[:, 0])
         y = self._stack(lambda r: r.points[point].position[:, 1])
-        return np.where(self.ok, x, np.nan), np.where(self.ok, y, np.nan)
+        return np.where(self.pos_ok, x, np.nan), np.where(self.pos_ok, y, np.nan)
 
     def rate_at(self, d, t, col):
         """As :meth:`Model.rate_at`: each design's kinematics plan run at its points ``t``

@@ -52,6 +52,8 @@ class SweepResult:
     one_at_a_time : tuple of str
         The scene's groups without a closed form: when not empty, each design was
         solved on its own by the numeric plan (:mod:`linkage_sym.design.newton_groups`).
+    no_scene : tuple of int
+        Designs whose scene was asked for but that cannot be assembled (no scene).
     """
 
     columns: dict
@@ -62,6 +64,7 @@ class SweepResult:
     scene: str = ""
     files: list = field(default_factory=list)
     one_at_a_time: tuple = ()
+    no_scene: tuple = ()
 
     def __len__(self) -> int:
         return len(self.columns["design"])
@@ -124,8 +127,14 @@ def read_table(path) -> dict:
     out = {}
     for k, name in enumerate(head):
         col = [r[k] for r in body]
-        try:
-            out[name] = np.array([float(x) if x != "" else math.nan for x in col])
-        except ValueError:
+        if is_text(name):
             out[name] = np.array(col, dtype=str)
+            continue
+        out[name] = np.array([float(x) if x != "" else math.nan for x in col])
     return out
+
+
+def is_text(column: str) -> bool:
+    """Whether a sweep's column holds text (the Grashof classes, ``K_note``), not numbers
+    (in CSV an empty field is an empty text there, a NaN elsewhere)."""
+    return column == "K_note" or column.startswith("grashof")
