@@ -322,8 +322,10 @@ class MetricPlan:
         raw = sol.rate_at(d, t, col)[2] if len(d) else np.zeros(0)
         v = raw - sol.X0[col][d]
         v = v + 2 * math.pi * np.round((rot[d, i] - v) / (2 * math.pi))
-        hi = _fmax(np.where(ok, rot, np.nan))
-        lo = _fmin(np.where(ok, rot, np.nan))
+        # the positions are NaN where a step has none: only singular steps need masking
+        rot_ok = rot if ok is sol.pos_ok else np.where(ok, rot, np.nan)
+        hi = _fmax(rot_ok)
+        lo = _fmin(rot_ok)
         good = np.isfinite(v)
         np.fmax.at(hi, d[good], v[good])
         np.fmin.at(lo, d[good], v[good])
@@ -345,15 +347,19 @@ class MetricPlan:
         lost = np.bincount(d[in_turn & ~good], minlength=n) > 0
         note[full & lost] = K_NOTES["not located"]
         note[full & ~lost & (cnt != 2)] = K_NOTES["count"]
-        for k in np.flatnonzero(full & ~lost & (cnt == 2)):
-            sel = np.flatnonzero(first & (d == k))
-            if kind[sel[0]] == kind[sel[1]]:
-                note[k] = K_NOTES["kinds"]
-                continue
-            dq = abs(t[sel[1]] - t[sel[0]]) * step
-            a, b = dq, 2 * math.pi - dq
-            K[k] = max(a, b) / min(a, b)
-            note[k] = ""
+        # the roots come design by design (np.nonzero is row-major): a design's two are
+        # consecutive among those of the first turn
+        sel = np.flatnonzero(first)
+        start = np.concatenate([[0], np.cumsum(cnt)[:-1]])
+        ks = np.flatnonzero(full & ~lost & (cnt == 2))
+        j0, j1 = sel[start[ks]], sel[start[ks] + 1]
+        same = kind[j0] == kind[j1]
+        note[ks[same]] = K_NOTES["kinds"]
+        ks, j0, j1 = ks[~same], j0[~same], j1[~same]
+        a = np.abs(t[j1] - t[j0]) * step
+        b = 2 * math.pi - a
+        K[ks] = np.maximum(a, b) / np.minimum(a, b)
+        note[ks] = ""
         return K, swing, note.astype(str)
 
 
