@@ -741,15 +741,15 @@ def test_progress_bar_only_on_a_terminal(monkeypatch):
             pass
 
     monkeypatch.setattr(sys, "stderr", Tty(False))
-    assert output._progress_bar(100, True) is None
+    assert output.progress_bar(100, True) is None
     monkeypatch.setattr(sys, "stderr", Tty(True))
-    assert output._progress_bar(100, False) is None
+    assert output.progress_bar(100, False) is None
     pytest.importorskip("tqdm")
-    bar = output._progress_bar(100, True)
+    bar = output.progress_bar(100, True)
     assert bar is not None and bar.total == 100
     bar.close()
     monkeypatch.setitem(sys.modules, "tqdm", None)  # the optional extra is not installed
-    assert output._progress_bar(100, True) is None
+    assert output.progress_bar(100, True) is None
 
 
 def test_the_numeric_core_loads_neither_tqdm_nor_pyarrow():

@@ -20,12 +20,12 @@ from __future__ import annotations
 
 import functools
 import os
-import sys
 from dataclasses import dataclass
 
 import numpy as np
 
 from linkage_sym.design.errors import SweepError
+from linkage_sym.output import chunk_bounds, progress_bar
 
 __all__ = ["Spec", "evaluate_chunk", "run_chunks", "chunk_bounds"]
 
@@ -92,28 +92,12 @@ def evaluate_chunk(spec: Spec, values: np.ndarray) -> dict:
     return plan.compute(model, sol)
 
 
-def chunk_bounds(n: int, size: int) -> list[tuple[int, int]]:
-    """``(start, stop)`` of the chunks of ``n`` designs, ``size`` designs each."""
-    return [(a, min(n, a + size)) for a in range(0, n, size)]
-
-
-def _bar(total: int, enabled: bool):
-    if not enabled or not sys.stderr.isatty():
-        return None
-    try:
-        from tqdm import tqdm
-    except ImportError:  # the optional extra `progress` is not installed: no bar
-        return None
-    return tqdm(total=total, unit="design", unit_scale=True, file=sys.stderr, delay=1.0,
-                leave=False, dynamic_ncols=True)
-
-
 def run_chunks(spec: Spec, values: np.ndarray, size: int, workers=None, dask=None,
                progress: bool = False) -> list[dict]:
     """Evaluate every chunk; the chunks' column dicts in order."""
     bounds = chunk_bounds(len(values), size)
     parts = [np.ascontiguousarray(values[a:b]) for a, b in bounds]
-    bar = _bar(len(values), progress)
+    bar = progress_bar(len(values), progress, unit="design")
     out: list = [None] * len(parts)
 
     def done(k, res):

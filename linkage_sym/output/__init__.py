@@ -73,7 +73,7 @@ from linkage_sym.output.writers import (
 __all__ = [
     "FORMATS", "SUFFIXES", "OutputError", "output_format", "require_pyarrow", "available_memory",
     "bytes_per_step", "chunk_steps", "check_whole", "Sweep", "plan_sweep", "compiled_sweep",
-    "chunk_bounds", "ChunkError", "write_sweep", "SweepStats", "Peak", "ProgressFn",
+    "chunk_bounds", "progress_bar", "ChunkError", "write_sweep", "SweepStats", "Peak", "ProgressFn",
 ]
 
 
@@ -294,12 +294,13 @@ def compiled_sweep(mechanism) -> Sweep:
                  dict(mechanism.q0), _limits(mechanism.scene, mechanism.L))
 
 
-def chunk_bounds(n_steps: int, size: int):
-    """``(start, stop)`` of each chunk of ``size`` steps."""
-    return [(a, min(n_steps, a + size)) for a in range(0, n_steps, size)]
+def chunk_bounds(n: int, size: int) -> list[tuple[int, int]]:
+    """``(start, stop)`` of each chunk of ``size`` items (steps of a sweep, designs of a
+    design sweep)."""
+    return [(a, min(n, a + size)) for a in range(0, n, size)]
 
 
-def _progress_bar(total: int, enabled: bool):
+def progress_bar(total: int, enabled: bool, unit: str = "step"):
     """A tqdm bar on standard error: only on a terminal, only after a second, only if installed."""
     if not enabled or not sys.stderr.isatty():
         return None
@@ -307,7 +308,7 @@ def _progress_bar(total: int, enabled: bool):
         from tqdm import tqdm
     except ImportError:  # the optional extra `progress` is not installed: no bar
         return None
-    return tqdm(total=total, unit="step", unit_scale=True, file=sys.stderr, delay=1.0,
+    return tqdm(total=total, unit=unit, unit_scale=True, file=sys.stderr, delay=1.0,
                 leave=False, dynamic_ncols=True)
 
 
@@ -418,7 +419,7 @@ def write_sweep(sweep: Sweep, path=None, fmt: str = "json", *, indent: int | Non
             writer = NpzWriter(tmp)
         else:
             writer = ParquetWriter(tmp)
-        bar = _progress_bar(N, progress)
+        bar = progress_bar(N, progress)
         advance = bar.update if bar is not None else (lambda n: None)
         writer.begin(stats)
         prev = None
