@@ -67,7 +67,7 @@ from linkage_sym.numeric.continuation import (
 
 MIN_BLOCK = 64
 """Smallest block of points solved at once (and the first one after a stop)."""
-GRAM_RATIO = 1e-2
+GRAM_RATIO = 0.1
 """Reciprocal condition numbers at least this come from the eigenvalues of ``J^T J``."""
 MAX_GAP = 64
 """Largest number of points of a gap searched at once."""
@@ -83,10 +83,10 @@ def reciprocal_condition(J: np.ndarray) -> np.ndarray:
     """``sigma_min / sigma_max`` of every matrix of ``J`` (k, n, n), as the walk's SVD gives it.
 
     From the extreme eigenvalues of ``J^T J`` (``numpy.linalg.eigvalsh``, about
-    half the cost of the SVD of small matrices) where the ratio is at least
-    :data:`GRAM_RATIO`: there their rounding (``~n eps lambda_max``) moves it
-    by less than ``1e-11`` relative.  The others, and any non-finite one, by
-    the SVD itself.
+    half the cost of the SVD of small matrices) where the ratio ``r`` is at
+    least :data:`GRAM_RATIO`: their rounding (``~n eps lambda_max``) moves it by
+    about ``n eps / (2 r^2)`` relative, below ``1e-13`` there.  The others, and
+    any non-finite one, by the SVD itself (``eps / r`` relative).
     """
     J = np.asarray(J, dtype=float)
     out = np.full(len(J), np.nan)
