@@ -237,8 +237,23 @@ def _scales(columns):
     return out
 
 
-def assert_same_as_whole(whole: Analysis, got: dict, what: str):
-    """Columns ``got`` (name -> array, as read back from a file) equal the whole run's."""
+ACCURACY_OF = {"forces": ("reaction", "driving", "frame", "moment"),
+               "acceleration": ("acceleration", "com_acceleration", "alpha"),
+               "velocity": ("velocity", "com_velocity", "omega"),
+               "position": ("position", "com", "rotation")}
+
+
+def assert_same_as_whole(whole: Analysis, got: dict, what: str, newton: bool = False):
+    """Columns ``got`` (name -> array, as read back from a file) equal the whole run's.
+
+    ``newton``: a Newton group's continuation solves a chunk's points in other blocks than
+    the whole run's (``numeric/batched_path.py``), so their roots agree to rounding, not bit
+    for bit, and an ill-conditioned step amplifies that; there a value may differ by the
+    whole run's own accuracy estimate of the step, where that is larger than ``REL``
+    (the triad's step 69, condition 3e3: 3e-11 of the largest reaction, estimate 9e-10),
+    and the estimates themselves (condition numbers, the superposition's amplification)
+    1e-10 of their value.
+    """
     scales = _scales(whole.columns())
     assert list(got["status"]) == whole.status.tolist(), what
     for name, v, _ in whole.columns():
@@ -246,9 +261,17 @@ def assert_same_as_whole(whole: Analysis, got: dict, what: str):
             continue
         a, b = np.asarray(v, float), np.asarray(got[name], float)
         assert np.array_equal(np.isnan(a), np.isnan(b)), f"{what}: {name}: NaN at other steps"
-        tol = REL * scales[_field(name)]
-        err = np.abs(a - b)[~np.isnan(a)]
-        assert err.max(initial=0.0) <= tol, f"{what}: {name} off by {err.max():.3g} > {tol:.3g}"
+        rel = np.full(len(a), REL)
+        kind = [k for k, fields in ACCURACY_OF.items()
+                if not name.startswith("accuracy.") and _field(name).split(".")[0] in fields]
+        if newton and kind and whole.accuracy is not None:
+            rel = np.fmax(rel, whole.accuracy[kind[0]])
+        tol = rel * scales[_field(name)]
+        if newton and name.startswith("accuracy."):
+            tol = np.fmax(tol, 1e-10 * np.abs(a))
+        err = np.abs(a - b)
+        bad = ~np.isnan(a) & (err > tol)
+        assert not bad.any(), f"{what}: {name} off by {err[bad].max():.3g} > {tol[bad].min():.3g}"
 
 
 def _npz_columns(path):
@@ -461,7 +484,7 @@ def test_chunked_equals_whole_on_every_example(name, tmp_path):
         if chunk == 1 and name in NEWTON:
             continue  # (one step a chunk: each walks its own path from the assembly; slow)
         stats, cols = _chunked(d, tmp_path, chunk)
-        assert_same_as_whole(whole, cols, f"{name}, chunks of {chunk}")
+        assert_same_as_whole(whole, cols, f"{name}, chunks of {chunk}", newton=name in NEWTON)
         assert stats.warnings == whole.warnings
         assert [str(m) for m in cols["message"]] == [m or "" for m in whole.messages]
 
@@ -475,7 +498,7 @@ def test_chunked_equals_whole_symbolic_and_global(tmp_path):
         whole = (linkage_sym.compile_mechanism(scene).run() if method == "symbolic"
                  else compile_plan(scene).run(method=method))
         stats, cols = _chunked(d, tmp_path, 50, method)
-        assert_same_as_whole(whole, cols, f"{name} ({method})")
+        assert_same_as_whole(whole, cols, f"{name} ({method})", newton=name != "watt_sixbar")
         assert stats.warnings == whole.warnings
 
 
@@ -488,7 +511,7 @@ def test_rotations_continue_over_turns_across_chunks(name, stop, steps, tmp_path
     d["drivers"][0].update(stop_deg=stop, steps=steps)
     whole = compile_plan(linkage_sym.load_scene(d)).run()
     _, cols = _chunked(d, tmp_path, 100)
-    assert_same_as_whole(whole, cols, f"{name} over {stop} deg")
+    assert_same_as_whole(whole, cols, f"{name} over {stop} deg", newton=name in NEWTON)
     for link in whole.links:
         rot = cols[f"links.{link}.rotation"]
         assert np.abs(np.diff(rot)).max() < math.radians(30), link  # no jump of a turn
@@ -535,7 +558,7 @@ def test_newton_jump_warnings_merged_as_a_whole_run_words_them(chunk, tmp_path):
     assert any("at step 14 (reached from step 13)" in w for w in whole.warnings)
     stats, cols = _chunked(d, tmp_path, chunk)
     assert stats.warnings == whole.warnings
-    assert_same_as_whole(whole, cols, f"triad, chunks of {chunk}")
+    assert_same_as_whole(whole, cols, f"triad, chunks of {chunk}", newton=True)
 
 
 def test_condition_warning_merged(tmp_path):
