@@ -51,18 +51,40 @@ class Link:
 
 @dataclass(frozen=True)
 class Joint:
-    """A lower pair between ``links[0]`` and ``links[1]``.
+    """A lower pair between ``links[0]`` and ``links[1]``, or a gear mesh.
 
     For a ``P`` joint ``axis`` is the slide direction in radians, fixed on
     ``links[0]``; ``at`` is the reference point, fixed on ``links[1]``.
     ``axis`` is ``None`` for an ``R`` joint.
+
+    A ``G`` joint (gear mesh, an extension of the format: a higher pair) joins
+    two gears ``links[0]`` and ``links[1]`` turning on pivots (``R`` joints)
+    of the ``carrier`` link, with pitch radii ``radii``; they roll without
+    slip, ``ra (theta_a - theta_c) = -+ rb (theta_b - theta_c)`` (minus for an
+    external mesh, plus for an ``internal`` one, whose larger gear is the
+    ring).  ``at`` is the pitch point in the assembly configuration, fixed on
+    the carrier; ``pressure_angle`` (radians) tilts the line of action from
+    the common tangent.  ``pivots`` names the ``R`` joint each gear turns on:
+    one joining it to the carrier, or one joining it to a link to which the
+    carrier is pinned at the same point (a sun coaxial with its arm on the
+    ground).  These fields are ``None``/``False`` for R and P joints.
     """
 
     name: str
-    type: str  # "R" or "P"
+    type: str  # "R", "P" or "G"
     links: tuple[str, str]
     at: Point
     axis: float | None = None
+    carrier: str | None = None
+    radii: tuple[float, float] | None = None
+    internal: bool = False
+    pressure_angle: float | None = None
+    pivots: tuple[str, str] | None = None
+
+    @property
+    def moves_with(self) -> str:
+        """The link ``at`` is fixed on: ``links[1]``, or a mesh's carrier."""
+        return self.carrier if self.type == "G" else self.links[1]
 
 
 @dataclass(frozen=True)
@@ -177,6 +199,16 @@ class Scene:
             if joint.name == name:
                 return joint
         raise KeyError(name)
+
+    @property
+    def meshes(self) -> tuple[Joint, ...]:
+        """The gear meshes (``G`` joints), in scene order."""
+        return tuple(j for j in self.joints if j.type == "G")
+
+    def gear_pivots(self, mesh: Joint) -> tuple[Joint, Joint]:
+        """The ``R`` joints on which a mesh's two gears turn (see :class:`Joint`)."""
+        a, b = mesh.pivots  # type: ignore[misc]
+        return self.joint(a), self.joint(b)
 
     @property
     def steps(self) -> int:

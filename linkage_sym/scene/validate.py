@@ -19,6 +19,7 @@ from collections.abc import Mapping
 from typing import Any, NamedTuple
 
 from linkage_sym.errors import SceneError
+from linkage_sym.scene.gears import GEAR_KEYS, MeshFields, place_meshes, read_mesh_fields
 from linkage_sym.scene.schedules import SCHEDULE_KEYS, read_schedule
 from linkage_sym.scene.fields import (
     _ANGLE,
@@ -48,14 +49,14 @@ __all__ = ["parse_scene"]
 
 TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs", "points")
 LINK_KEYS = ("name", "mass", "com", "inertia")
-JOINT_KEYS = ("name", "type", "links", "at", "axis_deg")
+JOINT_KEYS = ("name", "type", "links", "at", "axis_deg", *GEAR_KEYS)
 R_DRIVER_KEYS = ("toward", "start_deg", "stop_deg")
 P_DRIVER_KEYS = ("start", "stop")
 DRIVER_KEYS = ("joint", *R_DRIVER_KEYS, *P_DRIVER_KEYS, "steps", "speed", "acceleration")
 LOAD_KEYS = ("link", "force", "at", "torque")
 POINT_KEYS = ("name", "link", "at")
 EFFECTS_KEYS = ("inertia", "gravity", "loads")
-JOINT_TYPES = ("R", "P")
+JOINT_TYPES = ("R", "P", "G")
 
 COINCIDENCE_TOLERANCE = 1e-9
 """Two joint points closer than this fraction of the mechanism's size coincide."""
@@ -227,7 +228,8 @@ class _SceneReader(FieldReader):
             return ()
         self.joints = {}
         structure_ok = True
-        joints = []
+        joints: list[Joint | None] = []
+        meshes: list[MeshFields] = []  # gear meshes: placed once every pivot is read
         for i, entry in enumerate(entries):
             path = f"joints[{i}]"
             before = len(self.problems)
@@ -242,10 +244,19 @@ class _SceneReader(FieldReader):
                 structure_ok = False
             jtype = self.joint_type(entry, path)
             pair = self.joint_links(entry, path)
-            at = self.point(entry, "at", path, position=True)
-            self.joint_points.append(at)
+            gear = None
+            if jtype == "G":  # a gear mesh: 'at' is its pitch point, computed when left out
+                at = self.point(entry, "at", path, default=None)
+                names = self.link_index
+                gear = read_mesh_fields(self, entry, path, pair, names)
+            else:
+                at = self.point(entry, "at", path, position=True)
+                self.joint_points.append(at)
+                self.forbid(entry, path, GEAR_KEYS, f"on a {jtype or 'non-G'} joint (only a gear mesh, type G)")
             axis = None
-            if jtype == "P":
+            if jtype == "G" and "axis_deg" in entry:
+                self.add(f"{path}.axis_deg", "not allowed on a gear mesh (only a P joint has an axis)")
+            elif jtype == "P":
                 why = "a P joint gives its slide direction"
                 axis = _radians(self.number(entry, "axis_deg", path, why=why, **_ANGLE))
             elif jtype == "R" and "axis_deg" in entry:
@@ -253,10 +264,24 @@ class _SceneReader(FieldReader):
             if name is not None and name not in self.joints:
                 self.joints[name] = _JointInfo(i, jtype, pair, at)
             structure_ok = structure_ok and None not in (name, jtype, pair)
-            if len(self.problems) == before:
+            if gear is not None and None not in gear:
+                if len(self.problems) == before:
+                    meshes.append(MeshFields(i, name, pair, at, *gear))
+                    joints.append(None)
+            elif len(self.problems) == before:
                 joints.append(Joint(name, jtype, pair, at, axis))
+        if meshes:
+            placed = place_meshes(self, meshes, [j for j in joints if j is not None])
+            for k, m in enumerate(meshes):
+                if m.index in placed:
+                    self.joint_points.append(placed[m.index].at)
+                    self.joints[m.name] = self.joints[m.name]._replace(at=placed[m.index].at)
+            order = iter(m.index for m in meshes)
+            joints = [placed.get(next(order)) if j is None else j for j in joints]
+            if len(placed) < len(meshes):
+                self.joint_points.append(None)  # a mesh without its pitch point: no size check
         self.joints_ok = structure_ok
-        return tuple(joints)
+        return tuple(j for j in joints if j is not None)
 
     def read_drivers(self, data: Mapping[str, Any]) -> tuple[Driver, ...]:
         entries = self.array(data, "drivers", "")
@@ -281,6 +306,10 @@ class _SceneReader(FieldReader):
                 info = self.joints.get(joint)
                 if info is None:
                     self.add(f"{path}.joint", f"unknown joint '{joint}'{_suggest(joint, self.joints)}")
+                elif info.type == "G":
+                    self.add(f"{path}.joint", f"joint '{joint}' is a gear mesh; drive a gear's "
+                             "pivot (an R joint) instead")
+                    info = None
                 elif joint in driven:
                     first = driven[joint]
                     self.add(f"{path}.joint", f"joint '{joint}' already has a driver (drivers[{first}])")
@@ -374,7 +403,8 @@ class _SceneReader(FieldReader):
             elif "force" not in entry and "torque" not in entry:
                 self.add(path, "a load needs a 'force' (with 'at') or a 'torque'")
             schedule = read_schedule(self, entry, path, drivers)
-            if len(self.problems) == before:
+            # no schedule without a problem of its own: the drivers it follows were refused
+            if len(self.problems) == before and schedule is not None:
                 table, active, driver, period = schedule
                 loads.append(Load(link, force, at, torque, table, active, driver, period))
         return tuple(loads)
@@ -463,6 +493,11 @@ class _SceneReader(FieldReader):
             return toward
         if toward == joint:
             self.add(field, f"must name a joint other than the driven joint '{joint}'")
+            return toward
+        if other.type == "G":  # the gear's radius to the mesh's pitch point in the assembly
+            if info.links is not None and other.links is not None and info.links[1] not in other.links:
+                self.add(field, f"gear mesh '{toward}' does not mesh link '{info.links[1]}' "
+                         f"(links[1] of the driven joint '{joint}')")
             return toward
         if info.links is not None and other.links is not None:
             driven_link = info.links[1]
@@ -567,14 +602,18 @@ class _SceneReader(FieldReader):
     def check_mobility(self, n_drivers: int) -> None:
         """Gruebler-Kutzbach: the mobility must equal the number of drivers."""
         assert self.link_index is not None and self.joints is not None
-        n_links, n_joints = len(self.link_index), len(self.joints)
-        mobility = 3 * n_links - 2 * n_joints
+        n_links = len(self.link_index)
+        n_meshes = sum(j.type == "G" for j in self.joints.values())
+        n_joints = len(self.joints) - n_meshes
+        mobility = 3 * n_links - 2 * n_joints - n_meshes
         if mobility != n_drivers:
+            higher = f" - {n_meshes}" if n_meshes else ""
+            meshes = f", {n_meshes} gear meshes (higher pairs)" if n_meshes else ""
             self.add(
                 "drivers",
                 f"{n_drivers} driver{'s' if n_drivers != 1 else ''} given but the mobility is "
-                f"M = 3*{n_links} - 2*{n_joints} = {mobility} (Gruebler-Kutzbach, {n_links} moving "
-                f"links, {n_joints} joints); the number of drivers must equal M",
+                f"M = 3*{n_links} - 2*{n_joints}{higher} = {mobility} (Gruebler-Kutzbach, {n_links} "
+                f"moving links, {n_joints} joints{meshes}); the number of drivers must equal M",
             )
 
     # -- field readers: report a problem and return None when invalid ------

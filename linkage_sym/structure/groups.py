@@ -8,6 +8,13 @@ driven input links (1 link, a joint and a driver), the dyads (2 links,
 3 joints), the class-III triads (4 links, 6 joints) and any larger or driven
 group, without a catalogue of shapes.
 
+A gear mesh (``G`` joint, an extension of the format) is a higher pair: one
+equation, linking the angles of its two gears and their carrier.  Groups
+containing meshes close by the same count (``3 n = 2 p + h`` for ``n``
+links, ``p`` lower pairs and ``h`` meshes): a gear turning on a pivot of a
+known carrier and meshing with a known gear is a one-link group (kind
+``"gear"``), a planet with its carrier driven through the sun a two-link one.
+
 A subset with *more* equations than unknowns is an over-constrained
 sub-chain; a mechanism for which no subset closes is under-determined
 somewhere even if its overall mobility matches its drivers.  Both are
@@ -49,8 +56,10 @@ class Group:
     kind : str
         ``"input"`` (one link set by a driver), ``"dyad"``, ``"triad"``
         (class-III group of a ternary link and three binary links),
-        ``"driven"`` (a group containing a relative driver, e.g. an actuator)
-        or ``"group"`` (any other Assur group, solved by Newton).
+        ``"driven"`` (a group containing a relative driver, e.g. an actuator),
+        ``"gear"`` (a group containing a gear mesh: one gear on its pivot, or
+        several links, e.g. a planet and its carrier) or ``"group"`` (any
+        other Assur group, solved by Newton).
     assur_class : int or None
         2 for dyads, 3 for triads, the size of the largest closed contour of
         internal joints for larger groups; ``None`` for input links.
@@ -78,6 +87,8 @@ class Group:
             return "input link"
         if self.kind == "driven":
             return "driven group"
+        if self.kind == "gear":
+            return "gear" if len(self.links) == 1 else "gear group"
         roman = {4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VIII"}
         return f"group (class {roman.get(self.assur_class, self.assur_class)})"
 
@@ -99,26 +110,36 @@ class Decomposition:
 
 @dataclass(frozen=True)
 class _Item:
-    """One constraint of the structure: a joint (2 equations) or a driver (1)."""
+    """One constraint of the structure: a joint (2 equations), a driver or a gear mesh (1).
+
+    A mesh's ``links`` are its two gears and its carrier.
+    """
 
     name: str
     is_driver: bool
-    links: tuple[str, str]
+    links: tuple[str, ...]
+    is_mesh: bool = False
 
     @property
     def equations(self) -> int:
-        return 1 if self.is_driver else 2
+        return 1 if self.is_driver or self.is_mesh else 2
 
 
 def _items(scene: Scene, drivers=None) -> list[_Item]:
-    items = [_Item(j.name, False, j.links) for j in scene.joints]
+    items = [
+        _Item(j.name, False, (*j.links, j.carrier), True) if j.type == "G"
+        else _Item(j.name, False, j.links)
+        for j in scene.joints
+    ]
     for d in scene.drivers if drivers is None else drivers:
         items.append(_Item(d, True, scene.joint(d).links))
     return items
 
 
 def mobility(scene: Scene) -> int:
-    """Grübler–Kutzbach mobility ``3 (n - 1) - 2 j`` of a planar R/P linkage.
+    """Grübler–Kutzbach mobility ``3 (n - 1) - 2 j - h`` of a planar linkage.
+
+    ``j`` lower pairs (R, P) and ``h`` higher pairs (gear meshes).
 
     Examples
     --------
@@ -128,7 +149,8 @@ def mobility(scene: Scene) -> int:
     >>> mobility(Scene("4bar", (Link("c"), Link("k"), Link("r")), tuple(j), ()))
     1
     """
-    return 3 * len(scene.links) - 2 * len(scene.joints)
+    h = sum(j.type == "G" for j in scene.joints)
+    return 3 * len(scene.links) - 2 * (len(scene.joints) - h) - h
 
 
 def _search(scene: Scene, items: list[_Item], known: set[str], order: list[str]):
@@ -294,6 +316,8 @@ def _classify(scene: Scene, links: tuple[str, ...], mine: list[_Item]) -> Group:
     jtype = {j.name: j.type for j in scene.joints}
     if drivers and len(links) == 1:
         kind, cls, dtype = "input", None, None
+    elif any(jtype[j.name] == "G" for j in joints):
+        kind, cls, dtype = "gear", None, None
     elif drivers:
         kind, cls, dtype = "driven", None, None
     elif len(links) == 2 and len(external) == 2 and len(internal) == 1:

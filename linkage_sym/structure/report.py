@@ -51,7 +51,13 @@ def structure_report(scene: Scene, dec: Decomposition) -> str:
         if g.internal:
             text += f"; internal joints {', '.join(g.internal)}"
         lines.append(text)
-        if g.kind not in ("input", "dyad"):
+        if g.kind == "gear":  # gear meshes: their forces along the lines of action
+            how = ("positions and forces in closed form (moments about the pivot give the tooth "
+                   "load)" if len(g.links) == 1 else
+                   "positions by Newton on the group's rows (linear in the angles), forces by a "
+                   "dense solve of the group's own equilibrium")
+            lines.append(f"     gear meshes {', '.join(j for j in g.joints if jtype[j] == 'G')}: {how}")
+        elif g.kind not in ("input", "dyad"):
             choices = usable_disconnections(scene, g)
             if choices:
                 lines.append(
