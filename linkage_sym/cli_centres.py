@@ -155,7 +155,7 @@ def centres_report(scene, analysis, centres, i, polygons=None) -> list:
             what = _xy(centres.position[i, k], scale, tiny=ROUNDING * L) + f" {unit}"
         if centres.from_velocities[i, k]:
             how = "from the velocities (no two three-centre lines reach it)"
-        elif src.startswith("joint") or src.startswith("pin"):
+        elif src.startswith(("joint", "pin", "pitch point")):  # a mesh's: its pitch point
             how = ("normal to the slide of joint " + src[6:-8] if src.endswith("(slide)")
                    else "at " + src)
         else:

@@ -39,3 +39,30 @@ class BalanceError(ValueError):
     def __init__(self, reason: str):
         self.reason = reason
         super().__init__(f"cannot balance: {reason}")
+
+
+def refuse_gear_meshes(scene) -> None:
+    """Raise :class:`SceneError` if ``scene`` has gear meshes: the symbolic layer lacks them.
+
+    The symbolic method (derived equations, their compiled and arbitrary-precision
+    runs, and what builds on them: LaTeX, balancing conditions, design sweeps)
+    does not support gear meshes yet (issue 20); the numeric methods do.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as NS
+    >>> refuse_gear_meshes(NS(joints=[NS(name="A", type="R")]))
+    >>> refuse_gear_meshes(NS(joints=[NS(name="A", type="R"), NS(name="M", type="G")]))
+    Traceback (most recent call last):
+    ...
+    linkage_sym.errors.SceneError: invalid scene (1 problem):
+      joints[1]: the symbolic method does not support gear meshes yet (joint 'M' is a gear mesh, type G); the numeric methods do (--method dyad or global)
+    """
+    problems = [
+        f"joints[{i}]: the symbolic method does not support gear meshes yet (joint '{j.name}' "
+        "is a gear mesh, type G); the numeric methods do (--method dyad or global)"
+        for i, j in enumerate(scene.joints)
+        if j.type == "G"
+    ]
+    if problems:
+        raise SceneError(problems)

@@ -10,7 +10,10 @@ identity from the scene-format conventions alone:
 * :func:`power_residual`: driver power against the rate of change of kinetic
   energy minus the power of gravity and loads;
 * :func:`momentum_frame`: ``-sum m a_G`` and ``-dH_O/dt`` (the shaking force
-  and moment when inertia is the only effect).
+  and moment when inertia is the only effect);
+* :func:`mesh_residuals`: each gear mesh's force on the line of action: at the
+  pressure angle from the common tangent of the pitch circles, pressing the
+  teeth into each gear's body (the ring's outwards).
 
 Each returns a residual and the scale it should be compared with (the sum of
 the magnitudes of the terms), so tests assert ``|residual| <= tol * scale``.
@@ -140,7 +143,9 @@ def link_residuals(scene, a):
             mom = _cross(P, F)
             rm = rm + mom
             sf = sf + np.hypot(F[:, 0], F[:, 1])
-            sm = sm + np.abs(mom)
+            # rounding is relative to |P| |F|, not to |P x F| (which vanishes where the
+            # force passes through the origin while its rounding does not)
+            sm = sm + np.hypot(P[..., 0], P[..., 1]) * np.hypot(F[:, 0], F[:, 1])
         for c in couples:
             rm = rm + c
             sm = sm + np.abs(c)
@@ -265,3 +270,36 @@ def reaction_scale(scene, forces):
         s = np.fmax(s, e / L if d.kind == "R" else e)
     return s
 
+
+
+def mesh_residuals(scene, a):
+    """Per gear mesh: how far its reported force is from the line of action, with a scale.
+
+    Written from the format alone: the gears' centres are the positions of the
+    R joints they turn on (each gear's joint with the carrier, or coaxial with
+    it), the pitch point is the mesh joint's position; the force ``R`` that
+    ``links[0]`` exerts on ``links[1]`` has a tangential part ``R . t`` and a
+    radial part ``R . n`` with ``n`` the unit vector from the pitch point into
+    gear ``links[1]``'s body (towards its centre; away from it for the ring,
+    the larger gear of an internal mesh).  On the line of action
+    ``R . n = tan(phi) |R . t|``, with ``R . n >= 0``.
+
+    Returns ``{mesh: (residual (N,), scale (N,), radial (N,))}``.
+    """
+    out = {}
+    for j in scene.joints:
+        if j.type != "G":
+            continue
+        R = a.forces.reactions[j.name]
+        P = a.joints[j.name].position
+        pivot_b = a.joints[j.pivots[1]].position
+        n = pivot_b - P
+        n = n / np.hypot(n[:, 0], n[:, 1])[:, None]
+        ring_b = j.internal and j.radii[1] > j.radii[0]
+        if ring_b:
+            n = -n
+        t = np.stack([-n[:, 1], n[:, 0]], axis=-1)
+        rn = np.sum(R * n, axis=1)
+        rt = np.sum(R * t, axis=1)
+        out[j.name] = (rn - np.tan(j.pressure_angle) * np.abs(rt), np.hypot(R[:, 0], R[:, 1]), rn)
+    return out

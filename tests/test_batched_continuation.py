@@ -52,7 +52,8 @@ import scenes  # noqa: E402
 
 import linkage_sym  # noqa: E402
 from linkage_sym.errors import SceneError  # noqa: E402
-from linkage_sym.examples import example_names, example_path  # noqa: E402
+from example_sets import without_meshes  # noqa: E402
+from linkage_sym.examples import example_path  # noqa: E402
 from linkage_sym.numeric import batched_path, continuation  # noqa: E402
 from linkage_sym.numeric.newton import NewtonSolver  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
@@ -176,7 +177,7 @@ def _triad_from(j, steps=37):
 
 def _newton_examples():
     out = []
-    for name in example_names():
+    for name in without_meshes():  # gear meshes: the symbolic layer refuses them (test_gears.py)
         plan = compile_plan(linkage_sym.load_example(name))
         if any(isinstance(s, NewtonSolver) for s in plan.solvers):
             out.append(name)
@@ -421,9 +422,9 @@ def test_batched_root_search_is_the_walks_search_at_every_gap_point(method):
 
 def test_reciprocal_condition_numbers_match_the_svd():
     """:func:`batched_path.reciprocal_condition` (eigenvalues of ``J^T J`` where they
-    resolve the ratio, else the SVD) against ``numpy.linalg.svd``: 1e-12 relative (the
-    eigenvalues' rounding, about ``n eps / (2 r^2)`` for ``r >= 0.1``), on matrices
-    conditioned from 1 to 1e15 and an exactly singular one."""
+    resolve the ratio, else the SVD) against ``numpy.linalg.svd``: 1e-10 relative (the
+    eigenvalues' rounding, about ``n eps / (2 r^2)``, ``1e-11`` for ``n = 9, r = 0.01``),
+    on matrices conditioned from 1 to 1e15 and an exactly singular one."""
     rng = np.random.default_rng(3)
     mats = []
     for n in (2, 4, 9):
@@ -438,4 +439,4 @@ def test_reciprocal_condition_numbers_match_the_svd():
         sv = np.linalg.svd(J, compute_uv=False)
         want = sv[:, -1] / sv[:, 0]
         got = batched_path.reciprocal_condition(J)
-        assert np.all(np.abs(got - want) <= 1e-12 * want + 1e-300), (n, got, want)
+        assert np.all(np.abs(got - want) <= 1e-10 * want + 1e-300), (n, got, want)

@@ -33,8 +33,10 @@ EXPECTED = [
     "crank_rocker",
     "engine_four_stroke",
     "fivebar",
+    "gear_linkage",
     "guide_bar_quick_return",
     "hydraulic_boom",
+    "planetary_train",
     "printing_mechanism",
     "printing_mechanism_stroke",
     "shaper",
@@ -254,7 +256,8 @@ def test_example_list():
         example_path("no_such_example")
 
 
-@pytest.fixture(params=EXPECTED)
+# the closure model below knows R and P joints; the gear examples are checked by test_gears.py
+@pytest.fixture(params=[n for n in EXPECTED if n not in ("gear_linkage", "planetary_train")])
 def name(request):
     return request.param
 

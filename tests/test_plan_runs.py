@@ -112,13 +112,13 @@ def test_point_rows_match_link_motion(name):
             close(lk.com_velocity, lk.point_velocity(link.com), vmax, f"{link.name} com velocity")
             close(lk.com_acceleration, lk.point_acceleration(link.com), amax,
                   f"{link.name} com acceleration")
-    for j in scene.joints:
-        if j.links[1] == "ground":
+    for j in scene.joints:  # a joint's point is fixed on links[1] (a gear mesh's on its carrier)
+        if j.moves_with == "ground":
             fixed = np.broadcast_to(np.array(j.at, float), res.joints[j.name].position.shape)
             close(res.joints[j.name].position, fixed, L, f"joint {j.name}")
             close(res.joints[j.name].velocity, 0.0 * fixed, vmax, f"joint {j.name} velocity")
             continue
-        lk = res.links[j.links[1]]
+        lk = res.links[j.moves_with]
         jk = res.joints[j.name]
         close(jk.position, lk.point(j.at), L, f"joint {j.name}")
         close(jk.velocity, lk.point_velocity(j.at), vmax, f"joint {j.name} velocity")

@@ -59,13 +59,14 @@ import scenes  # noqa: E402
 import linkage_sym  # noqa: E402
 import linkage_sym.codegen.compile as cg_compile  # noqa: E402
 from linkage_sym.codegen.compile import compile_mechanism  # noqa: E402
-from linkage_sym.examples import example_names  # noqa: E402
+from linkage_sym.examples import example_names
+from example_sets import without_meshes  # noqa: E402
 from linkage_sym.scene import load_scene  # noqa: E402
 from linkage_sym.symbolic.mechanism import derive  # noqa: E402
 
 RTOL = 1e-10
 EPS = float(np.finfo(float).eps)
-EXAMPLES = sorted(example_names())
+EXAMPLES = without_meshes()  # the symbolic layer refuses gear meshes (test_gears.py)
 HYP = settings(max_examples=15, deadline=None, derandomize=True,
                suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
 

@@ -5,7 +5,8 @@ eq. 3-5) finds the centres of a linkage in two steps:
 
 1. *Primary centres* come from the joints: an ``R`` joint is the centre of
    its two links (at the pin), a ``P`` joint's centre lies at infinity normal
-   to the slide.  A pin shared by three or more links (written, as the format
+   to the slide, a gear mesh's (``G`` joint, rolling without slip: the
+   chapter's Fig. 3-3c) is its pitch point.  A pin shared by three or more links (written, as the format
    says, as several ``R`` joints at the same point of a common link) is the
    centre of every pair of them.
 2. Every other centre ``P_ij`` lies on the line through ``P_ik`` and
@@ -287,6 +288,12 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
             if not known[a, b]:
                 at = np.asarray(analysis.joints[joint.name].position, dtype=float)
                 put(a, b, *finite(at), f"joint {joint.name}", at)
+    for joint in scene.joints:  # a gear mesh rolls without slip: its pitch point (Fig. 3-3c)
+        if joint.type == "G":
+            a, b = idx[joint.links[0]], idx[joint.links[1]]
+            if not known[a, b]:
+                at = np.asarray(analysis.joints[joint.name].position, dtype=float)
+                put(a, b, *finite(at), f"pitch point of mesh {joint.name}", at)
     for joint in scene.joints:
         if joint.type == "P":
             a, b = idx[joint.links[0]], idx[joint.links[1]]

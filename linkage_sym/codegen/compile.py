@@ -31,6 +31,7 @@ import sympy as sp
 
 from linkage_sym.codegen import cache
 from linkage_sym.codegen.runtime import CompiledMechanism, load_compiled
+from linkage_sym.errors import refuse_gear_meshes
 from linkage_sym.model import Scene
 from linkage_sym.numeric.sweep import needed_stages
 from linkage_sym.symbolic.mechanism import MechanismEquations
@@ -288,6 +289,7 @@ def compile_mechanism(scene: Scene, use_cache: bool = True) -> CompiledMechanism
     >>> round(float(result.forces.driving["A"][0]), 4)  # as the numeric solver
     -0.0755
     """
+    refuse_gear_meshes(scene)
     if use_cache:
         got = load_compiled(scene)
         if got is not None:

@@ -116,6 +116,39 @@ class PJoint(Constraint):
         return [(0.0, 0.0, -1.0), (-nx, -ny, _dot(-ny, nx, Dx, Dy))]
 
 
+class GMesh(Constraint):
+    """Gear mesh (a higher pair, one row): rolling without slip on a carrier.
+
+    ``ra (theta_a - theta_c) + kb (theta_b - theta_c) = 0`` with ``kb = rb``
+    for an external mesh and ``-rb`` for an internal one; the angles are the
+    links' rotations from the assembly configuration, so the row is linear
+    and homogeneous in them (a length row: radii times angles).
+    """
+
+    rows = 1
+    length_rows = (True,)
+
+    def __init__(self, a, b, c, radii, internal):
+        self.links = (a, b, c)
+        ra, rb = radii
+        self.k = (ra, -rb if internal else rb, -(ra + (-rb if internal else rb)))
+
+    def _row(self, S, field):
+        return sum(k * getattr(S[n], field) for k, n in zip(self.k, self.links))
+
+    def residual(self, S, q):
+        return [self._row(S, "th")]
+
+    def rate(self, S, qd):
+        return [self._row(S, "w")]
+
+    def accel(self, S, qdd):
+        return [self._row(S, "al")]
+
+    def jac(self, S, link):
+        return [(0.0, 0.0, self.k[self.links.index(link)])]
+
+
 class RDriver(Constraint):
     """Driven revolute joint: ``theta_b - theta_a + phi0 = q``."""
 
@@ -199,6 +232,9 @@ def scene_constraints(scene: Scene, phi0: dict[str, float]) -> dict[str, list[Co
     out: dict[str, list[Constraint]] = {}
     for j in scene.joints:
         a, b = j.links
+        if j.type == "G":
+            out[j.name] = [GMesh(a, b, j.carrier, j.radii, j.internal)]
+            continue
         rows: list[Constraint] = [RJoint(a, b, j.at) if j.type == "R" else PJoint(a, b, j.axis)]
         if j.name in driven:
             if j.type == "R":

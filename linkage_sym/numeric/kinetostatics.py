@@ -15,6 +15,16 @@ Methods
 ``"global"``
     Every link's equilibrium in one sparse system
     (:mod:`~linkage_sym.numeric.global_statics`), the check of the former.
+
+Gear meshes
+-----------
+A gear on its pivot is solved in closed form (:class:`~linkage_sym.numeric.gears.GearForces`),
+a group of several links with meshes as one dense system.  A mesh's force
+lies on the line of action of the flank the tangential force presses on
+(:mod:`~linkage_sym.numeric.gears`); the flank is not known before the
+solve, so a scene with meshes is solved with every flank +1, then again
+with the flanks the tangential forces show, until no tooth load is negative
+(two solves unless the flank of one mesh changes another's tangential force).
 """
 
 from __future__ import annotations
@@ -25,6 +35,7 @@ from typing import Protocol
 import numpy as np
 
 from linkage_sym.model import GROUND, Scene
+from linkage_sym.numeric.gears import GearForces
 from linkage_sym.numeric.global_statics import frame_wrench, solve_dense, solve_global
 from linkage_sym.numeric.loads import applied_wrenches
 from linkage_sym.numeric.result import Forces, GroupForces
@@ -107,6 +118,19 @@ class _SuperpositionRoutine:
         return GroupSolution(res, eff, used, amp)
 
 
+class _GearRoutine:
+    """A gear on its pivot: the tooth load and the pivot's reaction in closed form."""
+
+    choices = ()
+    method = "gear"
+
+    def __init__(self, scene: Scene, g: Group):
+        self.routine = GearForces(scene, g)
+
+    def solve(self, W, geo, L, K) -> GroupSolution:
+        return GroupSolution(self.routine.solve(W, geo, L, K), {})
+
+
 class _DenseRoutine:
     """A group no disconnection reduces to dyads: its own equilibrium as one linear system."""
 
@@ -149,6 +173,10 @@ class ForcePlan:
                 self.routines.append(_InputRoutine(scene, g))
             elif g.kind == "dyad":
                 self.routines.append(_DyadRoutine(scene, g))
+            elif g.kind == "gear" and len(g.links) == 1:
+                self.routines.append(_GearRoutine(scene, g))
+            elif g.kind == "gear":
+                self.routines.append(_DenseRoutine(scene, g))
             else:
                 choices = usable_disconnections(scene, g)
                 pref = disconnection.get(gi) if isinstance(disconnection, dict) else disconnection
@@ -175,9 +203,40 @@ class ForcePlan:
         idx = None if ok.all() else np.flatnonzero(ok)
         K = N if idx is None else len(idx)
         Sk = S if idx is None else {n: (st.take(idx) if n != GROUND else st) for n, st in S.items()}
-        geo = Geometry(scene, Sk)
         qk = None if q is None else {k: np.asarray(v, float) if idx is None else np.asarray(v, float)[idx]
                                      for k, v in q.items()}
+        flank: dict = {}
+        for _ in range(1 + 2 * len(scene.meshes)):
+            geo = Geometry(scene, Sk, flank)
+            reactions, efforts, frame, groups = self._solve(Sk, geo, qk, method, K, idx, N)
+            wrong = {}
+            for m in scene.meshes:  # the tooth load must press, not pull: else the other flank
+                ux, uy = geo.line_of_action(m.name)
+                fx, fy, _ = reactions[m.name]
+                neg = fx * ux + fy * uy < 0
+                if np.any(neg):
+                    wrong[m.name] = np.where(neg, -flank.get(m.name, 1.0), flank.get(m.name, 1.0))
+            if not wrong:
+                break
+            flank = {**flank, **wrong}
+        out_r, out_m = {}, {}
+        for j in scene.joints:
+            fx, fy, m = reactions[j.name]
+            out_r[j.name] = np.stack([_spread(fx, idx, N), _spread(fy, idx, N)], axis=-1)
+            out_m[j.name] = _spread(m, idx, N)
+        return Forces(
+            method=method,
+            reactions=out_r,
+            reaction_moments=out_m,
+            driving={d.joint: _spread(efforts[d.joint], idx, N) for d in scene.drivers},
+            frame_force=np.stack([_spread(frame[0], idx, N), _spread(frame[1], idx, N)], axis=-1),
+            frame_moment=_spread(frame[2], idx, N),
+            groups=groups,
+        )
+
+    def _solve(self, Sk, geo, qk, method, K, idx, N):
+        """Reactions, efforts, frame wrench and group records at the ``K`` solved steps."""
+        scene = self.scene
         W = applied_wrenches(scene, Sk, q=qk)
         groups = []
         if K == 0:
@@ -210,20 +269,7 @@ class ForcePlan:
             groups.reverse()
             w = W[GROUND]
             frame = (w.fx, w.fy, w.m)
-        out_r, out_m = {}, {}
-        for j in scene.joints:
-            fx, fy, m = reactions[j.name]
-            out_r[j.name] = np.stack([_spread(fx, idx, N), _spread(fy, idx, N)], axis=-1)
-            out_m[j.name] = _spread(m, idx, N)
-        return Forces(
-            method=method,
-            reactions=out_r,
-            reaction_moments=out_m,
-            driving={d.joint: _spread(efforts[d.joint], idx, N) for d in scene.drivers},
-            frame_force=np.stack([_spread(frame[0], idx, N), _spread(frame[1], idx, N)], axis=-1),
-            frame_moment=_spread(frame[2], idx, N),
-            groups=groups,
-        )
+        return reactions, efforts, frame, groups
 
 
 def _spread(values, idx, N, fill=np.nan, dtype=float):

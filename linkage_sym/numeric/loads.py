@@ -69,7 +69,7 @@ def reference_local(scene: Scene) -> dict:
             out[link.name] = tuple(link.com)
             continue
         for j in scene.joints:
-            if link.name in j.links:
+            if link.name in j.links and j.type != "G":  # a mesh's pitch point is the carrier's
                 out[link.name] = tuple(j.at)
                 break
     return out

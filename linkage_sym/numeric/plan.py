@@ -31,6 +31,7 @@ from linkage_sym.numeric import accuracy
 from linkage_sym.numeric.block import ResultLayout
 from linkage_sym.numeric.closed_form import DyadSolver, InputSolver
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
+from linkage_sym.numeric.gears import GearSolver
 from linkage_sym.numeric.kinetostatics import ForcePlan, check_method
 from linkage_sym.numeric.newton import NewtonSolver
 from linkage_sym.numeric.result import Analysis
@@ -72,6 +73,8 @@ class Plan:
                 self.solvers.append(InputSolver(scene, g, self.q0))
             elif g.kind == "dyad":
                 self.solvers.append(DyadSolver(scene, g))
+            elif g.kind == "gear" and len(g.links) == 1:
+                self.solvers.append(GearSolver(scene, g))
             else:
                 self.solvers.append(NewtonSolver(scene, g, self.constraints, self.L))
         self.stages = needed_stages(scene)
@@ -84,10 +87,13 @@ class Plan:
         # input link on the ground takes the (never wrapped) driver value itself
         self.wrapped = [
             n for g, sv in zip(decomposition.groups, self.solvers)
-            if not isinstance(sv, NewtonSolver)
+            if not isinstance(sv, (NewtonSolver, GearSolver))
             and not (isinstance(sv, InputSolver) and sv.known == GROUND)
             for n in g.links
         ]
+        # a mesh's row is linear in rotations from the assembly configuration, so the
+        # rotations it reads must be unwrapped before a later group uses them
+        self.unwrap_early = bool(scene.meshes)
         self.all_constraints = [c for rows in self.constraints.values() for c in rows]
         self.force_plan = (
             ForcePlan(scene, decomposition, self.L, disconnection) if "forces" in self.stages else None
@@ -144,8 +150,15 @@ class Plan:
             S[n] = LinkState()
         inds = []
         npath = len(path.q[next(iter(path.q))])
+        wrapped = set(self.wrapped)
         for solver in self.solvers:
             ind = solver.position(S, path.q)
+            if self.unwrap_early:
+                for n in wrapped.intersection(solver.group.links):
+                    th = np.array(np.broadcast_to(S[n].th, (len(next(iter(path.q.values()))),)))
+                    ok = np.isfinite(th)
+                    th[ok] = _unwrap(th[ok])
+                    S[n].th = th
             # a group whose geometry does not change (two fixed slide directions) gives a scalar
             inds.append(None if ind is None else np.broadcast_to(ind, (npath,)))
         # first group that failed at each path point
@@ -255,7 +268,7 @@ class Plan:
                     out = lk.com_velocity.T
                     st.point_velocity_into(link.com, out[0], out[1])
         # joints (their point on links[1]) and traced points: (link, point, record)
-        tracked = [(j.links[1], j.at, joints[j.name]) for j in self.scene.joints]
+        tracked = [(j.moves_with, j.at, joints[j.name]) for j in self.scene.joints]
         tracked += [(pt.link, pt.at, points[pt.name]) for pt in self.scene.points]
         for k, X, rec in tracked:
             out = rec.position.T

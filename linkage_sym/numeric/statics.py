@@ -33,6 +33,7 @@ import math
 import numpy as np
 
 from linkage_sym.model import Scene
+from linkage_sym.numeric.gears import mesh_direction
 from linkage_sym.structure import Group
 
 
@@ -45,20 +46,32 @@ class Geometry:
     S : dict of LinkState
     """
 
-    def __init__(self, scene: Scene, S):
+    def __init__(self, scene: Scene, S, flank=None):
         self.scene = scene
         self.S = S
         self._p = {}
         self._n = {}
         self.joint = {j.name: j for j in scene.joints}
+        self.flank = {} if flank is None else flank
+        """Gear mesh -> the flank (sign of the tangential force, +1 or -1 per step; default +1)."""
 
     def point(self, name):
-        """Position of joint ``name`` (its point fixed on ``links[1]``)."""
+        """Position of joint ``name`` (its point fixed on ``links[1]``; a mesh's pitch point)."""
         p = self._p.get(name)
         if p is None:
             j = self.joint[name]
-            p = self._p[name] = self.S[j.links[1]].point(j.at)
+            p = self._p[name] = self.S[j.moves_with].point(j.at)
         return p
+
+    def line_of_action(self, name):
+        """Unit direction ``(ux, uy)`` of the force gear ``links[0]`` exerts on ``links[1]``
+        of mesh ``name`` (:func:`~linkage_sym.numeric.gears.mesh_direction`)."""
+        n = self._n.get(name)
+        if n is None:
+            j = self.joint[name]
+            n = self._n[name] = mesh_direction(
+                self.scene, j, self.S[j.carrier], self.flank.get(name, 1.0))
+        return n
 
     def normal(self, name):
         """Unit normal ``n`` and axis ``t`` of the slide of P joint ``name``: ``(nx, ny, tx, ty)``."""

@@ -53,6 +53,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from linkage_sym.errors import refuse_gear_meshes
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.structure import Decomposition, Group, decompose
 from linkage_sym.structure.parameters import ParameterTable, ident
@@ -132,6 +133,7 @@ class MechanismEquations:
     """
 
     def __init__(self, scene: Scene, symbolic=True, forces=None, decomposition=None):
+        refuse_gear_meshes(scene)  # not derived yet (issue 20): refused by name, never wrong
         self.scene = scene
         self.decomposition: Decomposition = decomposition or decompose(scene)
         self.table = ParameterTable(scene)
