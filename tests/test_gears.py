@@ -324,3 +324,27 @@ def test_kennedy_takes_a_mesh_s_pitch_point_as_its_centre():
     v = velocity_centres(res)
     i = k.pairs.index(("ground", "link6"))
     assert max_rel(k.position[:, i] - v.position[:, i], np.hypot(*v.position[:, i].T) + 0.3) <= 1e-9
+
+
+def test_a_flank_that_never_settles_is_a_warning(monkeypatch):
+    """Were the tooth load to pull with either flank (a solve that does not settle), the run
+    says so at those steps instead of reporting the force as if the teeth carried it."""
+    from linkage_sym.numeric import kinetostatics
+
+    scene = load_scene(example_dict("planetary_train"))
+    plan = compile_plan(scene)
+    mesh = scene.meshes[0].name
+    solve = kinetostatics.ForcePlan._solve
+
+    def pulling(self, Sk, geo, *args):
+        reactions, efforts, frame, groups = solve(self, Sk, geo, *args)
+        ux, uy = geo.line_of_action(mesh)
+        fx, fy, m = reactions[mesh]
+        along = fx * ux + fy * uy
+        reactions[mesh] = (fx - 2 * np.abs(along) * ux, fy - 2 * np.abs(along) * uy, m)  # pulls
+        return reactions, efforts, frame, groups
+
+    monkeypatch.setattr(kinetostatics.ForcePlan, "_solve", pulling)
+    res = plan.run()
+    assert any(w.startswith(f"gear mesh {mesh}: the tooth load still pulls at {res.n_steps} step")
+               for w in res.warnings), res.warnings

@@ -39,6 +39,7 @@ from linkage_sym.numeric.gears import GearForces
 from linkage_sym.numeric.global_statics import frame_wrench, solve_dense, solve_global
 from linkage_sym.numeric.loads import applied_wrenches
 from linkage_sym.numeric.result import Forces, GroupForces
+from linkage_sym.numeric.sweep import steps_text
 from linkage_sym.numeric.statics import DyadForces, Geometry, InputForces, push
 from linkage_sym.numeric.superposition import SuperpositionForces
 from linkage_sym.structure.disconnection import usable_disconnections
@@ -206,19 +207,29 @@ class ForcePlan:
         qk = None if q is None else {k: np.asarray(v, float) if idx is None else np.asarray(v, float)[idx]
                                      for k, v in q.items()}
         flank: dict = {}
-        for _ in range(1 + 2 * len(scene.meshes)):
+        pulling: dict = {}  # mesh -> steps of the last solve whose tooth load pulls
+        solves = 1 + 2 * len(scene.meshes)
+        for _ in range(solves):
             geo = Geometry(scene, Sk, flank)
             reactions, efforts, frame, groups = self._solve(Sk, geo, qk, method, K, idx, N)
-            wrong = {}
+            wrong, pulling = {}, {}
             for m in scene.meshes:  # the tooth load must press, not pull: else the other flank
                 ux, uy = geo.line_of_action(m.name)
                 fx, fy, _ = reactions[m.name]
                 neg = fx * ux + fy * uy < 0
                 if np.any(neg):
                     wrong[m.name] = np.where(neg, -flank.get(m.name, 1.0), flank.get(m.name, 1.0))
+                    pulling[m.name] = np.flatnonzero(np.broadcast_to(neg, (K,)))
             if not wrong:
                 break
             flank = {**flank, **wrong}
+        notes = []
+        for name, bad in pulling.items():  # never settled: said, not hidden
+            steps = bad if idx is None else idx[bad]
+            notes.append(
+                f"gear mesh {name}: the tooth load still pulls at {len(steps)} step(s) (steps "
+                f"{steps_text(steps, len(steps))}) after {solves} force solves with either flank: "
+                "the mesh force reported there is not one its teeth can carry")
         out_r, out_m = {}, {}
         for j in scene.joints:
             fx, fy, m = reactions[j.name]
@@ -232,6 +243,7 @@ class ForcePlan:
             frame_force=np.stack([_spread(frame[0], idx, N), _spread(frame[1], idx, N)], axis=-1),
             frame_moment=_spread(frame[2], idx, N),
             groups=groups,
+            notes=notes,
         )
 
     def _solve(self, Sk, geo, qk, method, K, idx, N):

@@ -143,6 +143,9 @@ class Forces:
     frame_moment : ndarray (N,)
     groups : list of GroupForces
         How each group was solved, in solving order.
+    notes : list of str
+        What the force solve could not settle (a gear mesh whose tooth load pulls
+        with either flank), added to the run's warnings.
     """
 
     method: str
@@ -152,6 +155,8 @@ class Forces:
     frame_force: np.ndarray
     frame_moment: np.ndarray
     groups: list = field(default_factory=list)
+    notes: list = field(default_factory=list)
+    """What the force solve could not settle, worded for the run's warnings."""
 
 
 @dataclass

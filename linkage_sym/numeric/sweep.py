@@ -115,6 +115,8 @@ def finish(res: Analysis, scene: Scene, notes, step_points, decomposition=None) 
     when the scene asks for them.
     """
     res.warnings.extend(continuation.step_warnings(notes, step_points))
+    if res.forces is not None:
+        res.warnings.extend(res.forces.notes)
     res.warnings.extend(run_warnings(res))
     res.transmission_angles = transmission_angles(scene, res, decomposition)
     if "instant_centres" in scene.outputs:  # an extension of the format
