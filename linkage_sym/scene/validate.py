@@ -9,6 +9,12 @@ and a :class:`~linkage_sym.model.scene.Scene` only when there are none.
 Structural checks (connectivity to the ground, then the Gruebler-Kutzbach
 mobility against the number of drivers) run only when the names they rely on
 are valid, so that one typo does not cascade into a page of noise.
+
+Size: about 650 lines, the scene's sections and its structure checks, which
+read each other's results (links before joints, joints before drivers, drivers
+before loads); the field readers (:mod:`~linkage_sym.scene.fields`), the loads
+over the cycle (:mod:`~linkage_sym.scene.schedules`) and the gear meshes
+(:mod:`~linkage_sym.scene.gears`) are apart.
 """
 
 from __future__ import annotations
