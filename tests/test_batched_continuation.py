@@ -422,9 +422,9 @@ def test_batched_root_search_is_the_walks_search_at_every_gap_point(method):
 
 def test_reciprocal_condition_numbers_match_the_svd():
     """:func:`batched_path.reciprocal_condition` (eigenvalues of ``J^T J`` where they
-    resolve the ratio, else the SVD) against ``numpy.linalg.svd``: 1e-12 relative (the
-    eigenvalues' rounding, about ``n eps / (2 r^2)`` for ``r >= 0.1``), on matrices
-    conditioned from 1 to 1e15 and an exactly singular one."""
+    resolve the ratio, else the SVD) against ``numpy.linalg.svd``: 1e-10 relative (the
+    eigenvalues' rounding, about ``n eps / (2 r^2)``, ``1e-11`` for ``n = 9, r = 0.01``),
+    on matrices conditioned from 1 to 1e15 and an exactly singular one."""
     rng = np.random.default_rng(3)
     mats = []
     for n in (2, 4, 9):
@@ -439,4 +439,4 @@ def test_reciprocal_condition_numbers_match_the_svd():
         sv = np.linalg.svd(J, compute_uv=False)
         want = sv[:, -1] / sv[:, 0]
         got = batched_path.reciprocal_condition(J)
-        assert np.all(np.abs(got - want) <= 1e-12 * want + 1e-300), (n, got, want)
+        assert np.all(np.abs(got - want) <= 1e-10 * want + 1e-300), (n, got, want)

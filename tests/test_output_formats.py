@@ -37,7 +37,7 @@ import scenes  # the tests' scene builders (tests/scenes.py)
 
 REL = 1e-12
 """Chunked vs whole: tolerance relative to the largest magnitude of the quantity."""
-NEWTON = ("hydraulic_boom", "printing_mechanism", "sixbar_class3")
+NEWTON = ("hydraulic_boom", "printing_mechanism", "printing_mechanism_stroke", "sixbar_class3")
 
 
 # -- an independent writer: the contract's JSON as written before streaming -----------------------

@@ -67,7 +67,7 @@ from linkage_sym.numeric.continuation import (
 
 MIN_BLOCK = 64
 """Smallest block of points solved at once (and the first one after a stop)."""
-GRAM_RATIO = 0.1
+GRAM_RATIO = 1e-2
 """Reciprocal condition numbers at least this come from the eigenvalues of ``J^T J``."""
 MAX_GAP = 64
 """Largest number of points of a gap searched at once."""
@@ -75,7 +75,7 @@ MAX_BLOCK = 1024
 """Largest block: the guesses are extrapolated at most this many points ahead."""
 ROOT_ITER = 10
 """Iterations of undamped Newton from a guess (:func:`newton_points` with ``damped=False``)."""
-COARSE = 16
+COARSE = 8
 """Every this many points of a block are solved first; the others are interpolated from them."""
 
 
@@ -85,8 +85,10 @@ def reciprocal_condition(J: np.ndarray) -> np.ndarray:
     From the extreme eigenvalues of ``J^T J`` (``numpy.linalg.eigvalsh``, about
     half the cost of the SVD of small matrices) where the ratio ``r`` is at
     least :data:`GRAM_RATIO`: their rounding (``~n eps lambda_max``) moves it by
-    about ``n eps / (2 r^2)`` relative, below ``1e-13`` there.  The others, and
-    any non-finite one, by the SVD itself (``eps / r`` relative).
+    about ``n eps / (2 r^2)`` relative, below ``1e-11`` there (an indicator: it
+    screens for the exact condition number below 1e-3 and scales the accuracy
+    estimate).  The others, and any non-finite one, by the SVD itself (``eps / r``
+    relative).
     """
     J = np.asarray(J, dtype=float)
     out = np.full(len(J), np.nan)
