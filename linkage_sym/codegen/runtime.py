@@ -386,8 +386,8 @@ class CompiledMechanism:
         """Condition number of the dimensionless pose Jacobian (every link's ``dx, dy,
         theta``; the numeric solver's) at ``steps`` of a result, for its accuracy."""
         if self._pose_constraints is None:
-            self._pose_constraints = [c for rows in scene_constraints(self.scene, self.q0).values()
-                                      for c in rows]
+            self._pose_constraints = [c for jr in scene_constraints(self.scene, self.q0).values()
+                                      for c in jr.rows]
         S = {GROUND: LinkState()}
         for n in self.scene.link_names:
             lk = res.links[n]

@@ -21,7 +21,7 @@ import math
 import numpy as np
 
 from linkage_sym.errors import SceneError
-from linkage_sym.model import Scene
+from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.loci import (
     Circle,
     Line,
@@ -93,6 +93,8 @@ class InputSolver:
         self.kind = j.type
         self.X = j.at
         self.known = _other(j, self.link)
+        # an input turning on the ground takes the driver value itself, never wrapped
+        self.wraps = self.known != GROUND
         # +1 when the unknown link is the joint's links[1]
         self.sign = 1.0 if j.links[1] == self.link else -1.0
         if self.kind == "R":
@@ -150,6 +152,7 @@ class DyadSolver:
     """
 
     notes = ()
+    wraps = True  # rotations from atan2
     """Jumps worth a warning: none (a closed form keeps its assembly mode by its sign)."""
 
     def __init__(self, scene: Scene, group: Group):

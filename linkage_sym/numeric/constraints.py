@@ -22,6 +22,7 @@ largest distance between two joints): a row measured in metres is divided by
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -221,27 +222,39 @@ class PDriver(Constraint):
         return [(-ux, -uy, _dot(-uy, ux, Dx, Dy))]
 
 
-def scene_constraints(scene: Scene, phi0: dict[str, float]) -> dict[str, list[Constraint]]:
+class JointRows(NamedTuple):
+    """The constraint rows of one joint: its own, and its driver's if it is driven."""
+
+    joint: Constraint
+    driver: Constraint | None = None
+
+    @property
+    def rows(self) -> list[Constraint]:
+        return [self.joint] if self.driver is None else [self.joint, self.driver]
+
+
+def scene_constraints(scene: Scene, phi0: dict[str, float]) -> dict[str, JointRows]:
     """Constraints of every joint and driver, keyed by joint name.
 
-    A driven joint gets two entries: its joint rows, then its driver row.
+    A driven joint has its joint rows and its driver row (:class:`JointRows`).
     ``phi0`` gives, for each R driver, the angle of its ``toward`` vector in
     the assembly configuration.
     """
     driven = {d.joint: d for d in scene.drivers}
-    out: dict[str, list[Constraint]] = {}
+    out: dict[str, JointRows] = {}
     for j in scene.joints:
         a, b = j.links
         if j.type == "G":
-            out[j.name] = [GMesh(a, b, j.carrier, j.radii, j.internal)]
+            out[j.name] = JointRows(GMesh(a, b, j.carrier, j.radii, j.internal))
             continue
-        rows: list[Constraint] = [RJoint(a, b, j.at) if j.type == "R" else PJoint(a, b, j.axis)]
+        row: Constraint = RJoint(a, b, j.at) if j.type == "R" else PJoint(a, b, j.axis)
+        driver: Constraint | None = None
         if j.name in driven:
             if j.type == "R":
-                rows.append(RDriver(a, b, phi0[j.name], j.name))
+                driver = RDriver(a, b, phi0[j.name], j.name)
             else:
-                rows.append(PDriver(a, b, j.axis, j.name))
-        out[j.name] = rows
+                driver = PDriver(a, b, j.axis, j.name)
+        out[j.name] = JointRows(row, driver)
     return out
 
 

@@ -64,6 +64,7 @@ class GearSolver:
     """
 
     notes = ()
+    wraps = False  # linear in rotations from the assembly configuration
     """Jumps worth a warning: none (the gear's rotation is linear in the known angles)."""
 
     def __init__(self, scene: Scene, group: Group):

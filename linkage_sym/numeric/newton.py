@@ -27,15 +27,17 @@ SINGULAR_IND = 1e-14
 class NewtonSolver:
     """Solver of any group by Newton's method on its own equations."""
 
+    wraps = False  # followed continuously from the assembly configuration
+
     def __init__(self, scene, group, constraints, L):
         self.group = group
         self.links = group.links
         self.L = L
         cons = []
         for name in group.joints:
-            cons.append(constraints[name][0])
+            cons.append(constraints[name].joint)
         for name in group.drivers:
-            cons.append(constraints[name][1])
+            cons.append(constraints[name].driver)
         self.cons = cons
         self.nvar = 3 * len(self.links)
         self.length_rows = np.concatenate([c.length_rows for c in cons])

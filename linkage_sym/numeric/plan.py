@@ -35,6 +35,7 @@ from linkage_sym.numeric.gears import GearSolver
 from linkage_sym.numeric.kinetostatics import ForcePlan, check_method
 from linkage_sym.numeric.newton import NewtonSolver
 from linkage_sym.numeric.result import Analysis
+from linkage_sym.numeric.solver import GroupSolver
 from linkage_sym.numeric.state import LinkState
 from linkage_sym.numeric.sweep import (
     SCREEN,
@@ -67,7 +68,7 @@ class Plan:
         self.L = L if L > 0 else 1.0
         self.q0 = driver_q0(scene)
         self.constraints = scene_constraints(scene, self.q0)
-        self.solvers = []
+        self.solvers: list[GroupSolver] = []
         for g in decomposition.groups:
             if g.kind == "input":
                 self.solvers.append(InputSolver(scene, g, self.q0))
@@ -85,16 +86,12 @@ class Plan:
         # copied or offset from such a link) and is unwrapped along the path;
         # Newton groups move continuously from the assembly configuration, and an
         # input link on the ground takes the (never wrapped) driver value itself
-        self.wrapped = [
-            n for g, sv in zip(decomposition.groups, self.solvers)
-            if not isinstance(sv, (NewtonSolver, GearSolver))
-            and not (isinstance(sv, InputSolver) and sv.known == GROUND)
-            for n in g.links
-        ]
+        self.wrapped = [n for g, sv in zip(decomposition.groups, self.solvers) if sv.wraps
+                        for n in g.links]
         # a mesh's row is linear in rotations from the assembly configuration, so the
         # rotations it reads must be unwrapped before a later group uses them
         self.unwrap_early = bool(scene.meshes)
-        self.all_constraints = [c for rows in self.constraints.values() for c in rows]
+        self.all_constraints = [c for rows in self.constraints.values() for c in rows.rows]
         self.force_plan = (
             ForcePlan(scene, decomposition, self.L, disconnection) if "forces" in self.stages else None
         )
