@@ -6,8 +6,11 @@ A scene is analysed once into a solving plan (:func:`plan.compile_plan`) whose
 Solving positions and rates
     ``constraints`` (joint and driver equations in pose coordinates),
     ``state`` (a link's pose and rates over the steps), ``loci`` (the circles
-    and lines a dyad's joint lies on), ``closed_form`` (input links and
-    dyads), ``newton`` (class-III and other groups by Newton's method).
+    and lines a dyad's joint lies on), ``solver`` (the ``GroupSolver``
+    contract every group's solver meets), ``closed_form`` (input links and
+    dyads), ``gears`` (a gear on its pivot, mesh forces), ``newton`` (class-III
+    and other groups by Newton's method), ``batched_path`` (their continuation
+    over many path points at once).
 The one sweep engine both runtimes call (this plan and
 :mod:`linkage_sym.codegen.runtime`)
     ``sweep`` (the sweep, stages, solving path and unwrapping, step statuses,
