@@ -15,7 +15,7 @@ the sweep, the limit positions located by Newton on the output's rate):
   scenes built beforehand, so only the solves are timed; the run computes kinematics and
   transmission angles but no limit positions, so the ratio favours the loop); the target is
   ``in_process`` >= 20x the loop, per design;
-* ``workers_2``: ``workers=2`` against ``in_process`` on the same grid (``--parallel-designs``;
+* ``workers_2``: ``workers=2`` against ``in_process`` on a grid of ``--parallel-designs`` (default 10^6;
   target >= 1.7x);
 * ``dask_local_2``: ``dask="local"`` (a LocalCluster of 2 processes) against ``workers_2``
   on that grid (target: within 1.3x).
@@ -98,7 +98,7 @@ def loop_scenes(scene, axes, count):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--designs", type=int, default=100_000)
-    ap.add_argument("--parallel-designs", type=int, default=100_000)
+    ap.add_argument("--parallel-designs", type=int, default=1_000_000)
     ap.add_argument("--loop-designs", type=int, default=200)
     ap.add_argument("--repeats", type=int, default=3)
     a = ap.parse_args()
