@@ -76,8 +76,10 @@ class SweepResult:
             raise KeyError(f"no column {name!r}; the columns are {', '.join(self.columns)}") from None
 
     def write(self, path) -> str:
-        """Write the table to ``path`` (.csv or .parquet); returns the path."""
+        """Write the table to ``path`` (.csv or .parquet), creating its folder as every
+        command's output does; returns the path."""
         fmt = table_format(path)
+        Path(path).parent.mkdir(parents=True, exist_ok=True)
         if fmt == "csv":
             Path(path).write_text(self.to_csv())
         else:
