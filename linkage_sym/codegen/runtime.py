@@ -15,7 +15,7 @@ A :class:`CompiledMechanism` holds the generated functions of one topology
 The result is the same :class:`~linkage_sym.numeric.result.Analysis` the
 numeric solver returns, with ``forces.method == "symbolic"``.
 
-Size: about 650 lines: the run's three stages share the bound functions,
+Size: about 700 lines: the run's three stages share the bound functions,
 the block structure and the coordinate layout of one compiled mechanism; the
 bookkeeping both runtimes share is in :mod:`linkage_sym.numeric.sweep` and
 :mod:`linkage_sym.numeric.block`.

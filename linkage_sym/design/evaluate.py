@@ -31,6 +31,12 @@ chunk that carried it.  Groups without a closed form (class-III triads,
 actuator groups) are continued from the scene's assembly configuration to each
 design's, and such designs are then solved one at a time by the numeric plan
 (:mod:`linkage_sym.design.newton_groups`).
+
+Size: about 650 lines, one class -- :class:`Model` holds a chunk's broadcast
+parameters, assembly signs and work arrays, which each of the four stages
+above reads; the metrics (:mod:`~linkage_sym.design.metrics`) and the
+groups without a closed form (:mod:`~linkage_sym.design.newton_groups`) are
+apart.
 """
 
 from __future__ import annotations
