@@ -49,6 +49,7 @@ sys.path.insert(0, os.path.dirname(__file__))
 
 import reference_kinematics as ref  # noqa: E402
 import scenes  # noqa: E402
+from test_newton_groups import _families  # noqa: E402  (the result families both files compare)
 
 import linkage_sym  # noqa: E402
 from linkage_sym.errors import SceneError  # noqa: E402
@@ -83,21 +84,6 @@ def both(scene, method):
     with walking(True):
         bat = linkage_sym.analyze(scene, method=method)
     return seq, bat
-
-
-def _families(res):
-    fam = {"position": [], "rotation": [], "velocity": [], "acceleration": [], "force": []}
-    for j in res.joints.values():
-        fam["position"].append(j.position)
-        fam["velocity"].append(j.velocity)
-        fam["acceleration"].append(j.acceleration)
-    for lk in res.links.values():
-        fam["rotation"].append(lk.rotation)
-        fam["velocity"].append(lk.omega)
-        fam["acceleration"].append(lk.alpha)
-    if res.forces is not None:
-        fam["force"] += list(res.forces.reactions.values()) + list(res.forces.driving.values())
-    return fam
 
 
 ACCURACY = {"position": "position", "rotation": "position", "velocity": "velocity",
