@@ -24,6 +24,7 @@ bookkeeping both runtimes share is in :mod:`linkage_sym.numeric.sweep` and
 from __future__ import annotations
 
 import linecache
+import math
 
 import numpy as np
 
@@ -205,6 +206,7 @@ class CompiledMechanism:
         self._pose_constraints = None
         self._calibration = Calibration()  # accuracy: the indicator-to-condition ratio
         self._layout = None  # the result block's layout, made on the first run
+        self._own = None  # the scene's own sweep: driver arrays and solving path, made once
         self._decomposition = None
 
     # -- positions -----------------------------------------------------------------
@@ -261,6 +263,28 @@ class CompiledMechanism:
         and the path index of each step."""
         P, out, _ = solving_path(self.scene, self.art["q"], self.q0, self.L, Q)
         return P, out
+
+    def _drivers(self, q, qd, qdd):
+        """The driver arrays (D, N) in the order of ``artifact["q"]``, the solving path and
+        the steps' path indices; for the scene's own sweep (``q`` None) made once."""
+        if q is None and self._own is not None:
+            return self._own
+        own = q is None
+        if own:
+            q, qd, qdd = self.sweep()
+        names = self.art["q"]
+        Qs = np.array([np.asarray(q[n], float) for n in names])
+        QDs = np.array([np.asarray(qd[n], float) for n in names])
+        QDDs = np.array([np.asarray(qdd[n], float) for n in names])
+        Qpath, out = self._path(Qs)
+        # the steps as a slice of the path when they are contiguous: views, no copies
+        sel = slice(int(out[0]), int(out[0]) + len(out)) if len(out) and np.all(np.diff(out) == 1) else out
+        got = (q, qd, qdd, Qs, QDs, QDDs, Qpath, out, sel)
+        if own:
+            for a in (Qs, QDs, QDDs, Qpath, out):
+                a.flags.writeable = False
+            self._own = got
+        return got
 
     def positions(self, Qpath: np.ndarray):
         """Coordinates (m, K) along a path of driver values (D, K), and the first
@@ -418,30 +442,31 @@ class CompiledMechanism:
     def step_positions(self, q, qd, qdd):
         """Positions at the steps, solved along the path from the assembly configuration.
 
+        ``q`` ``None``: the scene's own sweep (its arrays and path made once).
         Returns ``(Q, QD, QDD, X, failed, out)``: the driver arrays (D, N) in the
         order of ``artifact["q"]``, the coordinates (m, N) with angles continuous
         from the assembly configuration, the first failing group at each step
         (-1 where solved) and the path index of each step.
         """
-        names = self.art["q"]
-        Qs = np.array([np.asarray(q[n], float) for n in names])
-        QDs = np.array([np.asarray(qd[n], float) for n in names])
-        QDDs = np.array([np.asarray(qdd[n], float) for n in names])
-        Qpath, out = self._path(Qs)
+        Qs, QDs, QDDs, Qpath, out, sel = self._drivers(q, qd, qdd)[3:]
         Xp, failed_p = self.positions(Qpath)
         valid = failed_p < 0
+        every = bool(valid.all())
         for c in np.flatnonzero(self.is_angle):
-            th = _unwrap(Xp[c, valid])
+            th = _unwrap(Xp[c] if every else Xp[c, valid])
             # continuous from the assembly configuration (path point 0)
-            Xp[c, valid] = th - 2 * np.pi * np.round((th[0] - self.x0[c]) / (2 * np.pi))
-        return Qs, QDs, QDDs, Xp[:, out], failed_p[out], out
+            th = th - 2 * np.pi * np.round((th[0] - self.x0[c]) / (2 * np.pi))
+            if every:
+                Xp[c] = th
+            else:
+                Xp[c, valid] = th
+        return Qs, QDs, QDDs, Xp[:, sel], failed_p[sel], out
 
     def run(self, q=None, qd=None, qdd=None, exact_condition=False) -> Analysis:
         """Evaluate the compiled mechanism over a sweep (the scene's by default)."""
         art = self.art
-        if q is None:
-            q, qd, qdd = self.sweep()
-        Qs, QDs, QDDs, X, failed, out = self.step_positions(q, qd, qdd)
+        Qs, QDs, QDDs, X, failed, out = self.step_positions(q, qd, qdd)  # None: the scene's
+        q, qd, qdd = self._drivers(q, qd, qdd)[:3]
         N = Qs.shape[1]
         groups = {g["index"]: g for g in art["groups"]}
 
@@ -521,7 +546,8 @@ class CompiledMechanism:
         forces = None
         if "forces" in stages:
             forces = self._forces(pts, Xk, CS, rate_ok, idx, N)
-        res = self._analysis(X, XD, XDD, pts, idx, status, messages, condition, forces, q, qd, qdd)
+        res = self._analysis(X, XD, XDD, CS, pts, idx, status, messages, condition, forces,
+                             q, qd, qdd)
         if self._decomposition is None:  # for the transmission angles, made once
             self._decomposition = decompose(self.scene)
         finish(res, self.scene, self.newton_notes, out, self._decomposition)
@@ -609,7 +635,7 @@ class CompiledMechanism:
             groups=[GroupForces(tuple(g["links"]), "symbolic") for g in art["groups"]],
         )
 
-    def _analysis(self, X, XD, XDD, pts, idx, status, messages, condition, forces, q, qd, qdd):
+    def _analysis(self, X, XD, XDD, CS, pts, idx, status, messages, condition, forces, q, qd, qdd):
         """Write the results into a result block (:class:`ResultLayout`, as the numeric
         plan does): the values at the steps ``idx`` where positions were solved; the
         layout blanks the steps without a solution."""
@@ -625,6 +651,7 @@ class CompiledMechanism:
             block[:] = np.nan
         links, joints, points = lay.records(scene, block, stages)
         every = len(idx) == N
+        motion = {}  # link -> cos, sin of its rotation, origin (, omega, its velocity, alpha, ...)
 
         def put(dest, v):  # a row (N,), or a pair of rows (2, N) given as two arrays
             if dest.ndim == 2:
@@ -646,24 +673,28 @@ class CompiledMechanism:
             n, lk = link.name, links[link.name]
             c = self.angle_of[n]
             fr = self.frames[n]
-            rot = X[c] - fr.theta0
-            lk.rotation[...] = rot
+            lk.rotation[...] = X[c] - fr.theta0
+            # the rotation's cosine and sine from those of the coordinate (no new cos/sin)
+            ct, st = math.cos(fr.theta0), math.sin(fr.theta0)
+            cr, sr = CS[0][c] * ct + CS[1][c] * st, CS[1][c] * ct - CS[0][c] * st
             # the link point at the global origin in the assembly configuration
-            cr, sr = np.cos(rot[idx]), np.sin(rot[idx])
             Ux, Uy = fr.origin
             dx, dy = -(cr * Ux - sr * Uy), -(sr * Ux + cr * Uy)
             ux, uy = self._get(pts, f"origin:{n}:0")
-            put(lk.origin.T, (ux + dx, uy + dy))
+            motion[n] = m = [cr, sr, ux + dx, uy + dy]
+            put(lk.origin.T, m[2:4])
             if has_v:
                 w = XD[c]
                 vx, vy = self._get(pts, f"origin:{n}:1")
+                m += [w, vx - w * dy, vy + w * dx]
                 put(lk.omega, w)
-                put(lk.origin_velocity.T, (vx - w * dy, vy + w * dx))
+                put(lk.origin_velocity.T, m[5:7])
             if has_a:
                 w, al = XD[c], XDD[c]
                 ax, ay = self._get(pts, f"origin:{n}:2")
+                m += [al, ax - al * dy - w * w * dx, ay + al * dx - w * w * dy]
                 put(lk.alpha, al)
-                put(lk.origin_acceleration.T, (ax - al * dy - w * w * dx, ay + al * dx - w * w * dy))
+                put(lk.origin_acceleration.T, m[8:10])
             if link.com is not None:
                 put(lk.com.T, self._get(pts, f"com:{n}:0"))
                 if has_v:
@@ -671,14 +702,18 @@ class CompiledMechanism:
                 if has_a:
                     put(lk.com_acceleration.T, self._get(pts, f"com:{n}:2"))
         # traced points (the format's ``points`` extension): rigid with their link, from its
-        # rotation and origin motion (not part of the generated code)
+        # rotation and origin motion at the solved steps (not part of the generated code)
         for pt in scene.points:
-            lk, rec = links[pt.link], points[pt.name]
-            rec.position[...] = lk.point(pt.at)
+            rec, m = points[pt.name], motion[pt.link]
+            cr, sr = m[0], m[1]
+            rx, ry = cr * pt.at[0] - sr * pt.at[1], sr * pt.at[0] + cr * pt.at[1]
+            put(rec.position.T, (m[2] + rx, m[3] + ry))
             if has_v:
-                rec.velocity[...] = lk.point_velocity(pt.at)
+                w = m[4]
+                put(rec.velocity.T, (m[5] - w * ry, m[6] + w * rx))
             if has_a:
-                rec.acceleration[...] = lk.point_acceleration(pt.at)
+                w, al = m[4], m[7]
+                put(rec.acceleration.T, (m[8] - al * ry - w * w * rx, m[9] + al * rx - w * w * ry))
         lay.invalidate(block, status)
         return new_analysis(scene, stages, status, messages, {k: q[k] for k in art["q"]}, qd, qdd,
                             joints, links, points, condition, forces)
