@@ -73,7 +73,7 @@ import numpy as np
 from linkage_sym import cli_accuracy, cli_balance, cli_centres
 from linkage_sym._version import __version__
 from linkage_sym.cli_common import OptionError, check_outputs as _check_outputs, load as _load
-from linkage_sym.cli_common import stem as _stem, write as _write
+from linkage_sym.cli_common import emit, stem as _stem
 from linkage_sym.errors import BalanceError, SceneError
 from linkage_sym.synthesis import cli as synthesis_cli
 from linkage_sym.design import cli as design_cli  # linkage-sym sweep
@@ -273,11 +273,7 @@ def cmd_derive(args) -> int:
             text = standalone(text, f"Equations of the mechanism {scene.name}")
     else:
         text = _plain_text(eqs)
-    if args.output in (None, "-"):
-        sys.stdout.write(text)
-    else:
-        _write(args.output, text)
-        print(f"wrote {args.output}")
+    emit(args.output, text)
     return 0
 
 

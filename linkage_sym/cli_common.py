@@ -11,9 +11,10 @@ each importing from here (not from each other).
 from __future__ import annotations
 
 import os
+import sys
 from pathlib import Path
 
-__all__ = ["OptionError", "load", "check_outputs", "write", "stem"]
+__all__ = ["OptionError", "load", "check_outputs", "write", "emit", "stem"]
 
 
 class OptionError(Exception):
@@ -95,6 +96,16 @@ def write(path, text: str) -> None:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(text)
+
+
+def emit(output, text: str) -> None:
+    """A command's text to standard output (``output`` None or ``"-"``) or to the file
+    ``output``, which is then named on standard output."""
+    if output in (None, "-"):
+        sys.stdout.write(text)
+    else:
+        write(output, text)
+        print(f"wrote {output}")
 
 
 def stem(scene) -> str:

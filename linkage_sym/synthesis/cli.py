@@ -173,15 +173,11 @@ def _read_positions(path):
 
 
 def _equations(args) -> int:
-    from linkage_sym.cli_common import write as _write
+    from linkage_sym.cli_common import emit
     from linkage_sym.synthesis.equations import latex_document, plain_text
 
     text = latex_document() if args.latex else plain_text()
-    if args.output in (None, "-"):
-        sys.stdout.write(text)
-    else:
-        _write(args.output, text)
-        print(f"wrote {args.output}")
+    emit(args.output, text)
     return 0
 
 
