@@ -231,6 +231,79 @@ def test_random_triads_batched_equal_point_by_point(j):
         assert_assembly_mode(scene, bat)
 
 
+# A triad with a 1 mm link next to a 0.2 m one (a hypothesis case of the test above, from CI):
+# past the limit at A = 174.84 deg the only root of the assembly sign lies 2.3 rad away, and
+# full Newton steps from the search's seeds reached it, or not, depending on the rounding of
+# where the branch ended -- which differs between the two walks.
+NEAR_DEGENERATE_TRIAD = (0.045, -0.043209483740241264, 0.0, 0.030123784173729268,
+                         0.008131556477265614, 0.019422335435914234, 0.0, 0.0, 0.0, 0.001, 0.0, 0.0)
+
+
+def test_a_near_degenerate_triad_past_a_limit_batched_equals_point_by_point():
+    scene = _load(_triad_from(NEAR_DEGENERATE_TRIAD, steps=181))
+    for m in METHODS:
+        seq, bat = both(scene, m)
+        assert any("passes a limit" in w for w in bat.warnings), bat.warnings
+        assert_same(seq, bat, f"near-degenerate triad ({m})", scene.characteristic_length())
+
+
+def _searches(scene):
+    """``(problem, ctx, ref, others, sign)`` of every re-entry search of the point-by-point walk."""
+    got = []
+    orig = continuation.roots_near
+
+    def spy(problem, ctx, ref, others, sign):
+        got.append((problem, ctx, ref.copy(), [o.copy() for o in others], sign))
+        return orig(problem, ctx, ref, others, sign)
+
+    continuation.roots_near = spy
+    try:
+        with walking(False):
+            linkage_sym.analyze(scene, method="dyad")
+    finally:
+        continuation.roots_near = orig
+    return got
+
+
+def _same_roots(a, b):
+    return [len(x) for x in a] == [len(x) for x in b] and all(
+        np.max(np.abs(u - v)) <= 1e-9 for x, y in zip(a, b) for (u, _), (v, _) in zip(x, y))
+
+
+@pytest.mark.parametrize("case", ["near-degenerate triad", "knee with gaps"])
+def test_the_root_search_reaches_the_same_roots_from_seeds_moved_by_rounding(case, monkeypatch):
+    """Every re-entry search of a sweep, repeated with its reference configurations moved
+    by ``1e-13`` (rounding of where the branch ended): the same roots of each sign, to
+    ``1e-9``.  The search this replaced (full Newton steps, ``SEARCH_STEP`` unbounded, from
+    16 turned seeds) does not pass this on the triad's first search (the root of the
+    assembly sign is found in about a third of the repeats), so the test can fail."""
+    if case == "knee with gaps":
+        d = scenes.knee_scene((0.3, 0.5), (0.7, 0.2), (0.6, -0.2), start_deg=-180, stop_deg=540,
+                              steps=121)
+    else:
+        d = _triad_from(NEAR_DEGENERATE_TRIAD, steps=181)
+    searches = _searches(linkage_sym.load_scene(d))
+    assert len(searches) >= 2
+    rng = np.random.default_rng(2)
+
+    def flips(problem, ctx, ref, others, sign, repeats=12):
+        base = continuation.roots_near(problem, ctx, ref, others, sign)
+        n = 0
+        for _ in range(repeats):
+            e = rng.standard_normal(len(ref)) * 1e-13
+            n += not _same_roots(base, continuation.roots_near(
+                problem, ctx, ref + e, [o + e for o in others], sign))
+        return n
+
+    for k, search in enumerate(searches[:: max(1, len(searches) // 12)]):
+        assert flips(*search) == 0, (case, k)
+    if case == "near-degenerate triad":
+        monkeypatch.setattr(continuation, "SEARCH_STEP", math.inf)
+        monkeypatch.setattr(continuation, "SEARCH_ITER", 30)
+        monkeypatch.setattr(continuation, "TURNED_SEEDS", 16)
+        assert flips(*searches[0], repeats=20) > 0
+
+
 def _knee_limit_deg(d):
     """The knee angle (deg) of the first limit position of the knee scene ``d`` after its
     start, from the tests' own closed form: the hip--ankle distance

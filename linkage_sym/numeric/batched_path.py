@@ -38,7 +38,7 @@ of points (:func:`walk_path`):
 4. **Gaps.**  At the points of a gap the walk searches roots from the same
    seeds around the same configurations at each point; :func:`roots_near_points`
    runs those searches for many points at once (the same seeds, fitted by the
-   same least-squares call, the same plain Newton row by row).  Points without
+   same least-squares call, the same bounded-step Newton row by row).  Points without
    a root of the assembly sign are recorded as the walk records them; the
    first one with such a root is left to :meth:`~.continuation.Walk.step`.
 
@@ -61,7 +61,7 @@ from linkage_sym.numeric.continuation import (
     TOL,
     Walk,
     distinct_roots,
-    plain_newton,
+    search_newton,
     search_seeds,
 )
 
@@ -343,8 +343,8 @@ def roots_near_points(problem, idx, ref, others, sign):
     """:func:`continuation.roots_near` at each of the path points ``idx``, all at once.
 
     The same seeds around ``ref``, each with its lengths fitted to its angles
-    at its point (the same least-squares call), the same plain Newton row by
-    row (:func:`continuation.plain_newton`), the converged ones polished by
+    at its point (the same least-squares call), the same bounded-step Newton row by
+    row (:func:`continuation.search_newton`), the converged ones polished by
     :func:`newton_points`, and each point's roots sorted and split by
     :func:`continuation.distinct_roots`.  Returns one ``(same, other)`` per point.
     """
@@ -359,7 +359,7 @@ def roots_near_points(problem, idx, ref, others, sign):
             d = np.linalg.lstsq(J[j][:, lin], -R[j], rcond=None)[0]
             if np.all(np.isfinite(d)):
                 seeds[j, lin] += d
-    U, done = plain_newton(lambda V, r: problem.evaluate_points(V, rows[r]), seeds)
+    U, done = search_newton(lambda V, r: problem.evaluate_points(V, rows[r]), seeds)
     V, res, J = newton_points(problem, U[done], rows[done])
     polished = res <= TOL
     point = np.flatnonzero(done) // len(base)
