@@ -55,7 +55,7 @@ import linkage_sym  # noqa: E402
 from linkage_sym.errors import SceneError  # noqa: E402
 from example_sets import without_meshes  # noqa: E402
 from linkage_sym.examples import example_path  # noqa: E402
-from linkage_sym.numeric import batched_path, continuation  # noqa: E402
+from linkage_sym.numeric import batched_path, continuation, newton  # noqa: E402
 from linkage_sym.numeric.newton import NewtonSolver  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 
@@ -499,3 +499,30 @@ def test_reciprocal_condition_numbers_match_the_svd():
         want = sv[:, -1] / sv[:, 0]
         got = batched_path.reciprocal_condition(J)
         assert np.all(np.abs(got - want) <= 1e-10 * want + 1e-300), (n, got, want)
+
+
+def test_the_rate_screen_decides_as_the_svd():
+    """:func:`newton.above_ratio` (the determinant bound ``|det J| / |J|_F^n``, the
+    singular values only where it does not clear the threshold) against
+    ``numpy.linalg.svd``: the same decision for every matrix, on matrices whose ratio
+    ``sigma_min / sigma_max`` is spread from 1 to 1e-17 (many within a factor 3 of the
+    threshold on either side), for the rate stages' threshold and for 1e-3."""
+    rng = np.random.default_rng(5)
+    for n in (2, 4, 9):
+        mats = []
+        for r in np.r_[np.logspace(0, -17, 69), np.logspace(-13.5, -14.5, 41),
+                       np.logspace(-2.5, -3.5, 41)]:
+            Q1, _ = np.linalg.qr(rng.normal(size=(n, n)))
+            Q2, _ = np.linalg.qr(rng.normal(size=(n, n)))
+            s = np.r_[1.0, rng.uniform(r, 1.0, n - 2), r][:n] * rng.uniform(0.1, 10)
+            mats.append(Q1 @ np.diag(s) @ Q2)
+        mats.append(np.ones((n, n)))
+        J = np.array(mats)
+        sv = np.linalg.svd(J, compute_uv=False)
+        for threshold in (newton.SINGULAR_IND, 1e-3):
+            want = sv[:, -1] / sv[:, 0] > threshold
+            got = newton.above_ratio(J, threshold)
+            with np.errstate(divide="ignore"):
+                near = np.abs(np.log(sv[:, -1] / sv[:, 0] / threshold)) < 1e-6  # a tie: rounding
+            assert np.array_equal(got[~near], want[~near]), (n, threshold)
+            assert want.any() and (~want).any()

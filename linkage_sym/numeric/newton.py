@@ -12,6 +12,8 @@ for all steps at once (``numpy.linalg.solve`` on stacked matrices).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from linkage_sym.errors import SceneError
@@ -22,6 +24,26 @@ from linkage_sym.numeric.state import LinkState
 
 SINGULAR_IND = 1e-14
 """Indicator (reciprocal condition of the group block) below which no rate is solved."""
+
+
+def above_ratio(J: np.ndarray, threshold: float) -> np.ndarray:
+    """Whether ``sigma_min / sigma_max > threshold`` for every matrix of ``J`` (k, n, n).
+
+    ``sigma_min sigma_max^(n-1) >= |det J|`` and ``sigma_max <= |J|_F``, so
+    ``sigma_min / sigma_max >= |det J| / |J|_F^n``: where that bound clears
+    twice the threshold (every step but nearly singular ones) the matrix is
+    above it without its singular values; the others are decided by
+    :func:`~linkage_sym.numeric.batched_path.reciprocal_condition`.  (The
+    rate stages' screen: a determinant costs a fifth of the eigenvalues.)
+    """
+    sign, logdet = np.linalg.slogdet(J)
+    with np.errstate(divide="ignore"):
+        lognorm = np.log(np.linalg.norm(J, axis=(1, 2)))
+    out = (sign != 0) & (logdet - J.shape[-1] * lognorm > math.log(2 * threshold))
+    unsure = np.flatnonzero(~out)
+    if len(unsure):
+        out[unsure] = batched_path.reciprocal_condition(J[unsure]) > threshold
+    return out
 
 
 class NewtonSolver:
@@ -110,8 +132,7 @@ class NewtonSolver:
             row = np.where(self.length_rows, 1.0 / self.L, 1.0)
             col = np.tile([self.L, self.L, 1.0], len(self.links))
             good = np.flatnonzero(solvable)
-            ratio = batched_path.reciprocal_condition(J[good] * row[:, None] * col[None, :])
-            solvable[good] = ratio > SINGULAR_IND
+            solvable[good] = above_ratio(J[good] * row[:, None] * col[None, :], SINGULAR_IND)
         self._rates_cache = (poses, J, solvable)
         return J, solvable
 
