@@ -4,6 +4,7 @@ from linkage_sym.model.scene import (
     GROUND,
     OUTPUTS,
     STAGES,
+    CamSpec,
     Driver,
     Effects,
     Joint,
@@ -14,5 +15,5 @@ from linkage_sym.model.scene import (
     TracedPoint,
 )
 
-__all__ = ["GROUND", "OUTPUTS", "STAGES", "Driver", "Effects", "Joint", "Link", "Load", "LoadTable", "Scene",
+__all__ = ["GROUND", "OUTPUTS", "STAGES", "CamSpec", "Driver", "Effects", "Joint", "Link", "Load", "LoadTable", "Scene",
            "TracedPoint"]

@@ -50,6 +50,27 @@ class Link:
 
 
 @dataclass(frozen=True)
+class CamSpec:
+    """A cam contact's profile and follower, as read (see ``docs/scene-format.md``).
+
+    ``profile`` is ``"circle"`` (``data = (centre, R)``), ``"polar"``
+    (``data = (centre, phi, r)``, ``phi`` in radians) or ``"points"``
+    (``data = (points,)``), in the cam link's frame; ``pitch`` says the curve
+    is the roller centre's path relative to the cam (the pitch curve), not
+    the working profile.  ``follower`` is ``"roller"``, ``"knife"`` or
+    ``"flat"``; ``radius`` the roller's (0 otherwise); ``face`` the flat
+    face's direction (radians, on the follower) or ``None``.
+    """
+
+    profile: str
+    data: tuple
+    follower: str
+    radius: float = 0.0
+    face: float | None = None
+    pitch: bool = False
+
+
+@dataclass(frozen=True)
 class Joint:
     """A lower pair between ``links[0]`` and ``links[1]``, or a gear mesh.
 
@@ -68,10 +89,16 @@ class Joint:
     one joining it to the carrier, or one joining it to a link to which the
     carrier is pinned at the same point (a sun coaxial with its arm on the
     ground).  These fields are ``None``/``False`` for R and P joints.
+
+    A ``cam`` joint (cam contact, an extension of the format: a higher pair)
+    keeps a follower element on link ``links[1]`` in contact with the profile
+    of the cam ``links[0]`` (``cam``, a :class:`CamSpec`); ``at`` is the
+    follower's element point in the assembly configuration (roller centre,
+    knife point, or a point of a flat face), fixed on the follower.
     """
 
     name: str
-    type: str  # "R", "P" or "G"
+    type: str  # "R", "P", "G" or "cam"
     links: tuple[str, str]
     at: Point
     axis: float | None = None
@@ -80,6 +107,7 @@ class Joint:
     internal: bool = False
     pressure_angle: float | None = None
     pivots: tuple[str, str] | None = None
+    cam: CamSpec | None = None
 
     @property
     def moves_with(self) -> str:
@@ -204,6 +232,11 @@ class Scene:
     def meshes(self) -> tuple[Joint, ...]:
         """The gear meshes (``G`` joints), in scene order."""
         return tuple(j for j in self.joints if j.type == "G")
+
+    @property
+    def cams(self) -> tuple[Joint, ...]:
+        """The cam contacts (``cam`` joints), in scene order."""
+        return tuple(j for j in self.joints if j.type == "cam")
 
     def gear_pivots(self, mesh: Joint) -> tuple[Joint, Joint]:
         """The ``R`` joints on which a mesh's two gears turn (see :class:`Joint`)."""

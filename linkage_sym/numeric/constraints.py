@@ -247,6 +247,11 @@ def scene_constraints(scene: Scene, phi0: dict[str, float]) -> dict[str, JointRo
         if j.type == "G":
             out[j.name] = JointRows(GMesh(a, b, j.carrier, j.radii, j.internal))
             continue
+        if j.type == "cam":  # the contact's replacement rows (numeric.cams imports this module)
+            from linkage_sym.numeric.cams import CamContact
+
+            out[j.name] = JointRows(CamContact(j, scene.characteristic_length() or 1.0))
+            continue
         row: Constraint = RJoint(a, b, j.at) if j.type == "R" else PJoint(a, b, j.axis)
         driver: Constraint | None = None
         if j.name in driven:

@@ -19,7 +19,9 @@ Per joint two unknowns: ``(Rx, Ry)`` for an ``R`` joint, ``(N, M/L)`` for a
 ``P`` joint (normal force, couple); per gear mesh one, its tooth load ``Fn``
 along the line of action (``Geometry.line_of_action``, from gear
 ``links[0]`` on gear ``links[1]`` at the pitch point: the mesh constraint's
-reaction); per driver one: ``tau/L`` (``R``) or the
+reaction); per cam contact one, its normal force along the contact normal
+(``Geometry.contact_normal``, from the cam on the follower at the contact
+point); per driver one: ``tau/L`` (``R``) or the
 axial force (``P``).  Per link three rows: force balance in x and y, and
 moment balance about the link's wrench reference point divided by ``L``
 (the mechanism size), so that every entry is of order one.
@@ -40,7 +42,7 @@ from linkage_sym.model import GROUND
 def _layout(scene, joints, drivers):
     cols = {}
     c = 0
-    meshes = {j.name for j in scene.joints if j.type == "G"}
+    meshes = {j.name for j in scene.joints if j.type in ("G", "cam")}  # one unknown each
     for j in joints:
         cols[j] = c
         c += 1 if j in meshes else 2
@@ -91,6 +93,9 @@ def assemble(scene, links, joints, drivers, geo, W, L):
             elif j.type == "G":
                 ux, uy = geo.line_of_action(name)
                 put(link, s, c, ux, uy, px, py, None)
+            elif j.type == "cam":  # along the contact normal, at the contact point
+                ux, uy = geo.contact_normal(name)
+                put(link, s, c, ux, uy, px, py, None)
             else:
                 nx, ny, _, _ = geo.normal(name)
                 put(link, s, c, nx, ny, px, py, None)
@@ -120,8 +125,9 @@ def unpack(scene, z, cols, joints, drivers, geo, L):
         c = cols[name]
         if jdict[name].type == "R":
             reactions[name] = (z[:, c], z[:, c + 1], np.zeros(z.shape[0]))
-        elif jdict[name].type == "G":
-            ux, uy = geo.line_of_action(name)
+        elif jdict[name].type in ("G", "cam"):
+            ux, uy = (geo.line_of_action(name) if jdict[name].type == "G"
+                      else geo.contact_normal(name))
             reactions[name] = (z[:, c] * ux, z[:, c] * uy, np.zeros(z.shape[0]))
         else:
             nx, ny, _, _ = geo.normal(name)

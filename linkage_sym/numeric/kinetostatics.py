@@ -176,7 +176,7 @@ class ForcePlan:
                 self.routines.append(_DyadRoutine(scene, g))
             elif g.kind == "gear" and len(g.links) == 1:
                 self.routines.append(_GearRoutine(scene, g))
-            elif g.kind == "gear":
+            elif g.kind in ("gear", "cam"):  # a cam: one unknown along the contact normal
                 self.routines.append(_DenseRoutine(scene, g))
             else:
                 choices = usable_disconnections(scene, g)
@@ -223,7 +223,7 @@ class ForcePlan:
             if not wrong:
                 break
             flank = {**flank, **wrong}
-        notes = []
+        notes = pulling_notes(scene, geo, reactions, idx) if scene.cams else []
         for name, bad in pulling.items():  # never settled: said, not hidden
             steps = bad if idx is None else idx[bad]
             notes.append(
@@ -292,3 +292,22 @@ def _spread(values, idx, N, fill=np.nan, dtype=float):
     else:
         out[idx] = values
     return out
+
+
+def pulling_notes(scene, geo, reactions, idx):
+    """Warnings for the steps where a cam contact's force would pull (a cam only pushes)."""
+    notes = []
+    for j in scene.cams:
+        nx, ny = geo.contact_normal(j.name)
+        fx, fy, _ = reactions[j.name]
+        Fn = np.atleast_1d(fx * nx + fy * ny)
+        bad = np.flatnonzero(Fn < 0)
+        if len(bad):
+            steps = bad if idx is None else idx[bad]
+            notes.append(
+                f"cam contact {j.name}: the follower loses contact at {len(steps)} step(s) (steps "
+                f"{steps_text(steps, len(steps))}): the contact force computed there pulls "
+                f"(down to {Fn.min():.4g} N) and a cam can only push -- a spring or a heavier "
+                "load must keep the follower on the profile; the forces reported there are not "
+                "ones the contact can carry")
+    return notes

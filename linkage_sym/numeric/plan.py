@@ -30,6 +30,7 @@ from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric import accuracy
 from linkage_sym.numeric.block import ResultLayout
 from linkage_sym.numeric.closed_form import DyadSolver, InputSolver
+from linkage_sym.numeric.cams import CamSolver, cam_records
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
 from linkage_sym.numeric.gears import GearSolver
 from linkage_sym.numeric.kinetostatics import ForcePlan, check_method
@@ -76,6 +77,8 @@ class Plan:
                 self.solvers.append(DyadSolver(scene, g))
             elif g.kind == "gear" and len(g.links) == 1:
                 self.solvers.append(GearSolver(scene, g))
+            elif g.kind == "cam":  # a follower on its pivot or slide (others refused by name)
+                self.solvers.append(CamSolver(scene, g, self.L))
             else:
                 self.solvers.append(NewtonSolver(scene, g, self.constraints, self.L))
         self.stages = needed_stages(scene)
@@ -216,6 +219,8 @@ class Plan:
         if self.force_plan is not None:
             forces = self.force_plan.run(S, ok, method, q)
         res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
+        if self.scene.cams:  # each contact's point and pressure angle, in its joint's record
+            cam_records(self.solvers, S, res.joints, status)
         finish(res, self.scene, [n for sv in self.solvers for n in sv.notes], path_index,
                self.decomposition)
         if self._calibration.active:

@@ -30,11 +30,18 @@ SINGULAR = "singular"
 
 @dataclass
 class JointKinematics:
-    """Motion of a joint's point fixed on its ``links[1]``; each array (N, 2)."""
+    """Motion of a joint's point fixed on its ``links[1]``; each array (N, 2).
+
+    For a cam contact (an extension of the format) ``position`` is the contact
+    point, ``velocity`` and ``acceleration`` those of the follower's material
+    point there, and ``pressure_angle`` (N,) the pressure angle in radians;
+    ``pressure_angle`` is ``None`` for every other joint.
+    """
 
     position: np.ndarray
     velocity: np.ndarray | None = None
     acceleration: np.ndarray | None = None
+    pressure_angle: np.ndarray | None = None
 
 
 @dataclass
@@ -291,7 +298,8 @@ class Analysis:
 
         def motion_lists(k: JointKinematics):
             return (rows(k.position), rows(k.velocity) if has_vel else None,
-                    rows(k.acceleration) if has_acc else None)
+                    rows(k.acceleration) if has_acc else None,
+                    rows(getattr(k, "pressure_angle", None)))
 
         status = self.status[a:b].tolist()
         messages = self.messages[a:b]
@@ -316,8 +324,10 @@ class Analysis:
 
         def motion(lists, i: int, rates: bool) -> dict:
             """A joint's or traced point's record at step ``i`` (of the block)."""
-            pos, vel, acc = lists
+            pos, vel, acc, pressure = lists
             rec = {"position": pos[i]}
+            if pressure is not None:  # a cam contact's (an extension)
+                rec["pressure_angle"] = pressure[i]
             if rates and has_vel:
                 rec["velocity"] = vel[i]
             if rates and has_acc:
@@ -509,6 +519,8 @@ class Analysis:
 
         def motion(prefix, k):
             cols = vec(f"{prefix}.position", k.position, "positions")
+            if getattr(k, "pressure_angle", None) is not None:  # a cam contact's
+                cols.append((f"{prefix}.pressure_angle", k.pressure_angle, "positions"))
             if has_vel:
                 cols += vec(f"{prefix}.velocity", k.velocity)
             if has_acc:

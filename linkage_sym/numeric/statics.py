@@ -33,6 +33,7 @@ import math
 import numpy as np
 
 from linkage_sym.model import Scene
+from linkage_sym.numeric.cams import cam_geometry
 from linkage_sym.numeric.gears import mesh_direction
 from linkage_sym.structure import Group
 
@@ -60,8 +61,22 @@ class Geometry:
         p = self._p.get(name)
         if p is None:
             j = self.joint[name]
+            if j.type == "cam":  # the contact point
+                self._cam(name)
+                return self._p[name]
             p = self._p[name] = self.S[j.moves_with].point(j.at)
         return p
+
+    def _cam(self, name):
+        _, C, N, *_ = cam_geometry(self.joint[name]).contact(self.S)
+        self._p[name], self._n[name] = C, N
+
+    def contact_normal(self, name):
+        """Unit normal ``(nx, ny)`` at cam contact ``name``'s contact point, from the cam
+        towards the follower: the direction of the force the cam exerts on the follower."""
+        if name not in self._n:
+            self._cam(name)
+        return self._n[name]
 
     def line_of_action(self, name):
         """Unit direction ``(ux, uy)`` of the force gear ``links[0]`` exerts on ``links[1]``

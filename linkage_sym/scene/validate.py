@@ -25,6 +25,7 @@ from collections.abc import Mapping
 from typing import Any, NamedTuple
 
 from linkage_sym.errors import SceneError
+from linkage_sym.scene.cams import CAM_KEYS, read_cam_fields
 from linkage_sym.scene.gears import GEAR_KEYS, MeshFields, place_meshes, read_mesh_fields
 from linkage_sym.scene.schedules import SCHEDULE_KEYS, read_schedule
 from linkage_sym.scene.fields import (
@@ -55,14 +56,14 @@ __all__ = ["parse_scene"]
 
 TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs", "points")
 LINK_KEYS = ("name", "mass", "com", "inertia")
-JOINT_KEYS = ("name", "type", "links", "at", "axis_deg", *GEAR_KEYS)
+JOINT_KEYS = ("name", "type", "links", "at", "axis_deg", *GEAR_KEYS, *CAM_KEYS)
 R_DRIVER_KEYS = ("toward", "start_deg", "stop_deg")
 P_DRIVER_KEYS = ("start", "stop")
 DRIVER_KEYS = ("joint", *R_DRIVER_KEYS, *P_DRIVER_KEYS, "steps", "speed", "acceleration")
 LOAD_KEYS = ("link", "force", "at", "torque")
 POINT_KEYS = ("name", "link", "at")
 EFFECTS_KEYS = ("inertia", "gravity", "loads")
-JOINT_TYPES = ("R", "P", "G")
+JOINT_TYPES = ("R", "P", "G", "cam")
 
 COINCIDENCE_TOLERANCE = 1e-9
 """Two joint points closer than this fraction of the mechanism's size coincide."""
@@ -250,7 +251,9 @@ class _SceneReader(FieldReader):
                 structure_ok = False
             jtype = self.joint_type(entry, path)
             pair = self.joint_links(entry, path)
-            gear = None
+            gear = cam = None
+            if jtype != "cam":
+                self.forbid(entry, path, CAM_KEYS, f"on a {jtype or 'non-cam'} joint (only a cam contact)")
             if jtype == "G":  # a gear mesh: 'at' is its pitch point, computed when left out
                 at = self.point(entry, "at", path, default=None)
                 names = self.link_index
@@ -259,9 +262,14 @@ class _SceneReader(FieldReader):
                 at = self.point(entry, "at", path, position=True)
                 self.joint_points.append(at)
                 self.forbid(entry, path, GEAR_KEYS, f"on a {jtype or 'non-G'} joint (only a gear mesh, type G)")
+                if jtype == "cam":  # a cam contact: 'at' is the follower's element point
+                    if pair is not None and GROUND == pair[1]:
+                        self.add(f"{path}.links[1]", "the follower of a cam contact must be a moving link")
+                    cam = read_cam_fields(self, entry, path, at)
             axis = None
-            if jtype == "G" and "axis_deg" in entry:
-                self.add(f"{path}.axis_deg", "not allowed on a gear mesh (only a P joint has an axis)")
+            if jtype in ("G", "cam") and "axis_deg" in entry:
+                what = "a gear mesh" if jtype == "G" else "a cam contact"
+                self.add(f"{path}.axis_deg", f"not allowed on {what} (only a P joint has an axis)")
             elif jtype == "P":
                 why = "a P joint gives its slide direction"
                 axis = _radians(self.number(entry, "axis_deg", path, why=why, **_ANGLE))
@@ -274,6 +282,8 @@ class _SceneReader(FieldReader):
                 if len(self.problems) == before:
                     meshes.append(MeshFields(i, name, pair, at, *gear))
                     joints.append(None)
+            elif len(self.problems) == before and cam is not None:
+                joints.append(Joint(name, jtype, pair, at, cam=cam))
             elif len(self.problems) == before:
                 joints.append(Joint(name, jtype, pair, at, axis))
         if meshes:
@@ -314,6 +324,10 @@ class _SceneReader(FieldReader):
                     self.add(f"{path}.joint", f"unknown joint '{joint}'{_suggest(joint, self.joints)}")
                 elif info.type == "G":
                     self.add(f"{path}.joint", f"joint '{joint}' is a gear mesh; drive a gear's "
+                             "pivot (an R joint) instead")
+                    info = None
+                elif info.type == "cam":
+                    self.add(f"{path}.joint", f"joint '{joint}' is a cam contact; drive the cam's "
                              "pivot (an R joint) instead")
                     info = None
                 elif joint in driven:
@@ -505,6 +519,11 @@ class _SceneReader(FieldReader):
                 self.add(field, f"gear mesh '{toward}' does not mesh link '{info.links[1]}' "
                          f"(links[1] of the driven joint '{joint}')")
             return toward
+        if other.type == "cam":  # the follower's element point in the assembly: a direction
+            if info.links is not None and other.links is not None and info.links[1] not in other.links:
+                self.add(field, f"cam contact '{toward}' does not join link '{info.links[1]}' "
+                         f"(links[1] of the driven joint '{joint}')")
+            return toward
         if info.links is not None and other.links is not None:
             driven_link = info.links[1]
             if driven_link not in other.links:
@@ -609,12 +628,15 @@ class _SceneReader(FieldReader):
         """Gruebler-Kutzbach: the mobility must equal the number of drivers."""
         assert self.link_index is not None and self.joints is not None
         n_links = len(self.link_index)
-        n_meshes = sum(j.type == "G" for j in self.joints.values())
+        n_meshes = sum(j.type in ("G", "cam") for j in self.joints.values())
         n_joints = len(self.joints) - n_meshes
         mobility = 3 * n_links - 2 * n_joints - n_meshes
         if mobility != n_drivers:
             higher = f" - {n_meshes}" if n_meshes else ""
-            meshes = f", {n_meshes} gear meshes (higher pairs)" if n_meshes else ""
+            n_cams = sum(j.type == "cam" for j in self.joints.values())
+            kinds = [f"{n} {what}" for n, what in ((n_meshes - n_cams, "gear meshes"),
+                                                   (n_cams, "cam contacts")) if n]
+            meshes = f", {' and '.join(kinds)} (higher pairs)" if n_meshes else ""
             self.add(
                 "drivers",
                 f"{n_drivers} driver{'s' if n_drivers != 1 else ''} given but the mobility is "

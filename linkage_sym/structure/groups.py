@@ -11,7 +11,7 @@ group, without a catalogue of shapes.
 A gear mesh (``G`` joint, an extension of the format) is a higher pair: one
 equation, linking the angles of its two gears and their carrier.  Groups
 containing meshes close by the same count (``3 n = 2 p + h`` for ``n``
-links, ``p`` lower pairs and ``h`` meshes): a gear turning on a pivot of a
+links, ``p`` lower pairs and ``h`` higher pairs: meshes and cam contacts): a gear turning on a pivot of a
 known carrier and meshing with a known gear is a one-link group (kind
 ``"gear"``), a planet with its carrier driven through the sun a two-link one.
 
@@ -58,7 +58,8 @@ class Group:
         (class-III group of a ternary link and three binary links),
         ``"driven"`` (a group containing a relative driver, e.g. an actuator),
         ``"gear"`` (a group containing a gear mesh: one gear on its pivot, or
-        several links, e.g. a planet and its carrier) or ``"group"`` (any
+        several links, e.g. a planet and its carrier), ``"cam"`` (a follower
+        on its pivot or slide touching a known cam) or ``"group"`` (any
         other Assur group, solved by Newton).
     assur_class : int or None
         2 for dyads, 3 for triads, the size of the largest closed contour of
@@ -89,6 +90,8 @@ class Group:
             return "driven group"
         if self.kind == "gear":
             return "gear" if len(self.links) == 1 else "gear group"
+        if self.kind == "cam":
+            return "cam follower" if len(self.links) == 1 else "cam group"
         roman = {4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VIII"}
         return f"group (class {roman.get(self.assur_class, self.assur_class)})"
 
@@ -128,6 +131,7 @@ class _Item:
 def _items(scene: Scene, drivers=None) -> list[_Item]:
     items = [
         _Item(j.name, False, (*j.links, j.carrier), True) if j.type == "G"
+        else _Item(j.name, False, j.links, True) if j.type == "cam"
         else _Item(j.name, False, j.links)
         for j in scene.joints
     ]
@@ -139,7 +143,7 @@ def _items(scene: Scene, drivers=None) -> list[_Item]:
 def mobility(scene: Scene) -> int:
     """Grübler–Kutzbach mobility ``3 (n - 1) - 2 j - h`` of a planar linkage.
 
-    ``j`` lower pairs (R, P) and ``h`` higher pairs (gear meshes).
+    ``j`` lower pairs (R, P) and ``h`` higher pairs (gear meshes, cam contacts).
 
     Examples
     --------
@@ -149,7 +153,7 @@ def mobility(scene: Scene) -> int:
     >>> mobility(Scene("4bar", (Link("c"), Link("k"), Link("r")), tuple(j), ()))
     1
     """
-    h = sum(j.type == "G" for j in scene.joints)
+    h = sum(j.type in ("G", "cam") for j in scene.joints)
     return 3 * len(scene.links) - 2 * (len(scene.joints) - h) - h
 
 
@@ -318,6 +322,8 @@ def _classify(scene: Scene, links: tuple[str, ...], mine: list[_Item]) -> Group:
         kind, cls, dtype = "input", None, None
     elif any(jtype[j.name] == "G" for j in joints):
         kind, cls, dtype = "gear", None, None
+    elif any(jtype[j.name] == "cam" for j in joints):
+        kind, cls, dtype = "cam", None, None
     elif drivers:
         kind, cls, dtype = "driven", None, None
     elif len(links) == 2 and len(external) == 2 and len(internal) == 1:

@@ -57,6 +57,11 @@ def structure_report(scene: Scene, dec: Decomposition) -> str:
                    "positions by Newton on the group's rows (linear in the angles), forces by a "
                    "dense solve of the group's own equilibrium")
             lines.append(f"     gear meshes {', '.join(j for j in g.joints if jtype[j] == 'G')}: {how}")
+        elif g.kind == "cam":  # cam contacts: one unknown along the contact normal
+            lines.append(f"     cam contacts {', '.join(j for j in g.joints if jtype[j] == 'cam')}: "
+                         "positions from the contact conditions (the profile parameter as an "
+                         "extra unknown), rates by the instantaneous replacement by lower pairs, "
+                         "the contact force along the normal by a dense solve of the group")
         elif g.kind not in ("input", "dyad"):
             choices = usable_disconnections(scene, g)
             if choices:
