@@ -84,17 +84,18 @@ def cmd_balance(args) -> int:
     )
     scene = load(args.scene)
     options = _optimize_options(scene, args)
-    sliding = [j.name for j in scene.joints if j.type != "R"]
+    kinds = {"P": "prismatic joint", "G": "gear mesh", "cam": "cam contact"}
+    sliding = [f"{j.name} ({kinds.get(j.type, j.type)})" for j in scene.joints if j.type != "R"]
     if sliding and not args.optimize:
         raise OptionError(
             f"the derived balancing conditions cover hinged (R-joint only) linkages; "
-            f"{scene.name!r} has prismatic joint(s) {', '.join(sliding)}: use --optimize FILE "
+            f"{scene.name!r} has other joints: {', '.join(sliding)}: use --optimize FILE "
             "for counterweights optimised on the force solver's shaking force and moment")
     for flag, given in (("--latex", args.latex), ("--balanced-scene", args.balanced_scene)):
         if sliding and given:
             raise OptionError(
                 f"{flag}: needs the derived balance conditions, which cover hinged (R-joint) "
-                f"linkages only; with prismatic joints ({', '.join(sliding)}) only --optimize "
+                f"linkages only; with other joints ({', '.join(sliding)}) only --optimize "
                 "(and --plots) run")
     from linkage_sym.balancing.report import balance_document
 

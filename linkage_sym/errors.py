@@ -41,28 +41,33 @@ class BalanceError(ValueError):
         super().__init__(f"cannot balance: {reason}")
 
 
-def refuse_gear_meshes(scene) -> None:
-    """Raise :class:`SceneError` if ``scene`` has gear meshes: the symbolic layer lacks them.
+SYMBOLIC_LACKS = {"cam": "cam contacts"}
+"""Joint types the symbolic layer does not derive yet, with their plural names."""
+
+
+def refuse_symbolic_unsupported(scene) -> None:
+    """Raise :class:`SceneError` if ``scene`` has joints the symbolic layer does not derive.
 
     The symbolic method (derived equations, their compiled and arbitrary-precision
     runs, and what builds on them: LaTeX, balancing conditions, design sweeps)
-    does not support gear meshes yet (issue 20); the numeric methods do.
+    does not support cam contacts yet (issue 20); the numeric methods do.
+    Every such joint is named.
 
     Examples
     --------
     >>> from types import SimpleNamespace as NS
-    >>> refuse_gear_meshes(NS(joints=[NS(name="A", type="R")]))
-    >>> refuse_gear_meshes(NS(joints=[NS(name="A", type="R"), NS(name="M", type="G")]))
+    >>> refuse_symbolic_unsupported(NS(joints=[NS(name="A", type="R"), NS(name="M", type="G")]))
+    >>> refuse_symbolic_unsupported(NS(joints=[NS(name="A", type="R"), NS(name="K", type="cam")]))
     Traceback (most recent call last):
     ...
     linkage_sym.errors.SceneError: invalid scene (1 problem):
-      joints[1]: the symbolic method does not support gear meshes yet (joint 'M' is a gear mesh, type G); the numeric methods do (--method dyad or global)
+      joints[1]: the symbolic method does not support cam contacts yet (joint 'K' is of type cam); the numeric methods do (--method dyad or global)
     """
     problems = [
-        f"joints[{i}]: the symbolic method does not support gear meshes yet (joint '{j.name}' "
-        "is a gear mesh, type G); the numeric methods do (--method dyad or global)"
+        f"joints[{i}]: the symbolic method does not support {SYMBOLIC_LACKS[j.type]} yet "
+        f"(joint '{j.name}' is of type {j.type}); the numeric methods do (--method dyad or global)"
         for i, j in enumerate(scene.joints)
-        if j.type == "G"
+        if j.type in SYMBOLIC_LACKS
     ]
     if problems:
         raise SceneError(problems)

@@ -1,23 +1,35 @@
 """Which shipped examples a check applies to.
 
-The gear examples (``G`` joints, issue 20) are left out of checks that run
-the symbolic layer, which refuses gear meshes ("the symbolic method does not
-support gear meshes yet", tested in ``test_gears.py``), and of checks against
-``reference_kinematics.py``, an independent solver of R and P joints only;
-``test_gears.py`` checks them against the Willis formula, closed forms and
-the equivalent four-bar instead.
+Examples with cam contacts (``cam`` joints, issue 20) are left out of checks
+that run the symbolic layer, which refuses them ("the symbolic method does
+not support cam contacts yet"); examples with any higher pair (gear meshes,
+cam contacts) are left out of checks against ``reference_kinematics.py``, an
+independent solver of R and P joints only.  ``test_gears.py`` and
+``test_cams.py`` check those against the Willis formula, closed forms, the
+equivalent four-bar and the direct contact equations instead.
 """
 
 from __future__ import annotations
 
+from linkage_sym.errors import SYMBOLIC_LACKS
 from linkage_sym.examples import example_dict, example_names
+
+
+def joint_types(name: str) -> set[str]:
+    """The joint types of the shipped example ``name``."""
+    return {j.get("type", "R") for j in example_dict(name)["joints"]}
 
 
 def has_meshes(name: str) -> bool:
     """Whether the shipped example ``name`` has a gear mesh."""
-    return any(j.get("type") == "G" for j in example_dict(name)["joints"])
+    return "G" in joint_types(name)
 
 
-def without_meshes() -> list[str]:
-    """The shipped examples without gear meshes, sorted."""
-    return [n for n in example_names() if not has_meshes(n)]
+def symbolic_examples() -> list[str]:
+    """The shipped examples the symbolic layer derives (no joint it refuses), sorted."""
+    return [n for n in example_names() if not joint_types(n) & set(SYMBOLIC_LACKS)]
+
+
+def lower_pair_examples() -> list[str]:
+    """The shipped examples with R and P joints only, sorted."""
+    return [n for n in example_names() if joint_types(n) <= {"R", "P"}]

@@ -48,7 +48,7 @@ from linkage_sym.codegen.compile import compile_mechanism  # noqa: E402
 from linkage_sym.codegen.precision import run_precise  # noqa: E402
 from linkage_sym.errors import SceneError  # noqa: E402
 from linkage_sym.examples import example_names, load_example  # noqa: E402
-from example_sets import without_meshes  # noqa: E402
+from example_sets import symbolic_examples  # noqa: E402
 from linkage_sym.numeric import accuracy  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 from linkage_sym.scene import load_scene  # noqa: E402
@@ -111,7 +111,7 @@ def _with_steps(scene, steps):
         dataclasses.replace(d, steps=steps) for d in scene.drivers))
 
 
-@pytest.mark.parametrize("name", without_meshes())  # the mpmath reference is symbolic
+@pytest.mark.parametrize("name", symbolic_examples())  # the mpmath reference is symbolic
 def test_bounds_every_step_of_the_shipped_examples(name):
     scene = load_example(name)
     res = linkage_sym.analyze(scene)

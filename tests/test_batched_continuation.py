@@ -53,7 +53,7 @@ from test_newton_groups import _families  # noqa: E402  (the result families bot
 
 import linkage_sym  # noqa: E402
 from linkage_sym.errors import SceneError  # noqa: E402
-from example_sets import without_meshes  # noqa: E402
+from example_sets import symbolic_examples  # noqa: E402
 from linkage_sym.examples import example_path  # noqa: E402
 from linkage_sym.numeric import batched_path, continuation, newton  # noqa: E402
 from linkage_sym.numeric.newton import NewtonSolver  # noqa: E402
@@ -163,7 +163,7 @@ def _triad_from(j, steps=37):
 
 def _newton_examples():
     out = []
-    for name in without_meshes():  # gear meshes: the symbolic layer refuses them (test_gears.py)
+    for name in symbolic_examples():  # both runtimes: the symbolic layer refuses cams
         plan = compile_plan(linkage_sym.load_example(name))
         if any(isinstance(s, NewtonSolver) for s in plan.solvers):
             out.append(name)

@@ -348,3 +348,143 @@ def test_a_flank_that_never_settles_is_a_warning(monkeypatch):
     res = plan.run()
     assert any(w.startswith(f"gear mesh {mesh}: the tooth load still pulls at {res.n_steps} step")
                for w in res.warnings), res.warnings
+
+
+# -- the symbolic layer ---------------------------------------------------------
+
+def _compare(d, what):
+    """The compiled symbolic run against the numeric solver (test_symbolic's contract check:
+    statuses, warnings, and every array within 1e-9 of its family's scale)."""
+    from test_symbolic import compare_analyses, compare_dicts
+
+    scene = load_scene(d)
+    sym = linkage_sym.analyze(scene, method="symbolic")
+    num = linkage_sym.analyze(scene)
+    assert sym.warnings == num.warnings, what
+    compare_analyses(scene, sym, num, what)
+    compare_dicts(scene, sym.to_dict(), num.to_dict(), what)
+    return scene, sym
+
+
+@pytest.mark.parametrize("internal", [False, True])
+def test_symbolic_gear_pair_closed_form_equals_numeric(internal):
+    """A gear on its pivot: the symbolic closed form of its angle (from the mesh equation)
+    and its tooth load against the numeric solver and the closed-form torques."""
+    from linkage_sym.symbolic.mechanism import derive
+
+    d = gear_pair(internal=internal)
+    d["outputs"] = ["kinematics", "reactions", "driving", "frame"]
+    scene, sym = _compare(d, f"gear pair internal={internal}")
+    eqs = derive(scene)
+    assert [ge.closed for ge in eqs.groups] == [True, True]
+    ratio = (1 if internal else -1) * 0.03 / 0.05
+    assert max_rel(sym.links["g"].omega - ratio * sym.links["p"].omega,
+                   np.abs(sym.links["p"].omega)) <= TOL_KIN
+    assert max_rel(sym.forces.driving["A"] - 2.0 * ratio, 2.0 * abs(ratio)) <= TOL_F
+
+
+def test_symbolic_mesh_equation_is_the_rolling_law():
+    """The derived mesh row of the planetary train is ``ra (da - dc) + rb (db - dc)`` (an
+    external mesh; ``d`` the rotations from the assembly configuration), written here."""
+    from linkage_sym.symbolic.mechanism import derive
+    import sympy as sp
+
+    eqs = derive(load_scene(planetary()), forces=False)
+    row = eqs.Phi[eqs.groups[1].rows][0]
+    th = {n: sp.Symbol(f"theta_{n}", real=True) for n in ("sun", "planet", "arm")}
+    th0 = {n: sp.Symbol(f"theta0_{n}", real=True) for n in ("sun", "planet", "arm")}
+    ra, rb = sp.Symbol("r_G_sp_sun", real=True), sp.Symbol("r_G_sp_planet", real=True)
+    d = {n: th[n] - th0[n] for n in th}
+    assert sp.expand(row - (ra * (d["sun"] - d["arm"]) + rb * (d["planet"] - d["arm"]))) == 0
+
+
+def test_symbolic_flank_follows_the_tangential_force():
+    """The load torque changing sign over the cycle: the symbolic runtime settles the flanks
+    as the numeric solver does (the same mesh forces, whose tangential part changes sign)."""
+    d = gear_pair(torque=0.0)
+    d["loads"] = [{"link": "g", "torque": 2.0, "table": {"q_deg": [0, 180, 360], "scale": [1, -1, 1]}}]
+    scene, sym = _compare(d, "gear pair, load changing sign")
+    tangential = sym.forces.reactions["M"][:, 1]
+    assert (tangential > 0).any() and (tangential < 0).any()
+    ((r, s, rn),) = mesh_residuals(scene, sym).values()
+    assert max_rel(r, s) <= TOL_F and (rn >= -1e-12 * s).all()
+
+
+@pytest.mark.parametrize("variant", ["arm", "two drivers"])
+def test_symbolic_planetary_variants_equal_numeric(variant):
+    _compare(planetary("arm" if variant == "arm" else "sun", ring_fixed=variant != "two drivers"),
+             f"planetary ({variant})")
+
+
+def test_symbolic_flank_that_never_settles_is_the_same_warning(monkeypatch):
+    """Were the tooth load to pull with either flank, the symbolic runtime says so with the
+    numeric solver's words."""
+    from linkage_sym.codegen import runtime
+
+    scene = load_scene(example_dict("planetary_train"))
+    cm = linkage_sym.compile_mechanism(scene)
+    name = scene.meshes[0].name
+    row = cm.art["force_names"].index(f"Fn_{name}")
+    solve = runtime.CompiledMechanism._force_solve
+
+    def pulling(self, pts, sel, Kk):
+        Fv = solve(self, pts, sel, Kk)
+        Fv[row] = -np.abs(Fv[row]) - 1.0
+        return Fv
+
+    monkeypatch.setattr(runtime.CompiledMechanism, "_force_solve", pulling)
+    res = cm.run()
+    assert any(w.startswith(f"gear mesh {name}: the tooth load still pulls at {res.n_steps} step")
+               and "after 5 force solves" in w for w in res.warnings), res.warnings
+
+
+def test_symbolic_precision_of_a_gear_train_equals_float():
+    """``--precision 50`` (mpmath, its own flank choice per step) against the float64 run."""
+    from linkage_sym.codegen.precision import analyze_precise
+
+    d = example_dict("gear_linkage")
+    d["drivers"][0]["steps"] = 13
+    scene = load_scene(d)
+    hi = analyze_precise(scene, 50)
+    lo = linkage_sym.analyze(scene, method="symbolic")
+    assert list(hi.status) == list(lo.status)
+    scale = reaction_scale(scene, lo.forces)
+    for j in lo.forces.reactions:
+        assert max_rel(hi.forces.reactions[j] - lo.forces.reactions[j], scale) <= 1e-12, j
+    assert max_rel(hi.forces.driving["O"] - lo.forces.driving["O"], scale) <= 1e-12
+
+
+def test_latex_names_the_flanks_and_tooth_loads():
+    from linkage_sym.symbolic.latex import latex_document
+    from linkage_sym.symbolic.mechanism import derive
+
+    tex = latex_document(derive(load_scene(example_dict("planetary_train"))), symbols=True)
+    assert r"\kappa_{\mathrm{G\_sp}}$ & flank of gear mesh G\_sp" in tex
+    assert r"F_{\mathrm{G\_rp},n}$ & tooth load of gear mesh G\_rp on its line of action " \
+           r"(gear ground on gear planet)" in tex
+
+
+def test_an_internal_and_an_external_mesh_are_compiled_apart():
+    """The rolling law's sign and carrier shape the generated code: they are in the cache key
+    (the same topology with an internal mesh once ran the external mesh's functions)."""
+    from linkage_sym.codegen import cache
+
+    key = lambda d: cache.key_of(cache.signature(load_scene(d)))  # noqa: E731
+    assert key(gear_pair(internal=False)) != key(gear_pair(internal=True))
+
+
+def test_balancing_refuses_meshes_by_name():
+    """The derived balancing conditions (Song and Wang 1992) cover hinged linkages: a scene
+    with meshes is refused naming each mesh as a gear mesh (not as a prismatic joint)."""
+    from linkage_sym.balancing import BalanceModel
+
+    with pytest.raises(SceneError) as e:
+        BalanceModel(load_scene(example_dict("gear_linkage")))
+    assert "joints[3] 'K': a gear mesh;" in str(e.value) and "prismatic" not in str(e.value)
+
+
+def test_design_sweeps_refuse_meshes_by_name():
+    from linkage_sym.design.parameters import SweepError
+
+    with pytest.raises(SweepError, match=r"gear meshes \(K, E\): design sweeps do not take them"):
+        linkage_sym.sweep(load_scene(example_dict("gear_linkage")), {"l_BC": [0.3, 0.31]})

@@ -37,9 +37,9 @@ RATE_TOL = 1e-11
 
 
 def _examples():
-    from example_sets import without_meshes
+    from example_sets import lower_pair_examples
 
-    return without_meshes()  # reference_kinematics.py solves R and P joints only
+    return lower_pair_examples()  # reference_kinematics.py solves R and P joints only
 
 
 def _own_scenes():

@@ -20,7 +20,7 @@ import sympy as sp
 import linkage_sym.examples
 from linkage_sym.cli import main
 from linkage_sym.examples import example_dict, example_names, load_example
-from example_sets import without_meshes
+from example_sets import symbolic_examples
 from linkage_sym.symbolic import derive
 from linkage_sym.symbolic.latex import latex_document, standalone
 
@@ -33,7 +33,7 @@ DROP = re.compile(r"\\label\{[^}]*\}|\\nonumber|\\notag")
 
 @pytest.fixture(scope="module")
 def documents():
-    return {n: latex_document(derive(load_example(n), forces=True)) for n in without_meshes()}
+    return {n: latex_document(derive(load_example(n), forces=True)) for n in symbolic_examples()}
 
 
 def convert(tex: str) -> str:
@@ -76,7 +76,7 @@ def test_the_parser_reads_matrices():
         latex2mathml.convert(r"\frac{a}{")
 
 
-@pytest.mark.parametrize("name", without_meshes())  # the symbolic layer refuses gears
+@pytest.mark.parametrize("name", symbolic_examples())  # the symbolic layer refuses cams
 def test_every_formula_parses(documents, name):
     doc = documents[name]
     n = 0
@@ -89,7 +89,7 @@ def test_every_formula_parses(documents, name):
     assert n > 20
 
 
-@pytest.mark.parametrize("name", without_meshes())  # the symbolic layer refuses gears
+@pytest.mark.parametrize("name", symbolic_examples())  # the symbolic layer refuses cams
 def test_environments_balance_and_labels_are_unique(documents, name):
     doc = documents[name]
     assert "\\documentclass" not in doc
@@ -204,7 +204,7 @@ def test_the_four_bar_has_no_equation_longer_than_250_characters(documents):
     assert doc.count(r"\sqrt{\left(- d_{2}") == 1
 
 
-@pytest.mark.parametrize("name", without_meshes())  # the symbolic layer refuses gears
+@pytest.mark.parametrize("name", symbolic_examples())  # the symbolic layer refuses cams
 def test_the_named_positions_are_the_closed_forms(name):
     """Substituting the intermediates back gives the closed forms the code is generated
     from: compared in 30-digit mpmath (1e-25) at the scene's parameter values and the

@@ -45,7 +45,7 @@ import reference_kinematics as ref  # noqa: E402
 import scenes  # noqa: E402
 
 import linkage_sym  # noqa: E402
-from example_sets import has_meshes  # noqa: E402
+from example_sets import symbolic_examples  # noqa: E402
 from linkage_sym.errors import SceneError  # noqa: E402
 from linkage_sym.examples import example_names  # noqa: E402
 
@@ -257,7 +257,7 @@ def test_shipped_examples_do_not_depend_on_the_step_count(name):
     d = json.loads(linkage_sym.examples.example_path(name).read_text())
     coarse, fine = _resolution_pair(d, 19)
     # the symbolic layer refuses gear meshes (test_gears.py): the numeric method only there
-    for m in ("dyad",) if has_meshes(name) else ("dyad", "symbolic"):
+    for m in ("dyad", "symbolic") if name in symbolic_examples() else ("dyad",):
         a = linkage_sym.analyze(coarse, method=m)
         b = linkage_sym.analyze(fine, method=m)
         assert_same(a, b, f"{name} ({m}) 19 vs 361 steps", rows_b=slice(None, None, 20),

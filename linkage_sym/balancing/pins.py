@@ -50,10 +50,15 @@ def tag(name: str) -> str:
     return "".join(ch if ch.isalnum() or ch == "_" else "_" for ch in name)
 
 
+KINDS = {"P": "a prismatic joint", "G": "a gear mesh", "cam": "a cam contact"}
+
+
 def require_hinged(scene: Scene, what: str) -> None:
-    """Refuse a scene with prismatic joints, naming each of them."""
+    """Refuse a scene with joints other than hinges (prismatic joints, gear meshes, cam
+    contacts), naming each of them."""
     bad = [
-        f"joints[{i}] '{j.name}': a prismatic joint; {what} covers hinged (R-joint) linkages only"
+        f"joints[{i}] '{j.name}': {KINDS.get(j.type, j.type)}; {what} covers hinged (R-joint) "
+        "linkages only"
         for i, j in enumerate(scene.joints)
         if j.type != "R"
     ]

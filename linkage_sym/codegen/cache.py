@@ -94,7 +94,10 @@ def signature(scene: Scene) -> dict:
         "linkage_sym": __version__,
         "sympy": sympy_version(),
         "links": [[k.name, k.com is not None, k.mass > 0, k.inertia > 0] for k in scene.links],
-        "joints": [[j.name, j.type, list(j.links)] for j in scene.joints],
+        # a mesh's carrier and kind enter its rolling law
+        "joints": [[j.name, j.type, list(j.links)]
+                   + ([j.carrier, bool(j.internal)] if j.type == "G" else [])
+                   for j in scene.joints],
         "frames": [[fr.link, fr.u, fr.v] for fr in frames.values()],
         "at_origin": at_origin,
         "drivers": [[d.joint, d.kind, d.toward] for d in scene.drivers],

@@ -31,7 +31,7 @@ import sympy as sp
 
 from linkage_sym.codegen import cache
 from linkage_sym.codegen.runtime import CompiledMechanism, load_compiled
-from linkage_sym.errors import refuse_gear_meshes
+from linkage_sym.errors import refuse_symbolic_unsupported
 from linkage_sym.model import Scene
 from linkage_sym.numeric.sweep import needed_stages
 from linkage_sym.symbolic.mechanism import MechanismEquations
@@ -143,7 +143,7 @@ def build_artifact(scene: Scene, printer: str = "numpy") -> dict:
     forces = "forces" in stages
     eqs = MechanismEquations(scene, symbolic=True, forces=forces)
     params = eqs.parameters
-    p_syms = params + eqs.sigmas
+    p_syms = params + eqs.sigmas + eqs.flanks
     F = eqs.all_forces if forces else []
     cx = [sp.Symbol("cos_" + s.name, real=True) for s in eqs.x]
     sx = [sp.Symbol("sin_" + s.name, real=True) for s in eqs.x]
@@ -236,6 +236,8 @@ def build_artifact(scene: Scene, printer: str = "numpy") -> dict:
     for j in scene.joints:
         if j.type == "P":
             put(f"slide:{j.name}", list(eqs.slide_unit(j.name)))
+        elif j.type == "G":  # the line of action, with the flank an input
+            put(f"mesh:{j.name}", list(eqs.line_of_action(j)))
     force_layout = []
     if forces:
         fi = {s: i for i, s in enumerate(F)}
@@ -262,6 +264,7 @@ def build_artifact(scene: Scene, printer: str = "numpy") -> dict:
         "q": [d.joint for d in scene.drivers],
         "params": [[s.name, list(_jsonable(table.params[s.name].recipe))] for s in params],
         "sigmas": len(eqs.sigmas),
+        "flanks": [j.name for j in scene.meshes],
         "steps": steps,
         "groups": groups,
         "rows_length": eqs.row_is_length,
@@ -289,7 +292,7 @@ def compile_mechanism(scene: Scene, use_cache: bool = True) -> CompiledMechanism
     >>> round(float(result.forces.driving["A"][0]), 4)  # as the numeric solver
     -0.0755
     """
-    refuse_gear_meshes(scene)
+    refuse_symbolic_unsupported(scene)
     if use_cache:
         got = load_compiled(scene)
         if got is not None:

@@ -141,6 +141,15 @@ def parameter_mp(scene: Scene, recipe: tuple, mframes):
     if k in ("gx", "gy"):
         g = scene.effects.gravity or (0.0, 0.0)
         return mp.mpf(float(g[0 if k == "gx" else 1]))
+    if k in ("radius", "phi", "epsilon"):
+        j = scene.joint(recipe[1])
+        if k == "radius":
+            return mp.mpf(float(j.radii[recipe[2]]))
+        if k == "phi":
+            return mp.mpf(float(j.pressure_angle))
+        A, B = (_mpf_point(p.at) for p in scene.gear_pivots(j))
+        c = j.carrier
+        return _wrap_mp(mp.atan2(B[1] - A[1], B[0] - A[0]) - (0 if c == GROUND else mframes[c][1]))
     ld = scene.loads[recipe[1]]
     if k in ("Fx", "Fy"):
         return mp.mpf(float(ld.force[0 if k == "Fx" else 1]))
@@ -262,8 +271,10 @@ class PreciseMechanism:
             self.mframes = mframes
             params = [parameter_mp(scene, tuple(r), mframes) for _, r in self.art["params"]]
             k = self.art["sigmas"]
-            sig = cm.params[len(cm.params) - k:] if k else []
-            self.P = params + [mp.mpf(float(s)) for s in sig]
+            sig = cm.params[cm.n_params:cm.n_params + k]
+            # then each gear mesh's flank, +1 until a tooth load says otherwise (step)
+            self.P = params + [mp.mpf(float(s)) for s in sig] + [mp.mpf(1)] * len(cm.flanks)
+            self.flank_at = len(params) + k
         self.m = cm.m
         self.pattern = [tuple(p) for p in self.art["pattern"]]
         self.scaled = [(i, ld) for i, ld in enumerate(cm.scene.loads) if ld.driver is not None]
@@ -352,12 +363,26 @@ class PreciseMechanism:
             self.P = self._scaled_params(dict(zip(self.art["q"], Q)))
         try:
             pts = self._call("points", X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
+            rec = {"x": X, "xd": XD, "xdd": XDD, "pts": pts}
+            if rates and "forces" in stages:
+                F = self._forces(pts, X, CS)
+                # a gear mesh's tooth load must press: the other flank where it pulls, as
+                # the float64 runtime does (CompiledMechanism._forces)
+                flanks = self.cm.flanks
+                fidx = {nm: i for i, nm in enumerate(self.art["force_names"])}
+                for _ in range(2 * len(flanks)):
+                    pull = [m for m, nm in enumerate(flanks) if F[fidx[f"Fn_{ident(nm)}"]] < 0]
+                    if not pull:
+                        break
+                    self.P = list(self.P)
+                    for m in pull:
+                        self.P[self.flank_at + m] = -self.P[self.flank_at + m]
+                    pts = self._call("points", X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
+                    F = self._forces(pts, X, CS)
+                rec["pts"], rec["F"] = pts, F
+                rec["frame"] = self._call("frame", X=X, F=F, CS=CS)
         finally:
             self.P = P
-        rec = {"x": X, "xd": XD, "xdd": XDD, "pts": pts}
-        if rates and "forces" in stages:
-            rec["F"] = self._forces(pts, X, CS)
-            rec["frame"] = self._call("frame", X=X, F=rec["F"], CS=CS)
         return rec
 
     def _get(self, pts, key):
@@ -492,6 +517,11 @@ class PreciseMechanism:
                 n = ident(j.name)
                 if j.type == "R":
                     reactions[j.name] = (F[fidx[f"R_{n}x"]], F[fidx[f"R_{n}y"]])
+                    moments[j.name] = mp.mpf(0)
+                elif j.type == "G":  # the tooth load on the line of action (gear a on gear b)
+                    ux, uy = self._get(pts, f"mesh:{j.name}")
+                    Fn = F[fidx[f"Fn_{n}"]]
+                    reactions[j.name] = (ux * Fn, uy * Fn)
                     moments[j.name] = mp.mpf(0)
                 else:
                     ux, uy = self._get(pts, f"slide:{j.name}")

@@ -34,6 +34,7 @@ from linkage_sym.numeric import accuracy, continuation
 from linkage_sym.numeric.block import ResultLayout
 from linkage_sym.numeric.loads import load_factor
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
+from linkage_sym.numeric.gears import pulling_note
 from linkage_sym.numeric.state import LinkState
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.result import OK, Analysis, Forces, GroupForces
@@ -188,7 +189,10 @@ class CompiledMechanism:
         self.frames = frames
         self.param_names = [n for n, _ in art["params"]]
         self.params = [evaluate(scene, tuple(r), frames) for _, r in art["params"]]
+        self.n_params = len(self.params)  # then the assembly-mode signs, then the flanks
         self.params += [1.0] * art["sigmas"]
+        self.flanks = art.get("flanks", [])
+        self.params += [1.0] * len(self.flanks)
         self.L = scene.characteristic_length() or 1.0
         self.x_names = art["x"]
         self.m = len(self.x_names)
@@ -223,7 +227,8 @@ class CompiledMechanism:
         if k == 0:
             return
         combos = np.array(np.meshgrid(*[[1.0, -1.0]] * k, indexing="ij")).reshape(k, -1)
-        P = self.params[: len(self.params) - k] + list(combos)
+        n = self.n_params
+        P = self.params[:n] + list(combos) + self.params[n + k:]
         Q = [self.q0[n] for n in art["q"]]
         X = list(self.x0)
         err = np.zeros(combos.shape[1])
@@ -247,7 +252,7 @@ class CompiledMechanism:
             flipped[i] = -flipped[i]
             j = int(np.flatnonzero((combos == flipped[:, None]).all(axis=0))[0])
             if err[j] <= ASSEMBLY_MATCH:
-                g = next(g for g in art["groups"] if g["sigma"] == len(self.params) - k + i)
+                g = next(g for g in art["groups"] if g["sigma"] == n + i)
                 raise SceneError(
                     [
                         f"joints: the assembly configuration is a singular position of the "
@@ -256,7 +261,7 @@ class CompiledMechanism:
                     ]
                 )
         for i in range(k):
-            self.params[len(self.params) - k + i] = float(combos[i, best])
+            self.params[n + i] = float(combos[i, best])
 
     def _path(self, Q: np.ndarray):
         """Driver values from the assembly configuration through the steps (refined),
@@ -537,15 +542,25 @@ class CompiledMechanism:
             for i, v in enumerate(r):
                 rhs[:, i] = v
             XDD[:, sel] = _solve_blocks(A[sel], rhs, self.blocks).T
-        with np.errstate(invalid="ignore"):
-            pts = self._call(
-                "points", X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk, QD=QDk, QDD=QDDk,
-                CS=(list(CS[0]), list(CS[1])), P=self._load_params(dict(zip(art["q"], Qk))),
-            )
-        pts = [_full(v, K) for v in pts]
+        P0 = self._load_params(dict(zip(art["q"], Qk)))
+
+        def points(flanks=None):
+            """The points function's outputs at the K steps; ``flanks``: each mesh's flank
+            at every step (the parameters' +1 otherwise)."""
+            P = P0
+            if flanks is not None:
+                P = list(self.params if P0 is None else P0)
+                at = self.n_params + art["sigmas"]
+                P[at:at + len(flanks)] = list(flanks)
+            with np.errstate(invalid="ignore"):
+                got = self._call("points", X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk, QD=QDk,
+                                 QDD=QDDk, CS=(list(CS[0]), list(CS[1])), P=P)
+            return [_full(v, K) for v in got]
+
+        pts = points()
         forces = None
         if "forces" in stages:
-            forces = self._forces(pts, Xk, CS, rate_ok, idx, N)
+            forces = self._forces(pts, points, Xk, CS, rate_ok, idx, N)
         res = self._analysis(X, XD, XDD, CS, pts, idx, status, messages, condition, forces,
                              q, qd, qdd)
         if self._decomposition is None:  # for the transmission angles, made once
@@ -576,12 +591,40 @@ class CompiledMechanism:
         a, b = self.art["layout"][key]
         return pts[a:b]
 
-    def _forces(self, pts, Xk, CS, rate_ok, idx, N):
+    def _forces(self, pts, points, Xk, CS, rate_ok, idx, N):
+        """Forces at the steps with rates.  A gear mesh's tooth load must press: solved with
+        every flank +1, then again with the flanks the tooth loads show (as the numeric
+        solver does, :mod:`linkage_sym.numeric.kinetostatics`)."""
         art = self.art
-        nF = len(art["force_names"])
         sel = rate_ok
         Kk = int(sel.sum())
-        Fv = np.zeros((nF, Kk))
+        fidx = {nm: i for i, nm in enumerate(art["force_names"])}
+        ok_idx = idx[sel]
+        flank = np.ones((len(self.flanks), len(sel)))
+        solves = 1 + 2 * len(self.flanks)
+        for _ in range(solves):
+            Fv = self._force_solve(pts, sel, Kk)
+            pulling = {}
+            for m, name in enumerate(self.flanks):
+                neg = Fv[fidx[f"Fn_{ident(name)}"]] < 0
+                if neg.any():
+                    flank[m, np.flatnonzero(sel)[neg]] *= -1.0
+                    pulling[name] = np.flatnonzero(neg)
+            if not pulling:
+                break
+            pts = points(flank)
+        notes = [pulling_note(name, ok_idx[bad], solves) for name, bad in pulling.items()]
+        P = None
+        if len(self.flanks):  # the frame's mesh forces on the flanks settled on
+            P = list(self.params)
+            at = self.n_params + art["sigmas"]
+            P[at:at + len(self.flanks)] = [f[sel] for f in flank]
+        return self._force_records(pts, Fv, Xk, CS, sel, ok_idx, N, fidx, notes, P)
+
+    def _force_solve(self, pts, sel, Kk):
+        """The group blocks solved from the last group back, at the steps ``sel``."""
+        art = self.art
+        Fv = np.zeros((len(art["force_names"]), Kk))
         for g, lay in reversed(list(zip(art["groups"], art["forces"]))):
             k = g["index"]
             unk = lay["unknowns"]
@@ -594,27 +637,33 @@ class CompiledMechanism:
                 b[:, i] -= v[sel] * Fv[fi]
             if Kk:
                 Fv[unk] = np.linalg.solve(A, b[..., None])[..., 0].T
+        return Fv
+
+    def _force_records(self, pts, Fv, Xk, CS, sel, ok_idx, N, fidx, notes, P):
+        art = self.art
+        Kk = len(ok_idx)
         fx, fy, mz = (
             np.broadcast_to(np.asarray(v, float), (Kk,))
             for v in self._call(
                 "frame", X=list(Xk[:, sel]), F=list(Fv),
-                CS=(list(CS[0][:, sel]), list(CS[1][:, sel])),
+                CS=(list(CS[0][:, sel]), list(CS[1][:, sel])), P=P,
             )
         )
-        ok_idx = idx[sel]
-
         def spread(v):
             out = np.full(N, np.nan)
             out[ok_idx] = v
             return out
 
-        fidx = {nm: i for i, nm in enumerate(art["force_names"])}
         reactions, moments = {}, {}
         for j in self.scene.joints:
             n = ident(j.name)
             if j.type == "R":
                 rx, ry = Fv[fidx[f"R_{n}x"]], Fv[fidx[f"R_{n}y"]]
                 mm = np.zeros(Kk)
+            elif j.type == "G":  # the tooth load on the line of action (gear a on gear b)
+                ux, uy = (v[sel] for v in self._get(pts, f"mesh:{j.name}"))
+                Fn = Fv[fidx[f"Fn_{n}"]]
+                rx, ry, mm = ux * Fn, uy * Fn, np.zeros(Kk)
             else:
                 ux, uy = (v[sel] for v in self._get(pts, f"slide:{j.name}"))
                 Nn = Fv[fidx[f"N_{n}"]]
@@ -633,6 +682,7 @@ class CompiledMechanism:
             frame_force=np.stack([spread(fx), spread(fy)], axis=-1),
             frame_moment=spread(mz),
             groups=[GroupForces(tuple(g["links"]), "symbolic") for g in art["groups"]],
+            notes=notes,
         )
 
     def _analysis(self, X, XD, XDD, CS, pts, idx, status, messages, condition, forces, q, qd, qdd):

@@ -10,7 +10,7 @@ import numpy as np
 
 from linkage_sym.design.errors import SweepError
 from linkage_sym.design.execute import TARGET_ENTRIES, Spec, run_chunks
-from linkage_sym.design.metrics import DEFAULT_METRICS, MetricPlan
+from linkage_sym.design.metrics import DEFAULT_METRICS, MetricPlan, refuse_meshes
 from linkage_sym.design.newton_groups import DEFAULT_CHUNK as ONE_AT_A_TIME_CHUNK
 from linkage_sym.design.parameters import Designs, check_names, grid, monte_carlo as _mc
 from linkage_sym.design.parameters import read_samples
@@ -134,6 +134,7 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     [1.0503, 1.0071, 1.0945, 1.0082]
     """
     scene = _as_scene(scene)
+    refuse_meshes(scene)
     designs = _designs(scene, parameters, samples, monte_carlo, tolerance, random_state)
     if metrics is None:
         metrics = default_metrics(scene, output)

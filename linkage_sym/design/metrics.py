@@ -99,6 +99,16 @@ def _rms(v, ok):
         return np.where(cnt > 0, np.sqrt(s / np.maximum(cnt, 1)), np.nan)
 
 
+def refuse_meshes(scene) -> None:
+    """Design sweeps do not take gear meshes yet: refuse them by name."""
+    if scene.meshes:
+        raise SweepError("scene", f"scene {scene.name!r} has gear meshes "
+                                  f"({', '.join(j.name for j in scene.meshes)}): design sweeps "
+                                  "do not take them yet (a design's radii and pivots must keep "
+                                  "each mesh's centre distance, and each step's flank is chosen "
+                                  "from its tooth load); `linkage-sym analyze` solves one design")
+
+
 class MetricPlan:
     """The metrics asked for, checked against the scene: their columns and what the
     solution must hold for them.
@@ -127,6 +137,7 @@ class MetricPlan:
         self.metrics = list(dict.fromkeys(metrics))
         self.need = set().union(*(_NEEDS.get(m, set()) for m in self.metrics))
         self.forces = "forces" in self.need
+        refuse_meshes(scene)
         if "rate_t" in self.need:
             self.output = self._output(output)
         if "K" in self.metrics and not (len(scene.drivers) == 1

@@ -43,6 +43,16 @@ def mesh_axes(scene: Scene, mesh):
     return ((pb[0] - pa[0]) / d, (pb[1] - pa[1]) / d), (-1.0 if mesh.internal else 1.0)
 
 
+def pulling_note(name: str, steps, solves: int) -> str:
+    """The warning of a mesh whose tooth load still pulls at ``steps`` after ``solves``
+    force solves with either flank (both runtimes)."""
+    from linkage_sym.numeric.sweep import steps_text
+
+    return (f"gear mesh {name}: the tooth load still pulls at {len(steps)} step(s) (steps "
+            f"{steps_text(steps, len(steps))}) after {solves} force solves with either flank: "
+            "the mesh force reported there is not one its teeth can carry")
+
+
 def mesh_direction(scene: Scene, mesh, carrier_state, flank):
     """Unit line of action ``(ux, uy)`` of the force of gear a on gear b.
 

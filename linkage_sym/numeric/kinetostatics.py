@@ -35,7 +35,7 @@ from typing import Protocol
 import numpy as np
 
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric.gears import GearForces
+from linkage_sym.numeric.gears import GearForces, pulling_note
 from linkage_sym.numeric.global_statics import frame_wrench, solve_dense, solve_global
 from linkage_sym.numeric.loads import applied_wrenches
 from linkage_sym.numeric.result import Forces, GroupForces
@@ -226,10 +226,7 @@ class ForcePlan:
         notes = pulling_notes(scene, geo, reactions, idx) if scene.cams else []
         for name, bad in pulling.items():  # never settled: said, not hidden
             steps = bad if idx is None else idx[bad]
-            notes.append(
-                f"gear mesh {name}: the tooth load still pulls at {len(steps)} step(s) (steps "
-                f"{steps_text(steps, len(steps))}) after {solves} force solves with either flank: "
-                "the mesh force reported there is not one its teeth can carry")
+            notes.append(pulling_note(name, steps, solves))
         out_r, out_m = {}, {}
         for j in scene.joints:
             fx, fy, m = reactions[j.name]

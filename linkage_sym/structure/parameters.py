@@ -18,6 +18,10 @@ the same topology through the same recipes, without SymPy.
 ``g_x, g_y``        gravity
 ``F_<i>x, F_<i>y``  force of load ``i`` (global components) at ``xi_<i>, eta_<i>``
 ``T_<i>``           torque of load ``i``
+``r_<J><g>``        pitch radius of gear ``g`` of mesh ``J``
+``phi_<J>``         pressure angle of mesh ``J``
+``epsilon_<J>``     angle of the line of centres of mesh ``J`` (gear ``a`` toward gear
+                    ``b``) from the x-axis of its carrier
 ==================  ===================================================
 
 Link frames (as Song and Wang 1992 define them, in the notation of the
@@ -25,7 +29,10 @@ kinematics textbook chapter): a moving link's frame has
 its origin at the link's first joint ``u`` in scene order and its x-axis
 toward its second joint ``v`` (the first one at a different point); a link
 whose joints all sit at one point keeps the global x direction of the
-assembly configuration.  The ground's frame is the global frame.
+assembly configuration.  The ground's frame is the global frame.  Only lower
+pairs (``R``, ``P``) place a frame: a gear mesh's pitch point or a cam's
+contact is not a point of the gears or the cam (it stays on the line of
+centres while they turn).
 
 Examples
 --------
@@ -46,6 +53,8 @@ from linkage_sym.model import GROUND, Scene
 
 COINCIDENT = 1e-12
 """Relative distance (to the mechanism size) below which two points coincide."""
+LOWER_PAIRS = ("R", "P")
+"""The joint types whose point is a point of both links (they place link frames)."""
 
 
 @dataclass(frozen=True)
@@ -90,7 +99,7 @@ def link_frames(scene: Scene) -> dict[str, LinkFrame]:
     L = scene.characteristic_length() or 1.0
     out = {}
     for link in scene.link_names:
-        js = [j for j in scene.joints if link in j.links]
+        js = [j for j in scene.joints if link in j.links and j.type in LOWER_PAIRS]
         u = js[0]
         v = next((j for j in js[1:] if math.dist(j.at, u.at) > COINCIDENT * L), None)
         th = 0.0 if v is None else math.atan2(v.at[1] - u.at[1], v.at[0] - u.at[0])
@@ -232,6 +241,23 @@ class ParameterTable:
         return out
 
 
+    def mesh(self, joint: str):
+        """Names ``(r_a, r_b, phi, epsilon)`` of gear mesh ``joint`` (see the module docstring)."""
+        j = self.scene.joint(joint)
+        a, b = j.links
+        return (
+            self._register(f"r_{_pair(joint, a)}", ("radius", joint, 0),
+                           f"pitch radius of gear {a} in mesh {joint}", "length"),
+            self._register(f"r_{_pair(joint, b)}", ("radius", joint, 1),
+                           f"pitch radius of gear {b} in mesh {joint}", "length"),
+            self._register(f"phi_{ident(joint)}", ("phi", joint),
+                           f"pressure angle of mesh {joint}", "angle"),
+            self._register(f"epsilon_{ident(joint)}", ("epsilon", joint),
+                           f"angle of the line of centres {a}->{b} of mesh {joint} from the "
+                           f"x-axis of its carrier {j.carrier}", "angle"),
+        )
+
+
 def _local(scene: Scene, frames, link: str, at) -> tuple[float, float]:
     """Coordinates of the assembly point ``at`` in ``link``'s frame."""
     fr = frames[link]
@@ -275,6 +301,15 @@ def evaluate(scene: Scene, recipe: tuple, frames=None) -> float:
     if k in ("gx", "gy"):
         g = scene.effects.gravity or (0.0, 0.0)
         return float(g[0 if k == "gx" else 1])
+    if k in ("radius", "phi", "epsilon"):
+        j = scene.joint(recipe[1])
+        if k == "radius":
+            return float(j.radii[recipe[2]])
+        if k == "phi":
+            return float(j.pressure_angle)
+        (ax, ay), (bx, by) = (p.at for p in scene.gear_pivots(j))
+        c = j.carrier
+        return _wrap(math.atan2(by - ay, bx - ax) - (0.0 if c == GROUND else frames[c].theta0))
     ld = scene.loads[recipe[1]]
     if k in ("Fx", "Fy"):
         return float(ld.force[0 if k == "Fx" else 1])

@@ -30,6 +30,9 @@ _GREEK = {
     "gamma": r"\gamma",
     "delta": r"\delta",
     "sigma": r"\sigma",
+    "kappa": r"\kappa",
+    "phi": r"\varphi",
+    "epsilon": r"\epsilon",
     "tau": r"\tau",
     "xi": r"\xi",
     "eta": r"\eta",
@@ -110,8 +113,14 @@ class _Namer:
             names[qdd] = rf"\ddot{{q}}_{{{n}}}"
         for s in eqs.sigmas:
             names[s] = rf"\sigma_{{{_sub(s.name[6:])}}}"
+        for s in eqs.flanks:
+            names[s] = rf"\kappa_{{{_sub(s.name[6:])}}}"
         if eqs.has_forces:
-            for jname, (f1, f2) in eqs.F.items():
+            for jname, fs in eqs.F.items():
+                if len(fs) == 1:  # a gear mesh's tooth load
+                    names[fs[0]] = rf"F_{{{_sub(fs[0].name[3:])},n}}"
+                    continue
+                f1, f2 = fs
                 n = _sub(f1.name[2:-1] if f1.name.startswith("R_") else f1.name[2:])
                 if f1.name.startswith("R_"):
                     names[f1], names[f2] = f"R_{{{n},x}}", f"R_{{{n},y}}"
@@ -333,6 +342,9 @@ def _nomenclature(doc, nm, eqs) -> None:
     for ge in eqs.groups:
         if ge.sigma is not None:
             rows.append((nm(ge.sigma), f"assembly mode of group {ge.index + 1} ($\\pm 1$)", "1"))
+    for j, k in zip(eqs.scene.meshes, eqs.flanks):
+        rows.append((nm(k), f"flank of gear mesh {escape_text(j.name)}: sign of its tangential "
+                            "force ($\\pm 1$)", "1"))
     for s in eqs.parameters:
         p = eqs.table.params[s.name]
         rows.append((nm(s), escape_text(p.meaning), _unit_of_parameter(p)))
@@ -342,8 +354,13 @@ def _nomenclature(doc, nm, eqs) -> None:
         for s, _, meaning in eqs.force_intermediates:
             rows.append((nm(s), escape_text(meaning), _unit_of_intermediate(s)))
         for j in eqs.scene.joints:
-            f1, f2 = eqs.F[j.name]
             jn = escape_text(j.name)
+            if j.type == "G":
+                a, b = (escape_text(n) for n in j.links)
+                rows.append((nm(eqs.F[j.name][0]), f"tooth load of gear mesh {jn} on its line of "
+                                                   f"action (gear {a} on gear {b})", "N"))
+                continue
+            f1, f2 = eqs.F[j.name]
             if j.type == "R":
                 rows += [(nm(f1), f"force of joint {jn}'s first link on its second, x", "N"),
                          (nm(f2), "the same, y", "N")]

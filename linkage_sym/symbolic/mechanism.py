@@ -53,7 +53,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
-from linkage_sym.errors import refuse_gear_meshes
+from linkage_sym.errors import refuse_symbolic_unsupported
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.structure import Decomposition, Group, decompose
 from linkage_sym.structure.parameters import ParameterTable, ident
@@ -133,7 +133,7 @@ class MechanismEquations:
     """
 
     def __init__(self, scene: Scene, symbolic=True, forces=None, decomposition=None):
-        refuse_gear_meshes(scene)  # not derived yet (issue 20): refused by name, never wrong
+        refuse_symbolic_unsupported(scene)  # cams not derived yet: refused by name, never wrong
         self.scene = scene
         self.decomposition: Decomposition = decomposition or decompose(scene)
         self.table = ParameterTable(scene)
@@ -143,6 +143,12 @@ class MechanismEquations:
         self.slide = {
             j.name: sp.Symbol(f"s_{ident(j.name)}", real=True) for j in scene.joints if j.type == "P"
         }
+        # a gear mesh's flank: the sign of its tangential force (+1 or -1), an input
+        # like an assembly-mode sign (chosen by the runtime so that the tooth load presses)
+        self.flank = {
+            j.name: sp.Symbol(f"kappa_{ident(j.name)}", real=True) for j in scene.meshes
+        }
+        self.flanks = list(self.flank.values())
         self.q = [sp.Symbol(f"q_{ident(d.joint)}", real=True) for d in scene.drivers]
         self.qd = [sp.Symbol(f"qdot_{ident(d.joint)}", real=True) for d in scene.drivers]
         self.qdd = [sp.Symbol(f"qddot_{ident(d.joint)}", real=True) for d in scene.drivers]
@@ -301,7 +307,7 @@ class MechanismEquations:
         used = set()
         while pending:
             for J in joints:
-                if J.name in used:
+                if J.name in used or J.type == "G":  # a mesh places no link
                     continue
                 a, b = J.links
                 if (a in placed) != (b in placed) and (a in pending or b in pending):
@@ -318,6 +324,9 @@ class MechanismEquations:
             if J.name in used:
                 continue
             a, b = J.links
+            if J.type == "G":
+                rows.append(self._mesh_eq(J))
+                continue
             if J.type == "R":
                 loop = self.pos(a, J.name) - self.pos(b, J.name)
             else:
@@ -335,12 +344,41 @@ class MechanismEquations:
         ge = GroupEquations(gi, g, x, slice(row0, row0 + len(rows)))
         if g.kind == "input":
             self._input_closed_form(g, drivers[0])
+        elif g.kind == "gear" and len(g.links) == 1:
+            self._gear_closed_form(g, next(J for J in joints if J.type == "G"))
         elif g.kind == "dyad":
             ge.sigma = self._dyad_closed_form(gi, g)
         else:
             ge.closed = False
         self.groups.append(ge)
         return rows
+
+    def _mesh_eq(self, J):
+        """Rolling without slip (a length): ``ra (da - dc) +- rb (db - dc)`` with ``d`` the
+        rotations from the assembly configuration (plus for an external mesh)."""
+        a, b = J.links
+        ra, rb, _, _ = (self.sym(n) for n in self.table.mesh(J.name))
+        c = J.carrier
+
+        def turned(link):
+            return self.theta(link) - self.theta0(link) - (self.theta(c) - self.theta0(c))
+
+        return ra * turned(a) + (-rb if J.internal else rb) * turned(b)
+
+    def pitch_point(self, J) -> Vec:
+        """Position of mesh ``J``'s pitch point (a point of its carrier)."""
+        return self.pos(J.carrier, J.name)
+
+    def line_of_action(self, J):
+        """Unit line of action ``(ux, uy)`` of the force of gear ``a`` on gear ``b``:
+        ``kappa cos(phi) t + rho sin(phi) e``, ``e`` the line of centres ``a -> b``, ``t``
+        it turned by +90 degrees, ``rho`` +1 external and -1 internal, ``kappa`` the flank."""
+        _, _, phi, eps = (self.sym(n) for n in self.table.mesh(J.name))
+        ang = self.theta(J.carrier) + eps
+        ex, ey = sp.cos(ang), sp.sin(ang)
+        k, rho = self.flank[J.name], (-1 if J.internal else 1)
+        return (-k * sp.cos(phi) * ey + rho * sp.sin(phi) * ex,
+                k * sp.cos(phi) * ex + rho * sp.sin(phi) * ey)
 
     # -- closed forms -------------------------------------------------------------
     def _define(self, symbol, expr, readable=None):
@@ -376,6 +414,13 @@ class MechanismEquations:
             return
         # theta_b + delta - (theta_a - theta0_a) - q = 0, solved for the unknown angle
         eq = self._driver_eq(d)
+        coeff = eq.coeff(self.th[b])
+        self._define(self.th[b], sp.expand(self.th[b] - eq / coeff))
+
+    def _gear_closed_form(self, g, J):
+        """A gear on its pivot: its angle from the mesh equation, linear in it."""
+        (b,) = g.links
+        eq = sp.expand(self._mesh_eq(J))
         coeff = eq.coeff(self.th[b])
         self._define(self.th[b], sp.expand(self.th[b] - eq / coeff))
 
@@ -531,7 +576,11 @@ class MechanismEquations:
 
     def _points(self):
         scene = self.scene
-        self.joint_kin = {j.name: self._kin(self.pos(j.links[1], j.name)) for j in scene.joints}
+        # a mesh's point is its pitch point, on its carrier
+        self.joint_kin = {
+            j.name: self._kin(self.pitch_point(j) if j.type == "G" else self.pos(j.links[1], j.name))
+            for j in scene.joints
+        }
         self.origin_kin = {n: self._kin(self.origin(n)) for n in scene.link_names}
         self.com_kin = {
             link.name: self._kin(self.com_vec(link.name)) for link in scene.links if link.com is not None
@@ -546,6 +595,8 @@ class MechanismEquations:
             n = ident(j.name)
             if j.type == "R":
                 self.F[j.name] = (sp.Symbol(f"R_{n}x", real=True), sp.Symbol(f"R_{n}y", real=True))
+            elif j.type == "G":  # the tooth load along the line of action
+                self.F[j.name] = (sp.Symbol(f"Fn_{n}", real=True),)
             else:
                 self.F[j.name] = (sp.Symbol(f"N_{n}", real=True), sp.Symbol(f"M_{n}", real=True))
         self.E = {
@@ -578,6 +629,13 @@ class MechanismEquations:
                 F = self.F[j.name]
                 add(b, F, self.off(b, j.name) if b != GROUND else None)
                 add(a, (-F[0], -F[1]), self.off(a, j.name) if a != GROUND else None)
+            elif j.type == "G":
+                (Fn,) = self.F[j.name]
+                ux, uy = self.line_of_action(j)
+                P = self.pitch_point(j)
+                for link, sgn in ((b, 1), (a, -1)):
+                    if link != GROUND:
+                        add(link, (sgn * Fn * ux, sgn * Fn * uy), P - self.origin(link))
             else:
                 N, M = self.F[j.name]
                 ux, uy = self.slide_unit(j.name)
@@ -661,6 +719,14 @@ class MechanismEquations:
             if GROUND not in j.links:
                 continue
             s = 1 if j.links[1] == GROUND else -1
+            if j.type == "G":
+                (Fn,) = self.F[j.name]
+                ux, uy = self.line_of_action(j)
+                P = self.pitch_point(j)
+                fx += s * Fn * ux
+                fy += s * Fn * uy
+                mz += s * Fn * (P.x * uy - P.y * ux)
+                continue
             P = self.pos(j.links[1], j.name)
             if j.type == "R":
                 F, c = self.F[j.name], sp.Integer(0)
