@@ -30,6 +30,8 @@ from scipy.optimize import least_squares
 from linkage_sym.examples import example_dict, example_names, example_path
 
 EXPECTED = [
+    "cam_cycloidal_roller",
+    "cam_eccentric_rocker",
     "crank_rocker",
     "engine_four_stroke",
     "fivebar",
@@ -256,8 +258,10 @@ def test_example_list():
         example_path("no_such_example")
 
 
-# the closure model below knows R and P joints; the gear examples are checked by test_gears.py
-@pytest.fixture(params=[n for n in EXPECTED if n not in ("gear_linkage", "planetary_train")])
+# the closure model below knows R and P joints; the gear and cam examples are checked by
+# test_gears.py and test_cams.py
+@pytest.fixture(params=[n for n in EXPECTED if n not in ("gear_linkage", "planetary_train")
+                        and not n.startswith("cam_")])
 def name(request):
     return request.param
 

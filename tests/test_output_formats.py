@@ -151,6 +151,10 @@ def _without_newer_keys(result: dict) -> dict:
     """A result without the keys extensions added after the frozen writer (if any)."""
     out = {k: v for k, v in result.items() if k in FROZEN_KEYS}
     out["steps"] = [{k: v for k, v in st.items() if k in FROZEN_STEP_KEYS} for st in result["steps"]]
+    for st in out["steps"]:  # a cam contact's pressure angle (an extension) in its joint record
+        if "joints" in st:
+            st["joints"] = {n: {k: v for k, v in rec.items() if k != "pressure_angle"}
+                            for n, rec in st["joints"].items()}
     return out
 
 

@@ -314,6 +314,21 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
                 if a < b and not known[a, b]:
                     put(a, b, *where, label, at)
 
+    for joint in scene.joints:  # a cam contact's centre: on the contact normal (Kennedy)
+        if joint.type == "cam":
+            a, b = idx[joint.links[0]], idx[joint.links[1]]
+            N_ = _contact_normal(scene, analysis, joint)
+            C = np.asarray(analysis.joints[joint.name].position, dtype=float)
+            normal = np.cross(finite(C)[0], np.stack([N_[0], N_[1], np.zeros(N)], axis=-1))
+            for k in range(n):
+                if k not in (a, b) and known[a, k] and known[b, k] and not known[a, b]:
+                    other = np.cross(H[a, k], H[b, k])
+                    h = _snap(np.cross(other, normal))
+                    sin = np.abs(_unit(other)[..., 0] * _unit(normal)[..., 1]
+                                 - _unit(other)[..., 1] * _unit(normal)[..., 0])
+                    err = (E[a, k] + E[b, k] + ROUNDING) / np.maximum(sin, 1e-300)
+                    put(a, b, h, err, f"contact normal of cam {joint.name} and line "
+                        f"P{names[a]},{names[k]}-P{names[b]},{names[k]}", _global(h, c, L))
     steps = np.arange(N)
 
     def chain(i, j, a, v):
@@ -532,3 +547,15 @@ def _intersect_best(H, PG, E, i, j, ks, c, L):
     ok = np.isfinite(best_r)
     return (np.where(ok[:, None], best, np.nan), np.where(ok, best_err, np.nan),
             np.where(ok, best_angle, np.nan), np.where(ok[:, None], best_via, -1))
+
+
+def _contact_normal(scene, analysis, joint):
+    """The contact normal (global, over the steps) of cam joint ``joint`` in ``analysis``."""
+    from linkage_sym.numeric.cams import cam_geometry
+    from linkage_sym.numeric.state import LinkState
+
+    S = {GROUND: LinkState()}
+    for name, lk in analysis.links.items():
+        S[name] = LinkState(np.asarray(lk.rotation, float), lk.origin[:, 0], lk.origin[:, 1])
+    _, _, normal, *_ = cam_geometry(joint).contact(S)
+    return normal

@@ -98,6 +98,11 @@ class Plan:
         self.force_plan = (
             ForcePlan(scene, decomposition, self.L, disconnection) if "forces" in self.stages else None
         )
+        # the scene's own sweep, its solving path and the accuracy calibration belong to the
+        # scene, not to a call: made here, once (compile once, run many), so that every run,
+        # the first one too, only solves
+        self._scene_sweep()
+        self._calibration.ratio(self._sweep_values, lambda *d: self.run(*d, exact_condition=True))
 
     # -- the sweep ---------------------------------------------------------
     def sweep(self):
