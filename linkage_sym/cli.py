@@ -238,6 +238,9 @@ def _plain_text(eqs) -> str:
     out += [f"x = {eqs.x}", f"q = {eqs.q}"]
     out += ["", "## loop equations (complex form = 0)"]
     out += [f"{j}: {v.complex()} = 0" for j, v in eqs.loops]
+    if eqs.meshes:
+        out += ["", "## gear meshes (rolling without slip = 0)"]
+        out += [f"{j}: {e} = 0" for j, e in eqs.meshes]
     out += ["", "## position equations Phi = 0"] + [f"{e} = 0" for e in eqs.Phi]
     out += ["", "## closed forms"] + [f"{s} = {e}" for s, e in eqs.closed_forms]
     out += [f"group {g.index + 1} ({g.group.kind}): solved numerically for {g.x}"

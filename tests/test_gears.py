@@ -462,6 +462,19 @@ def test_latex_names_the_flanks_and_tooth_loads():
     assert r"\kappa_{\mathrm{G\_sp}}$ & flank of gear mesh G\_sp" in tex
     assert r"F_{\mathrm{G\_rp},n}$ & tooth load of gear mesh G\_rp on its line of action " \
            r"(gear ground on gear planet)" in tex
+    assert r"\paragraph{Gear meshes.}" in tex and r"\label{eq:planetary-train:mesh-G-rp}" in tex
+    assert "from its loop and mesh equations above" in tex
+
+
+def test_derive_prints_the_mesh_equations(tmp_path):
+    from linkage_sym.cli import main
+
+    out = tmp_path / "eqs.txt"
+    assert main(["derive", str(linkage_sym.examples.example_path("planetary_train")),
+                 "-o", str(out)]) == 0
+    text = out.read_text()
+    assert "## gear meshes (rolling without slip = 0)" in text
+    assert "G_sp: r_G_sp_planet*(theta0_arm - theta0_planet - theta_arm + theta_planet)" in text
 
 
 def test_an_internal_and_an_external_mesh_are_compiled_apart():

@@ -472,6 +472,10 @@ def _symbol_list(doc, nm, eqs) -> None:
     doc.text(r"\end{itemize}")
 
 
+def scene_joint_type(eqs, name: str) -> str:
+    return eqs.scene.joint(name).type
+
+
 def _rest(doc, nm, eqs) -> None:
 
     # (b) loops
@@ -483,13 +487,28 @@ def _rest(doc, nm, eqs) -> None:
             "axes (its eq.~3-9):"
         )
     else:
-        doc.text("The mechanism has no closed loop: every link is placed along a tree.")
+        doc.text("The mechanism has no closed vector loop: every link is placed along a tree"
+                 + (" (its gear meshes close it below)." if eqs.meshes else "."))
     for jname, v in eqs.loops:
         key = f"loop-{jname}"
         rows = [r.replace("&=", "&=", 1) for r in nm.sum_rows("0", v.complex())]
         doc.align(rows, [key] + [None] * (len(rows) - 1))
         rx, ry = nm.sum_rows("0", v.x), nm.sum_rows("0", v.y)
         doc.align(rx + ry, [key + "-x"] + [None] * (len(rx) - 1) + [key + "-y"] + [None] * (len(ry) - 1))
+
+    if eqs.meshes:
+        doc.text(r"\paragraph{Gear meshes.}")
+        doc.text(
+            "Each mesh rolls without slip: its pitch radii times the rotations of its gears "
+            "relative to its carrier, from the assembly configuration, cancel (an external "
+            "mesh) or agree (an internal one):"
+        )
+        rows, keys = [], []
+        for jname, e in eqs.meshes:
+            r = nm.sum_rows("0", e)
+            rows += r
+            keys += [f"mesh-{jname}"] + [None] * (len(r) - 1)
+        doc.align(rows, keys)
 
     # (c) positions
     doc.text(r"\paragraph{Positions.}")
@@ -514,7 +533,9 @@ def _rest(doc, nm, eqs) -> None:
             doc.text(
                 f"Group {ge.index + 1} ({escape_text(ge.group.kind)}: links {links}) has no "
                 f"explicit closed form: its coordinates {coords} are found numerically "
-                "(Newton's method) from its loop equations above."
+                "(Newton's method) from its loop "
+                + ("and mesh " if any(scene_joint_type(eqs, j) == "G" for j in ge.group.joints) else "")
+                + "equations above."
             )
 
     # (d) velocities

@@ -109,6 +109,8 @@ class MechanismEquations:
         Driver coordinates ``q_<J>`` and their rates, in scene order.
     loops : list of (str, Vec)
         The closed vector loop of every joint that closes a loop (``= 0``).
+    meshes : list of (str, Expr)
+        Each gear mesh's rolling-without-slip equation (``= 0``, a length).
     Phi : Matrix
         All position equations, group by group.
     row_is_length : list of bool
@@ -156,6 +158,7 @@ class MechanismEquations:
         self.anchor: dict[str, str] = {}
         self.groups: list[GroupEquations] = []
         self.loops: list = []
+        self.meshes: list = []  # (mesh name, rolling-without-slip row = 0)
         self.closed_forms: list = []
         self.position_steps: list = []
         self.intermediates: list = []
@@ -325,7 +328,8 @@ class MechanismEquations:
                 continue
             a, b = J.links
             if J.type == "G":
-                rows.append(self._mesh_eq(J))
+                self.meshes.append((J.name, self._mesh_eq(J)))
+                rows.append(self.meshes[-1][1])
                 continue
             if J.type == "R":
                 loop = self.pos(a, J.name) - self.pos(b, J.name)
