@@ -600,3 +600,19 @@ def test_symbolic_layer_refuses_cams_by_name():
     with pytest.raises(SceneError, match=r"joints\[2\]: the symbolic method does not support cam "
                                          r"contacts yet \(joint 'K'"):
         MechanismEquations(load_scene(eccentric("roller")))
+
+
+def test_kennedy_puts_the_cam_centre_on_the_contact_normal():
+    from linkage_sym.centres.kennedy import kennedy_centres
+
+    scene = load_scene(eccentric("roller", 0.01))
+    a = compile_plan(scene).run()
+    k = kennedy_centres(scene, a)
+    P = k.position[:, k.index("cam", "fol")]
+    C, n = a.joints["K"].position, a.joints["K"].normal
+    d = P - C
+    assert np.max(np.abs(d[:, 0] * n[:, 1] - d[:, 1] * n[:, 0])) <= 1e-12
+    # and the relative velocity of the two links vanishes there (it is their instant centre)
+    vc = a.links["cam"].omega[:, None] * np.stack([-P[:, 1], P[:, 0]], axis=-1)
+    vf = a.links["fol"].origin_velocity
+    assert np.max(np.abs(vc - vf)) <= 1e-10 * np.max(np.abs(vf))

@@ -317,7 +317,7 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
     for joint in scene.joints:  # a cam contact's centre: on the contact normal (Kennedy)
         if joint.type == "cam":
             a, b = idx[joint.links[0]], idx[joint.links[1]]
-            N_ = _contact_normal(scene, analysis, joint)
+            N_ = np.asarray(analysis.joints[joint.name].normal, dtype=float).T  # recorded
             C = np.asarray(analysis.joints[joint.name].position, dtype=float)
             normal = np.cross(finite(C)[0], np.stack([N_[0], N_[1], np.zeros(N)], axis=-1))
             for k in range(n):
@@ -548,14 +548,3 @@ def _intersect_best(H, PG, E, i, j, ks, c, L):
     return (np.where(ok[:, None], best, np.nan), np.where(ok, best_err, np.nan),
             np.where(ok, best_angle, np.nan), np.where(ok[:, None], best_via, -1))
 
-
-def _contact_normal(scene, analysis, joint):
-    """The contact normal (global, over the steps) of cam joint ``joint`` in ``analysis``."""
-    from linkage_sym.numeric.cams import cam_geometry
-    from linkage_sym.numeric.state import LinkState
-
-    S = {GROUND: LinkState()}
-    for name, lk in analysis.links.items():
-        S[name] = LinkState(np.asarray(lk.rotation, float), lk.origin[:, 0], lk.origin[:, 1])
-    _, _, normal, *_ = cam_geometry(joint).contact(S)
-    return normal

@@ -523,7 +523,8 @@ def cam_records(solvers, S, joints, status) -> None:
 
     A cam joint's ``position`` is the contact point, its ``velocity`` and
     ``acceleration`` those of the follower's material point there (``links[1]``,
-    as for every joint), ``pressure_angle`` the pressure angle (rad).  Positions
+    as for every joint), ``pressure_angle`` the pressure angle (rad), ``normal`` the
+    contact normal (from the cam towards the follower).  Positions
     and the angle at ``ok`` and ``singular`` steps, rates at ``ok`` steps; NaN
     elsewhere, as the other records.
     """
@@ -534,8 +535,10 @@ def cam_records(solvers, S, joints, status) -> None:
             continue
         rec = joints[sv.joint.name]
         n = len(status)
-        _, C, _, _, _, _ = sv.geo.contact(S)
+        _, C, Nv, _, _, _ = sv.geo.contact(S)
         f = S[sv.link]
+        rec.normal = np.stack([np.where(placed, np.broadcast_to(Nv[k], (n,)), np.nan)
+                               for k in (0, 1)], axis=-1)
         for out, value, mask in ((rec.position, C, placed), (rec.velocity, None, ok),
                                  (rec.acceleration, None, ok)):
             if out is None:

@@ -34,14 +34,16 @@ class JointKinematics:
 
     For a cam contact (an extension of the format) ``position`` is the contact
     point, ``velocity`` and ``acceleration`` those of the follower's material
-    point there, and ``pressure_angle`` (N,) the pressure angle in radians;
-    ``pressure_angle`` is ``None`` for every other joint.
+    point there, ``pressure_angle`` (N,) the pressure angle in radians and
+    ``normal`` (N, 2) the unit contact normal from the cam towards the follower
+    (not written to the JSON); both are ``None`` for every other joint.
     """
 
     position: np.ndarray
     velocity: np.ndarray | None = None
     acceleration: np.ndarray | None = None
     pressure_angle: np.ndarray | None = None
+    normal: np.ndarray | None = None
 
 
 @dataclass
