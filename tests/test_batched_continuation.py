@@ -127,7 +127,11 @@ def assert_same(a, b, what, size, rows_a=slice(None), rows_b=slice(None), words=
 
 def assert_assembly_mode(scene, res):
     """Every ok step closes (the tests' own joint equations) and keeps the assembly
-    configuration's determinant sign in every group (the tests' own Jacobian)."""
+    configuration's determinant sign in every group (the tests' own Jacobian).  The
+    tests' model knows R and P joints: scenes with gear meshes are checked by
+    ``test_gears.py`` (Willis, the equivalent four-bar) instead."""
+    if any(j.type not in ("R", "P") for j in scene.joints):
+        return
     assert not ref.closure_failures(scene, res, 1e-12, 1e-9)
     _, s0, signs, _ = ref.determinant_signs(scene, res)
     ok = np.flatnonzero(res.status == "ok")
@@ -248,7 +252,9 @@ def test_a_near_degenerate_triad_past_a_limit_batched_equals_point_by_point():
 
 
 def _searches(scene):
-    """``(problem, ctx, ref, others, sign)`` of every re-entry search of the point-by-point walk."""
+    """``(problem, ctx, ref, others, sign)`` of every re-entry search of the point-by-point
+    walk over the scene's sweep (the plan compiled first: its accuracy calibration, a run
+    of a few steps, is not watched)."""
     got = []
     orig = continuation.roots_near
 
@@ -256,12 +262,13 @@ def _searches(scene):
         got.append((problem, ctx, ref.copy(), [o.copy() for o in others], sign))
         return orig(problem, ctx, ref, others, sign)
 
-    continuation.roots_near = spy
-    try:
-        with walking(False):
-            linkage_sym.analyze(scene, method="dyad")
-    finally:
-        continuation.roots_near = orig
+    with walking(False):
+        plan = compile_plan(scene)
+        continuation.roots_near = spy
+        try:
+            plan.run()
+        finally:
+            continuation.roots_near = orig
     return got
 
 
@@ -283,7 +290,7 @@ def test_the_root_search_reaches_the_same_roots_from_seeds_moved_by_rounding(cas
     else:
         d = _triad_from(NEAR_DEGENERATE_TRIAD, steps=181)
     searches = _searches(linkage_sym.load_scene(d))
-    assert len(searches) >= 2
+    assert len(searches) >= (1 if case == "near-degenerate triad" else 10)
     rng = np.random.default_rng(2)
 
     def flips(problem, ctx, ref, others, sign, repeats=12):
