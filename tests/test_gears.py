@@ -501,3 +501,5 @@ def test_design_sweeps_refuse_meshes_by_name():
 
     with pytest.raises(SweepError, match=r"gear meshes \(K, E\): design sweeps do not take them"):
         linkage_sym.sweep(load_scene(example_dict("gear_linkage")), {"l_BC": [0.3, 0.31]})
+    with pytest.raises(SweepError, match=r"cam contacts \(K\): design sweeps do not take them"):
+        linkage_sym.sweep(load_scene(example_dict("cam_cycloidal_roller")), {"l_AB": [0.01, 0.02]})

@@ -100,13 +100,19 @@ def _rms(v, ok):
 
 
 def refuse_meshes(scene) -> None:
-    """Design sweeps do not take gear meshes yet: refuse them by name."""
+    """Design sweeps do not take gear meshes or cam contacts yet: refuse them by name."""
     if scene.meshes:
         raise SweepError("scene", f"scene {scene.name!r} has gear meshes "
                                   f"({', '.join(j.name for j in scene.meshes)}): design sweeps "
                                   "do not take them yet (a design's radii and pivots must keep "
                                   "each mesh's centre distance, and each step's flank is chosen "
                                   "from its tooth load); `linkage-sym analyze` solves one design")
+    if scene.cams:
+        raise SweepError("scene", f"scene {scene.name!r} has cam contacts "
+                                  f"({', '.join(j.name for j in scene.cams)}): design sweeps "
+                                  "do not take them yet (they run on the symbolic layer's "
+                                  "functions, which do not derive cams); `linkage-sym analyze` "
+                                  "solves one design")
 
 
 class MetricPlan:
