@@ -181,7 +181,36 @@ def _dump_joint(joint: Joint) -> dict[str, Any]:
     }
     if joint.axis is not None:
         out["axis_deg"] = _degrees(joint.axis)
+    if joint.type == "G":  # a gear mesh (an extension of the format)
+        out["carrier"] = joint.carrier
+        out["radii"] = list(joint.radii)
+        out["internal"] = joint.internal
+        out["pressure_angle_deg"] = _degrees(joint.pressure_angle)
+    elif joint.type == "cam":  # a cam contact (an extension of the format)
+        out.update(_dump_cam(joint.cam))
     return out
+
+
+def _dump_cam(cam) -> dict[str, Any]:
+    """A cam contact's ``profile`` and ``follower`` in the file layout."""
+    if cam.profile == "circle":
+        centre, R = cam.data
+        body: Any = {"centre": list(centre), "radius": R}
+    elif cam.profile == "polar":
+        centre, phi, r = cam.data
+        body = {"centre": list(centre), "phi_deg": [_degrees(v) for v in phi], "r": list(r)}
+    else:
+        (points,) = cam.data
+        body = [list(p) for p in points]
+    profile: dict[str, Any] = {cam.profile: body}
+    if cam.pitch:
+        profile["pitch"] = True
+    follower: dict[str, Any] = {"kind": cam.follower}
+    if cam.follower == "roller":
+        follower["radius"] = cam.radius
+    if cam.follower == "flat":
+        follower["face_deg"] = _degrees(cam.face)
+    return {"profile": profile, "follower": follower}
 
 
 def _dump_driver(driver: Driver) -> dict[str, Any]:
@@ -210,9 +239,9 @@ def _dump_load(load: Load) -> dict[str, Any]:
     if load.driver is not None:  # a load over the cycle (an extension of the format)
         out["driver"] = load.driver
         R = load.period is not None
-        unit = math.degrees if R else float
+        unit = _degrees if R else float  # degrees that read back to the same radians
         if R and load.period != 2 * math.pi:
-            out["period_deg"] = math.degrees(load.period)
+            out["period_deg"] = _degrees(load.period)
         if load.table is not None:
             out["table"] = {"q_deg" if R else "q": [unit(v) for v in load.table.q],
                             "scale": list(load.table.scale)}
