@@ -100,26 +100,6 @@ different set of roots in 10 searches, this step from 48 seeds in none; of
 the 80 roots of the assembly sign that 800 random seeds per search found,
 full steps from 16 seeds found 77, steps bounded to 1.0 from 48 seeds all 80
 (bounded to 0.5: 78)."""
-TURNED_SEEDS = 48
-"""Seeds with turned angles tried at a re-entry.
-
-With bounded steps (:data:`SEARCH_STEP`) a seed reaches a root near it, so
-the seeds must cover the circle of every angle: 16 missed one root that full
-steps from 16 seeds found (the second root of the assembly sign of the tests'
-``scenes.triad_jump``), 24 and more found it."""
-SEARCH_ITER = 40
-"""Iterations of the search's Newton (:func:`search_newton`) from one seed of a re-entry search."""
-SEARCH_STEP = 0.5
-"""Largest step (max-norm, dimensionless: radians, lengths over the mechanism size) of
-one iteration of a re-entry search.
-
-Full Newton steps from a seed far from every root pass near singular
-Jacobians and are flung far: where they land then depends on the rounding
-of the seed (measured on random class-III triads and knees: 3 % of the
-searches found a different set of roots when their seeds moved by 1e-13).
-Bounded steps follow the Newton direction, so the root a seed reaches is
-the same for every seed near it, and they found as many roots as full steps
-from the same seeds (checked against roots from 800 random seeds per search)."""
 
 
 class Problem(Protocol):
