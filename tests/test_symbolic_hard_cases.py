@@ -208,6 +208,45 @@ def test_exactly_singular_step_keeps_positions():
                                    num.joints[jn].velocity[others], rtol=0, atol=1e-10 * V)
 
 
+def _limit_fourbar(l1, g, r1):
+    """A four-bar whose dyad reaches its limit (coupler and rocker in line) exactly at the
+    sweep's last step, crank angle 180 deg: ``|BD| = g + l1 = r1 + r2`` there."""
+    r2 = (g + l1) - r1
+    B, D = (0.0, l1), (g, 0.0)
+    dx, dy = D[0] - B[0], D[1] - B[1]
+    dd = math.hypot(dx, dy)
+    a = (dd * dd + r1 * r1 - r2 * r2) / (2 * dd)
+    h = math.sqrt(r1 * r1 - a * a)
+    C = [B[0] + a * dx / dd - h * dy / dd, B[1] + a * dy / dd + h * dx / dd]
+    return {"name": "limit", "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "rocker"}],
+            "joints": [{"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0, 0]},
+                       {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": list(B)},
+                       {"name": "C", "type": "R", "links": ["coupler", "rocker"], "at": C},
+                       {"name": "D", "type": "R", "links": ["rocker", "ground"], "at": list(D)}],
+            "drivers": [{"joint": "A", "toward": "B", "start_deg": 90, "stop_deg": 180,
+                         "steps": 31, "speed": 1.0}],
+            "outputs": ["kinematics"]}
+
+
+@pytest.mark.parametrize("l1,g,r1", [(0.3, 0.9, 0.3), (0.17, 0.9, 0.3), (0.3, 1.1, 0.77),
+                                     (0.2, 0.7, 0.45), (0.2, 0.9, 0.77), (0.1, 1.1, 0.77),
+                                     (0.7, 0.9, 0.6)])
+def test_a_limit_missed_by_rounding_is_a_tangency_in_both_runtimes(l1, g, r1):
+    """A step exactly at a limit position where rounding puts the Heron product a few ulps
+    below zero (these dimensions, found by a search, do; the generated code once called
+    the step unassemblable where the numeric solver, which takes a miss within 8 ulps of
+    the coordinates as the tangency, calls it singular): both runtimes call it singular,
+    with the joint in line to rounding (the closed form's own ``C = B + (|BC|/|BD|)(D - B)``
+    at the tangency, written here)."""
+    scene = load_scene(_limit_fourbar(l1, g, r1))
+    num, sym = linkage_sym.analyze(scene), compile_mechanism(scene).run()
+    assert str(num.status[-1]) == "singular" and str(sym.status[-1]) == "singular"
+    B, D = (-l1, 0.0), (g, 0.0)
+    C = np.array([B[0] + r1 / (g + l1) * (D[0] - B[0]), 0.0])
+    for res in (num, sym):
+        assert np.max(np.abs(res.joints["C"].position[-1] - C)) <= 1e-15 * 4, res.joints["C"].position[-1]
+
+
 def test_generated_run_warns_like_the_numeric_one():
     """A triple rocker whose step 60 sits a rounding-level miss inside its limit position
     (condition ~1e8, see test_kinematics_hard_cases.L_LIMIT): the generated code's run

@@ -35,6 +35,7 @@ from linkage_sym.numeric.block import ResultLayout
 from linkage_sym.numeric.loads import load_factor
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
 from linkage_sym.numeric.gears import pulling_note
+from linkage_sym.numeric.loci import clamp_tangent, coordinate_size
 from linkage_sym.numeric.state import LinkState
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.result import OK, Analysis, Forces, GroupForces
@@ -115,10 +116,30 @@ class _GroupProblem:
         return R, J
 
 
+def _tangent_sqrt(scale, *factors):
+    """``sqrt`` of the product of ``factors``, a rounding-level miss of a tangency taken as
+    the tangency (0) and a real miss as NaN: the numeric solver's rule
+    (:func:`~linkage_sym.numeric.loci.clamp_tangent`), for the generated code's
+    :func:`~linkage_sym.symbolic.tangent.tangent_sqrt`."""
+    prod = factors[0]
+    for f in factors[1:]:
+        prod = prod * f
+    prod = clamp_tangent(prod, factors, lambda: scale)
+    with np.errstate(invalid="ignore"):
+        return np.sqrt(prod)
+
+
+def _coordinate_size(*values):
+    """The largest magnitude of ``values`` (arrays or numbers), elementwise."""
+    return coordinate_size(*values)
+
+
 def _namespace() -> dict:
     ns: dict = {}
     exec("from numpy import *", ns)  # the names lambdify's NumPy printer uses
     ns["numpy"] = np
+    ns["_tangent_sqrt"] = _tangent_sqrt
+    ns["_coordinate_size"] = _coordinate_size
     return ns
 
 

@@ -57,9 +57,17 @@ from linkage_sym.errors import refuse_symbolic_unsupported
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.structure import Decomposition, Group, decompose
 from linkage_sym.structure.parameters import ParameterTable, ident
+from linkage_sym.symbolic.tangent import coordinate_size, tangent_sqrt
 from linkage_sym.symbolic.vectors import Vec, cross, dot
 
 HALF_PI = sp.pi / 2
+
+
+def _size(*values):
+    """The size of the coordinates a locus intersection is computed from (the numeric
+    solver's ``coordinate_size``): the largest magnitude, for the rounding test of
+    :func:`~linkage_sym.symbolic.tangent.tangent_sqrt`."""
+    return coordinate_size(*values)
 
 
 def _other(joint, link):
@@ -454,7 +462,9 @@ class MechanismEquations:
             ex, ey = C1[0] - C0[0], C1[1] - C0[1]
             d = sp.sqrt(ex**2 + ey**2)
             # Heron form of the half-chord: accurate near the dead centres
-            h = sp.sqrt((r0 + r1 - d) * (d + r0 - r1) * (d - r0 + r1) * (r0 + r1 + d)) / (2 * d)
+            # (a tangency a few ulps off is a tangency in the generated code: tangent_sqrt)
+            size = _size(r0, r1, *C0, *C1)
+            h = tangent_sqrt(size, r0 + r1 - d, d + r0 - r1, d - r0 + r1, r0 + r1 + d) / (2 * d)
             a = (d**2 + r0**2 - r1**2) / (2 * d)
             Yx = C0[0] + (a * ex - sigma * h * ey) / d
             Yy = C0[1] + (a * ey + sigma * h * ex) / d
@@ -468,7 +478,7 @@ class MechanismEquations:
                              f"projection of {o0}{i} on the line {o0}{o1}")
             nh = self._named(
                 f"h_{g}",
-                sp.sqrt((r0 + r1 - nd) * (nd + r0 - r1) * (nd - r0 + r1) * (r0 + r1 + nd)) / (2 * nd),
+                tangent_sqrt(size, r0 + r1 - nd, nd + r0 - r1, nd - r0 + r1, r0 + r1 + nd) / (2 * nd),
                 f"half-chord: distance of joint {i} from the line {o0}{o1} (Heron's form)")
             Y = self._named_point(i, (P0[0] + (na * nx - sigma * nh * ny) / nd,
                                       P0[1] + (na * ny + sigma * nh * nx) / nd))
@@ -484,7 +494,8 @@ class MechanismEquations:
             r0, d0 = self.dist_arg(b0, e0.name, ji.name)
             w = (C[0] - Qx, C[1] - Qy)
             delta = -uy * w[0] + ux * w[1]  # distance of the centre from the line
-            tt = dot(w, (ux, uy)) + sigma * sp.sqrt((r0 - delta) * (r0 + delta))
+            size = _size(r0, *C, Qx, Qy)
+            tt = dot(w, (ux, uy)) + sigma * tangent_sqrt(size, r0 - delta, r0 + delta)
             Yx, Yy = Qx + tt * ux, Qy + tt * uy
             g, o0, o1, i = gi + 1, e0.name, e1.name, ji.name
             P0 = self._named_point(o0, C)
@@ -494,7 +505,8 @@ class MechanismEquations:
                                f"distance of joint {o0} from the line of {i}")
             nt = self._named(
                 f"t_{g}",
-                ux * (P0[0] - Q[0]) + uy * (P0[1] - Q[1]) + sigma * sp.sqrt((r0 - ndel) * (r0 + ndel)),
+                ux * (P0[0] - Q[0]) + uy * (P0[1] - Q[1])
+                + sigma * tangent_sqrt(size, r0 - ndel, r0 + ndel),
                 f"position of joint {i} along its line")
             Y = self._named_point(i, (Q[0] + nt * ux, Q[1] + nt * uy))
             self._define(self.th[b0], sp.atan2(Yy - C[1], Yx - C[0]) - d0,
@@ -513,7 +525,8 @@ class MechanismEquations:
             assert phi not in (Kx + Ky).free_symbols
             D2 = D[0] ** 2 + D[1] ** 2
             dd = sp.sqrt(D2)
-            w = sp.sqrt((dd - Ky) * (dd + Ky))
+            size = _size(Ky, E0.x, E0.y, E1.x, E1.y)
+            w = tangent_sqrt(size, dd - Ky, dd + Ky)
             ex = (sigma * w * D[0] + Ky * D[1]) / D2
             ey = (sigma * w * D[1] - Ky * D[0]) / D2
             ang = sp.atan2(ey, ex) - gam  # angle of the carrier's x-axis
@@ -525,7 +538,7 @@ class MechanismEquations:
             nd = self._named(f"d_{g}", sp.sqrt(nx**2 + ny**2), f"distance between joints {o0} and {o1}")
             nk = self._named(f"k_{g}", Ky, f"offset of joint {o1} from the slide of {i} through {o0}")
             nc = self._named(f"c_{g}", Kx, f"offset along the slide of {i} (link geometry)")
-            nw = self._named(f"w_{g}", sp.sqrt((nd - nk) * (nd + nk)),
+            nw = self._named(f"w_{g}", tangent_sqrt(size, nd - nk, nd + nk),
                              f"distance from {o0} to the foot of {o1} on the slide of {i}")
             ncos = self._named(f"cphi_{g}", (sigma * nw * nx + nk * ny) / nd**2,
                                f"cosine of the slide direction of {i}")
