@@ -1,8 +1,10 @@
 """The symbolic layer (SymPy only): a mechanism's equations, derived.
 
 See :func:`linkage_sym.symbolic.mechanism.derive`.  Modules: ``vectors``
-(the complex link vectors of the loops), ``mechanism`` (loops, closed forms,
-rate matrices, points, force blocks), ``latex`` (the equations typeset).
+(the complex link vectors of the loops), ``mechanism`` (loops, gear meshes,
+closed forms, rate matrices, points, force blocks), ``tangent`` (the dyads'
+square root, whose tangency rounding may miss: the generated code takes it as
+the numeric solver does), ``latex`` (the equations typeset).
 """
 
 from linkage_sym.symbolic.mechanism import GroupEquations, MechanismEquations, derive
