@@ -303,3 +303,20 @@ def mesh_residuals(scene, a):
         rt = np.sum(R * t, axis=1)
         out[j.name] = (rn - np.tan(j.pressure_angle) * np.abs(rt), np.hypot(R[:, 0], R[:, 1]), rn)
     return out
+
+
+def dyad_and_global_checked(scene, plan, tol):
+    """``plan``'s dyad-routine and global runs, checked: every reaction of one within ``tol``
+    of the other (relative to :func:`reaction_scale`), and in both each link's equilibrium
+    (:func:`link_residuals`) and the power balance (:func:`power_residual`) within ``tol``.
+    Returns the two analyses ``(dyad, global)``."""
+    a, g = plan.run(), plan.run(method="global")
+    scale = reaction_scale(scene, g.forces)
+    for j in a.forces.reactions:
+        assert max_rel(a.forces.reactions[j] - g.forces.reactions[j], scale) <= tol, j
+    for res in (a, g):
+        for link, (rf, rm, sf, sm) in link_residuals(scene, res).items():
+            assert max_rel(rf, sf) <= tol and max_rel(rm, sm) <= tol, link
+        r, s = power_residual(scene, res)
+        assert max_rel(r, s) <= tol
+    return a, g

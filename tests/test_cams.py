@@ -33,7 +33,7 @@ from scipy.interpolate import CubicSpline
 
 from linkage_sym import compile_plan, load_scene
 from linkage_sym.errors import SceneError
-from force_checks import link_residuals, max_rel, power_residual, reaction_scale
+from force_checks import dyad_and_global_checked
 
 TOL_KIN = 1e-10
 TOL_F = 1e-9
@@ -430,16 +430,7 @@ def test_forces_global_equilibrium_power_and_push(case):
         scene = load_scene_snapped(cam_scene(CASES[0][2], "roller", "R", at), "roller")
     else:
         scene = load_scene(eccentric(case, 0.01 if case == "roller" else 0.0))
-    plan = compile_plan(scene)
-    a, g = plan.run(), plan.run(method="global")
-    scale = reaction_scale(scene, g.forces)
-    for j in a.forces.reactions:
-        assert max_rel(a.forces.reactions[j] - g.forces.reactions[j], scale) <= TOL_F, j
-    for res in (a, g):
-        for link, (rf, rm, sf, sm) in link_residuals(scene, res).items():
-            assert max_rel(rf, sf) <= TOL_F and max_rel(rm, sm) <= TOL_F, link
-        r, s = power_residual(scene, res)
-        assert max_rel(r, s) <= TOL_F
+    a, g = dyad_and_global_checked(scene, compile_plan(scene), TOL_F)
     # the contact force: along the normal at the contact point, pushing the follower
     F = a.forces.reactions["K"]
     c = a.joints["K"].position

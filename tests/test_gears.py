@@ -30,7 +30,8 @@ from linkage_sym import compile_plan, load_scene
 from linkage_sym.errors import SceneError
 from linkage_sym.examples import example_dict
 from linkage_sym.structure import decompose
-from force_checks import link_residuals, max_rel, mesh_residuals, power_residual, reaction_scale
+from force_checks import (dyad_and_global_checked, max_rel, mesh_residuals, power_residual,
+                          reaction_scale)
 
 TOL_KIN = 1e-12
 TOL_F = 1e-9
@@ -262,16 +263,7 @@ def test_gear_pair_forces_closed_form(internal, torque):
 def test_planetary_variants_forces_checked(variant):
     d = planetary("arm" if variant == "arm" else "sun", ring_fixed=variant != "two drivers")
     scene = load_scene(d)
-    plan = compile_plan(scene)
-    a, g = plan.run(), plan.run(method="global")
-    scale = reaction_scale(scene, g.forces)
-    for j in a.forces.reactions:
-        assert max_rel(a.forces.reactions[j] - g.forces.reactions[j], scale) <= TOL_F, j
-    for res in (a, g):
-        for link, (rf, rm, sf, sm) in link_residuals(scene, res).items():
-            assert max_rel(rf, sf) <= TOL_F and max_rel(rm, sm) <= TOL_F, link
-        r, s = power_residual(scene, res)
-        assert max_rel(r, s) <= TOL_F
+    for res in dyad_and_global_checked(scene, compile_plan(scene), TOL_F):
         for r, s, rn in mesh_residuals(scene, res).values():
             assert max_rel(r, s) <= TOL_F and (rn >= 0).all()
 
