@@ -25,10 +25,14 @@ random class-III triads, in both runtimes:
   damped Newton against :func:`continuation.newton` from the same starting
   points (which rows converge, to ``1e-12``), the batched re-entry search
   against :func:`continuation.roots_near` at every point of a gap, and the
-  reciprocal condition numbers against the SVD.
+  singular-value ratios of the rate screen against the SVD;
+* **the certificate** (:func:`batched_path.certified`): it takes almost every
+  point of the shipped examples' smooth stretches, and with it switched off
+  (every point by the walk's own iteration) the results are the same to
+  ``1e-13`` of their scale.
 
 Tolerance ``1e-10``: both walks converge Newton to a scaled residual of
-``1e-13`` and polish once; the roots then agree to rounding times the
+``1e-13`` and polish to rounding; the roots then agree to rounding times the
 condition of the group, and the rates to that times their own conditioning.
 """
 
@@ -486,8 +490,8 @@ def test_batched_root_search_is_the_walks_search_at_every_gap_point(method):
             assert np.max(np.abs(u - v)) <= 1e-12, i
 
 
-def test_reciprocal_condition_numbers_match_the_svd():
-    """:func:`batched_path.reciprocal_condition` (eigenvalues of ``J^T J`` where they
+def test_singular_value_ratios_match_the_svd():
+    """:func:`batched_path.singular_value_ratio` (eigenvalues of ``J^T J`` where they
     resolve the ratio, else the SVD) against ``numpy.linalg.svd``: 1e-10 relative (the
     eigenvalues' rounding, about ``n eps / (2 r^2)``, ``1e-11`` for ``n = 9, r = 0.01``),
     on matrices conditioned from 1 to 1e15 and an exactly singular one."""
@@ -504,7 +508,7 @@ def test_reciprocal_condition_numbers_match_the_svd():
         J = np.array([m for k, m in mats if k == n])
         sv = np.linalg.svd(J, compute_uv=False)
         want = sv[:, -1] / sv[:, 0]
-        got = batched_path.reciprocal_condition(J)
+        got = batched_path.singular_value_ratio(J)
         assert np.all(np.abs(got - want) <= 1e-10 * want + 1e-300), (n, got, want)
 
 
@@ -533,3 +537,36 @@ def test_the_rate_screen_decides_as_the_svd():
                 near = np.abs(np.log(sv[:, -1] / sv[:, 0] / threshold)) < 1e-6  # a tie: rounding
             assert np.array_equal(got[~near], want[~near]), (n, threshold)
             assert want.any() and (~want).any()
+
+
+@pytest.mark.parametrize("name", ["sixbar_class3", "printing_mechanism", "hydraulic_boom"])
+def test_certified_points_are_the_walks_own(name, monkeypatch):
+    """The certificate takes most points (at least half at the examples' 1 deg steps,
+    where a predictor is farther from its root); the walk's own iteration at every point
+    (the certificate's ratio raised above any indicator) gives the same results to
+    ``1e-13`` of each family's scale, the same statuses and warnings."""
+    scene = linkage_sym.load_example(name)
+    taken = []
+    original = batched_path.certified
+
+    def counting(*a):
+        out = original(*a)
+        taken.append((int(out[3].sum()), len(out[3])))
+        return out
+
+    monkeypatch.setattr(batched_path, "certified", counting)
+    with walking(True):
+        cert = linkage_sym.analyze(scene)
+    n_cert, n_all = map(sum, zip(*taken))
+    assert n_cert >= 0.5 * n_all, (n_cert, n_all)
+    monkeypatch.setattr(batched_path, "CERTIFY_RATIO", math.inf)
+    with walking(True):
+        own = linkage_sym.analyze(scene)
+    assert (cert.status == own.status).all() and cert.warnings == own.warnings
+    fa, fb = _families(cert), _families(own)
+    for fam in fa:
+        pairs = [(np.asarray(u), np.asarray(v)) for u, v in zip(fa[fam], fb[fam]) if u is not None]
+        scale = scene.characteristic_length() if fam == "position" else max(
+            float(np.nanmax(np.abs(v))) for _, v in pairs)
+        for u, v in pairs:
+            assert np.nanmax(np.abs(u - v)) <= 1e-13 * scale, (name, fam)

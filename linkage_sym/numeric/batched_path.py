@@ -8,26 +8,36 @@ predictor; walked one at a time, that is a loop of tiny NumPy calls.  This
 module gives the same walk the same results with a few calls on whole blocks
 of points (:func:`walk_path`):
 
-1. **Roots.**  Newton on all points of a block at once
-   (:func:`newton_points`): first every :data:`COARSE`-th point, from guesses
-   extrapolated along the stretch solved so far, then the others from the
-   cubic through the roots around them.  These are only guesses of the walk's
+1. **Roots.**  Every :data:`COARSE`-th point of a block first, by Newton from
+   guesses extrapolated along the stretch solved so far
+   (:func:`newton_guesses`); then the others from the cubic through the roots
+   around them, which puts them within about ``1e-8`` of their roots on a
+   smooth stretch: one Newton step takes them to about ``1e-15`` (guesses
+   farther off, on the path's coarse first steps or a sharp turn, get
+   :func:`newton_guesses` too).  These are only guesses of the walk's
    results; nothing is taken from this step alone.
 2. **The walk's own step, checked.**  From those roots each point gets the
    predictor the point-by-point walk gives it (``2 u[i-1] - u[i-2]``, or
-   ``u[i-1]`` at the start of a stretch), and :func:`newton_points` runs
-   *the same damped Newton iteration* as
-   :func:`~linkage_sym.numeric.continuation.newton` from it: same steps, same
-   step halving, same stopping rules, row by row.  A point is taken only if
-   that iteration passes the walk's acceptance test (scaled residual
-   :data:`~linkage_sym.numeric.continuation.TOL`, the assembly configuration's
-   determinant sign, within
-   :data:`~linkage_sym.numeric.continuation.MAX_CORRECTION` of its predictor)
-   and, for every point but the last of a block, ends on the root of step 1
-   (within :data:`~linkage_sym.numeric.continuation.SAME_ROOT`) that the next
-   points' predictors were made from.  By induction along the block, every
-   point taken is the point the walk would have computed, from the same
-   predictor (to rounding), by the same iteration.
+   ``u[i-1]`` at the start of a stretch).  Where :func:`certified` proves that
+   the walk's damped Newton from that predictor ends, to rounding, on the
+   point's root of step 1 (one full step from the predictor lands within
+   ``1e-3`` of the predictor's distance of it, the root is well conditioned,
+   has the assembly sign and lies well within
+   :data:`~linkage_sym.numeric.continuation.MAX_CORRECTION`), that root is
+   taken after the walk's last polishing step from it: two evaluations and a
+   solve per point instead of the walk's four and three.  Everywhere else
+   :func:`newton_points` runs *the same damped Newton iteration* as
+   :func:`~linkage_sym.numeric.continuation.newton` from the predictor: same
+   steps, same step halving, same stopping rules, row by row, and the point is
+   taken only if that iteration passes the walk's acceptance test (scaled
+   residual :data:`~linkage_sym.numeric.continuation.TOL`, the assembly
+   configuration's determinant sign, within
+   :data:`~linkage_sym.numeric.continuation.MAX_CORRECTION` of its predictor).
+   For every point but the last of a block, the point taken must also be the
+   root of step 1 (within :data:`~linkage_sym.numeric.continuation.SAME_ROOT`)
+   that the next points' predictors were made from.  By induction along the
+   block, every point taken is the point the walk would have computed (to
+   rounding), from the same predictor (to rounding).
 3. **Everything else is the walk itself.**  The first point of a block whose
    direct step is not accepted (a limit, a gap, a root of the other sign, a
    correction too large: the walk would bisect there) is solved by
@@ -42,8 +52,8 @@ of points (:func:`walk_path`):
    a root of the assembly sign are recorded as the walk records them; the
    first one with such a root is left to :meth:`~.continuation.Walk.step`.
 
-The conditioning indicator of each point taken (``sigma_min / sigma_max`` of
-the group's Jacobian) comes from :func:`reciprocal_condition`.  Block sizes
+The conditioning indicator of each point taken is the walk's
+(:func:`~linkage_sym.numeric.continuation.indicator`).  Block sizes
 adapt: doubled after a block taken whole (up to :data:`MAX_BLOCK`), halved
 after one whose guesses did not reach its end, back to :data:`MIN_BLOCK`
 after a point the walk had to take itself.
@@ -56,10 +66,14 @@ import numpy as np
 from linkage_sym.numeric.continuation import (
     MAX_CORRECTION,
     MAX_ITER,
+    MAX_POLISH,
+    POLISH_FLOOR,
     SAME_ROOT,
     STALL_ITER,
     TOL,
     Walk,
+    indicator,
+    inverses,
     distinct_roots,
     search_newton,
     search_seeds,
@@ -74,21 +88,27 @@ MAX_GAP = 64
 MAX_BLOCK = 1024
 """Largest block: the guesses are extrapolated at most this many points ahead."""
 ROOT_ITER = 10
-"""Iterations of undamped Newton from a guess (:func:`newton_points` with ``damped=False``)."""
+"""Iterations of undamped Newton from a guess (:func:`newton_guesses`)."""
 COARSE = 8
 """Every this many points of a block are solved first; the others are interpolated from them."""
+CERTIFY_RATIO = 1e-2
+"""Smallest reciprocal condition number at which :func:`certified` takes a root for the
+walk's iteration (below it the walk's own iteration runs)."""
+GUESS_RESIDUAL = 1e-6
+"""An interpolated guess is taken to its root by one Newton step if its scaled residual is at
+most this (the step's error is about its square, times the curvature); else by Newton's
+iteration."""
 
 
-def reciprocal_condition(J: np.ndarray) -> np.ndarray:
-    """``sigma_min / sigma_max`` of every matrix of ``J`` (k, n, n), as the walk's SVD gives it.
+def singular_value_ratio(J: np.ndarray) -> np.ndarray:
+    """``sigma_min / sigma_max`` of every matrix of ``J`` (k, n, n), as the SVD gives it.
 
     From the extreme eigenvalues of ``J^T J`` (``numpy.linalg.eigvalsh``, about
     half the cost of the SVD of small matrices) where the ratio ``r`` is at
     least :data:`GRAM_RATIO`: their rounding (``~n eps lambda_max``) moves it by
     about ``n eps / (2 r^2)`` relative, below ``1e-11`` there (an indicator: it
-    screens for the exact condition number below 1e-3 and scales the accuracy
-    estimate).  The others, and any non-finite one, by the SVD itself (``eps / r``
-    relative).
+    decides the rate stages' screen, :func:`linkage_sym.numeric.newton.above_ratio`).
+    The others, and any non-finite one, by the SVD itself (``eps / r`` relative).
     """
     J = np.asarray(J, dtype=float)
     out = np.full(len(J), np.nan)
@@ -134,23 +154,19 @@ def _solve_rows(J, R):
     return d, bad
 
 
-def newton_points(problem, U, idx, damped=True):
+def newton_points(problem, U, idx):
     """:func:`continuation.newton` from every row of ``U`` at its path point ``idx[j]``.
 
     Row by row the same iteration: the full Newton step, halved while it does
     not decrease the residual (down to a step of 1e-4), stopped when the
-    residual stalls over :data:`continuation.STALL_ITER` iterations, one
-    polishing step after reaching :data:`continuation.TOL` (kept only if it
-    does not make the residual worse), at most :data:`continuation.MAX_ITER`
+    residual stalls over :data:`continuation.STALL_ITER` iterations, polishing
+    steps after reaching :data:`continuation.TOL` while the last one's
+    correction exceeds :data:`continuation.POLISH_FLOOR` (at most
+    :data:`continuation.MAX_POLISH`; each kept only if it does not make the
+    residual worse), at most :data:`continuation.MAX_ITER`
     iterations; a singular Jacobian or a non-finite step gives an infinite
     residual.  Returns ``(U, res, J)``: each row's last iterate, its residual
     norm and its Jacobian there.
-
-    ``damped=False``, for guesses (not for the walk's step): a row whose full
-    step does not decrease its residual stops there (a quick "no root near
-    this guess"), rows stop after :data:`ROOT_ITER` iterations, and the
-    polishing step is taken without evaluating the residual after it (the
-    row's ``res`` and ``J`` are those before it).
     """
     U = np.array(U, dtype=float)
     idx = np.asarray(idx)
@@ -161,19 +177,20 @@ def newton_points(problem, U, idx, damped=True):
     # the rows still iterating, compressed: row j of U, R, J, res is row act[j]
     act = np.arange(len(U))
     history = np.empty((MAX_ITER, len(act)))
-    polished = np.zeros(len(act), bool)
+    polished = np.zeros(len(act), int)  # polishing steps taken
+    last = np.full(len(act), np.inf)  # the last polishing step's correction
 
     def keep(mask):
         """Write the rows not in ``mask`` out and keep the others."""
-        nonlocal act, U, R, J, res, history, polished
+        nonlocal act, U, R, J, res, history, polished, last
         if mask.all():
             return
         gone = ~mask
         out_U[act[gone]], out_res[act[gone]], out_J[act[gone]] = U[gone], res[gone], J[gone]
         act, U, R, J, res = act[mask], U[mask], R[mask], J[mask], res[mask]
-        history, polished = history[:, mask], polished[mask]
+        history, polished, last = history[:, mask], polished[mask], last[mask]
 
-    for it in range(MAX_ITER if damped else ROOT_ITER):
+    for it in range(MAX_ITER):
         if not len(act):
             break
         history[it] = res
@@ -181,11 +198,12 @@ def newton_points(problem, U, idx, damped=True):
             # no root here: the residual stalls (continuation.newton's history[-STALL_ITER])
             keep(~((res > TOL) & (res > 0.5 * history[it - STALL_ITER + 1])))
         conv = res <= TOL
-        keep(~(conv & polished))  # converged and polished: done
+        # converged and polished: done (continuation.newton's rule)
+        keep(~(conv & (polished > 0) & ((last <= POLISH_FLOOR) | (polished >= MAX_POLISH))))
         if not len(act):
             break
         conv = res <= TOL
-        polished |= conv  # one more step: quadratic convergence to ~1e-16
+        polished += conv  # one more step: quadratic convergence to ~1e-16
         d, bad = _solve_rows(J, R)
         if bad.any():
             res[bad] = np.inf
@@ -193,23 +211,12 @@ def newton_points(problem, U, idx, damped=True):
             d, conv = d[~bad], conv[~bad]
             if not len(act):
                 break
-        if not damped and conv.any():
-            # a guess polished: its last step taken without evaluating the residual there
-            U[conv] -= d[conv]
-            keep(~conv)
-            d, conv = d[~conv], conv[~conv]
-            if not len(act):
-                break
         step = np.ones(len(act))
         Un = U - d
         Rn, Jn = _writable(*problem.evaluate_points(Un, idx[act]))
         resn = np.linalg.norm(Rn, axis=1)
         halve = ~((resn < res) | conv)
-        if halve.any() and not damped:
-            # no decrease from a guess: this row stops here
-            keep(~halve)
-            Un, Rn, Jn, resn, conv = Un[~halve], Rn[~halve], Jn[~halve], resn[~halve], conv[~halve]
-        elif halve.any():
+        if halve.any():
             while True:
                 halve = ~((resn < res) | conv | (step < 1e-4))
                 if not halve.any():
@@ -225,9 +232,53 @@ def newton_points(problem, U, idx, damped=True):
         keep(~worse)
         if worse.any():
             Un, Rn, Jn, resn = Un[~worse], Rn[~worse], Jn[~worse], resn[~worse]
+            d, conv = d[~worse], conv[~worse]
+        if conv.any():
+            last[conv] = np.max(np.abs(d[conv]), axis=1)
         U, R, J, res = Un, Rn, Jn, resn
     keep(np.zeros(len(act), bool))
     return out_U, out_res, out_J
+
+
+def newton_guesses(problem, U, idx):
+    """Roots near guesses ``U`` at the path points ``idx``: undamped Newton, row by row.
+
+    A row stops when its full step does not decrease its residual (no root near
+    this guess), and after :data:`ROOT_ITER` iterations; a row whose residual is
+    within :data:`continuation.TOL` takes one more step without evaluating the
+    residual after it.  Returns ``(U, res)``: each row's last iterate and its
+    residual before that last step (``res <= TOL``: a root).  Guesses only: what
+    the walk takes is decided by its own iteration or :func:`certified`.
+    """
+    U = np.array(U, dtype=float)
+    idx = np.asarray(idx)
+    out_U, out_res = U.copy(), np.full(len(U), np.inf)
+    act = np.arange(len(U))
+    R, J = problem.evaluate_points(U, idx)
+    res = np.linalg.norm(R, axis=1)
+    for _ in range(ROOT_ITER):
+        d, bad = _solve_rows(J, R)
+        conv = (res <= TOL) & ~bad
+        out_U[act[conv]] = U[conv] - d[conv]  # polished without evaluating
+        out_res[act[conv]] = res[conv]
+        go = ~(conv | bad)
+        if not go.any():
+            return out_U, out_res
+        if not go.all():
+            act, U, d, res = act[go], U[go], d[go], res[go]
+        Un = U - d
+        R, J = problem.evaluate_points(Un, idx[act])
+        resn = np.linalg.norm(R, axis=1)
+        worse = ~(resn < res)  # no decrease: this row stops where it was
+        out_U[act[worse]], out_res[act[worse]] = U[worse], res[worse]
+        if worse.all():
+            return out_U, out_res
+        if worse.any():
+            keep = ~worse
+            act, Un, R, J, resn = act[keep], Un[keep], R[keep], J[keep], resn[keep]
+        U, res = Un, resn
+    out_U[act], out_res[act] = U, res
+    return out_U, out_res
 
 
 def _extrapolate(walk: Walk, t: np.ndarray, s: int) -> np.ndarray:
@@ -280,8 +331,7 @@ def _roots(walk: Walk, idx: np.ndarray) -> np.ndarray:
     m, n = len(idx), len(u0)
     A = np.full((m, n), np.nan)
     coarse = np.unique(np.r_[np.arange(COARSE - 1, m, COARSE), m - 1])
-    Ac, res, _ = newton_points(problem, _extrapolate(walk, coarse + 1, COARSE), idx[coarse],
-                               damped=False)
+    Ac, res = newton_guesses(problem, _extrapolate(walk, coarse + 1, COARSE), idx[coarse])
     good = res <= TOL
     nc = len(coarse) if good.all() else int(np.argmin(good))
     if nc == 0:
@@ -294,9 +344,18 @@ def _roots(walk: Walk, idx: np.ndarray) -> np.ndarray:
     V = np.vstack([walk.sol.u[[i - back]] if back else np.empty((0, n)), u0[None], Ac])
     rest = np.setdiff1d(np.arange(coarse[-1] + 1), coarse)
     if len(rest):
-        Ar, res, _ = newton_points(problem, _interpolate(X, V, rest.astype(float)), idx[rest],
-                                   damped=False)
-        Ar[~(res <= TOL)] = np.nan
+        # one Newton step from the interpolated guesses close to a root (the step's error
+        # is about the square of theirs: rounding on a smooth stretch); Newton's iteration
+        # from the others (coarse steps of the path, a sharp turn)
+        G = _interpolate(X, V, rest.astype(float))
+        R, J = problem.evaluate_points(G, idx[rest])
+        d, bad = _solve_rows(J, R)
+        Ar = G - d
+        far = bad | ~(np.linalg.norm(R, axis=1) <= GUESS_RESIDUAL)
+        if far.any():
+            Af, res = newton_guesses(problem, G[far], idx[rest[far]])
+            Af[~(res <= TOL)] = np.nan
+            Ar[far] = Af
         A[rest] = Ar
     return A
 
@@ -321,12 +380,18 @@ def _block(walk: Walk, idx: np.ndarray) -> tuple[int, bool]:
         P = 2 * prev1 - np.vstack([[walk.before if walk.before is not None else u0], prev1[:-1]])
         if walk.before is None:
             P[0] = u0  # the start of a stretch: the last point itself
-        B, res_b, JB = newton_points(problem, P, idx)
-        accepted = (
-            (res_b <= TOL)
-            & (np.sign(np.linalg.det(JB)) == sign)
-            & (np.max(np.abs(B - P), axis=1) <= MAX_CORRECTION)
-        )
+        # 3. where the walk's iteration provably ends on the root of step 1, that root
+        #    (see certified); the walk's iteration itself everywhere else
+        B, JB, ind, cert = certified(problem, P, A, idx, sign)
+        accepted = cert.copy()
+        rest = np.flatnonzero(~cert)
+        if len(rest):
+            B[rest], res_b, JB[rest] = newton_points(problem, P[rest], idx[rest])
+            accepted[rest] = (
+                (res_b <= TOL)
+                & (np.sign(np.linalg.det(JB[rest])) == sign)
+                & (np.max(np.abs(B[rest] - P[rest]), axis=1) <= MAX_CORRECTION)
+            )
         # a point whose root is not the one its successors' predictors were made from
         # is the last one taken
         same = np.max(np.abs(B - A), axis=1) <= SAME_ROOT
@@ -335,8 +400,60 @@ def _block(walk: Walk, idx: np.ndarray) -> tuple[int, bool]:
         if not same[:n].all():
             n, fails = int(np.argmin(same[:n])) + 1, False
         if n:
-            walk.accept(idx[:n], B[:n], reciprocal_condition(JB[:n]))
+            ind = ind[:n]
+            todo = np.flatnonzero(~cert[:n])
+            if len(todo):
+                ind[todo] = indicator(JB[todo])
+            walk.accept(idx[:n], B[:n], ind)
     return n, fails
+
+
+def certified(problem, P, A, idx, sign):
+    """Which points' walk would end on their root of step 1; and those roots.
+
+    The walk's damped Newton from the predictor ``P`` of a point ends, to
+    rounding, on the root ``A`` (a residual within :data:`continuation.TOL`) if
+    (i) ``A``'s Jacobian has the assembly sign and a reciprocal condition
+    number of at least :data:`CERTIFY_RATIO`, (ii) ``A`` is within half
+    :data:`continuation.MAX_CORRECTION` of ``P`` and (iii) the full Newton step
+    from ``P`` lands within ``1e-3 |P - A| + 1e-14`` of ``A``.  Then that step
+    decreases the residual (by (i), at least tenfold: no halving), Newton
+    converges quadratically from where it lands, the polishing ends on ``A``
+    to rounding, and the walk's acceptance (residual, determinant sign,
+    correction) holds there as at ``A``.  Two evaluations and one solve per
+    point instead of the walk's four and three.
+
+    Returns ``(B, JB, indicator, certified)``: ``B`` and ``JB`` hold ``A`` and
+    its Jacobian (and the indicator its reciprocal condition number) where
+    certified; the other rows are the caller's to fill.
+    """
+    RP, JP = problem.evaluate_points(P, idx)
+    d, bad = _solve_rows(JP, RP)
+    B = np.array(A)
+    ok = np.isfinite(B).all(axis=1)
+    JB = np.full((len(idx),) + JP.shape[1:], np.nan)
+    ind = np.full(len(idx), np.nan)
+    cert = np.zeros(len(idx), bool)
+    rows = np.flatnonzero(ok & ~bad)
+    if not len(rows):
+        return B, JB, ind, cert
+    RA, JA = problem.evaluate_points(B[rows], idx[rows])
+    JB[rows] = JA
+    dist = np.max(np.abs(P[rows] - B[rows]), axis=1)
+    landed = np.max(np.abs(P[rows] - d[rows] - B[rows]), axis=1)
+    good = (
+        (np.linalg.norm(RA, axis=1) <= TOL)
+        & (np.sign(np.linalg.det(JA)) == sign)
+        & (dist <= 0.5 * MAX_CORRECTION)
+        & (landed <= 1e-3 * dist + 1e-14)
+    )
+    sel = rows[good]
+    inv = inverses(JA[good])
+    ind[sel] = indicator(JA[good], inv)
+    cert[sel] = ind[sel] >= CERTIFY_RATIO
+    # the last polishing step the walk takes, from A (A is one Newton step from a guess)
+    B[sel] -= np.einsum("kij,kj->ki", inv, RA[good])
+    return B, JB, ind, cert
 
 
 def roots_near_points(problem, idx, ref, others, sign):

@@ -33,7 +33,7 @@ def above_ratio(J: np.ndarray, threshold: float) -> np.ndarray:
     ``sigma_min / sigma_max >= |det J| / |J|_F^n``: where that bound clears
     twice the threshold (every step but nearly singular ones) the matrix is
     above it without its singular values; the others are decided by
-    :func:`~linkage_sym.numeric.batched_path.reciprocal_condition`.  (The
+    :func:`~linkage_sym.numeric.batched_path.singular_value_ratio`.  (The
     rate stages' screen: a determinant costs a fifth of the eigenvalues.)
     """
     sign, logdet = np.linalg.slogdet(J)
@@ -42,7 +42,7 @@ def above_ratio(J: np.ndarray, threshold: float) -> np.ndarray:
     out = (sign != 0) & (logdet - J.shape[-1] * lognorm > math.log(2 * threshold))
     unsure = np.flatnonzero(~out)
     if len(unsure):
-        out[unsure] = batched_path.reciprocal_condition(J[unsure]) > threshold
+        out[unsure] = batched_path.singular_value_ratio(J[unsure]) > threshold
     return out
 
 
@@ -89,9 +89,8 @@ class NewtonSolver:
         :mod:`linkage_sym.numeric.continuation`); returns the indicator."""
         n_steps = len(next(iter(q.values())))
         self._rates_cache = None
-        problem = _PoseProblem(self, S, q)
+        problem = self._problem(S, q)
         sol = continuation.solve_path(problem, n_steps, np.zeros(self.nvar))
-        out = sol.u * problem.scale
         kinds = {k: self.driver_kinds.get(k, "R") for k in q}
         where = lambda i: lambda t: continuation.driver_values_text(q, kinds, i, t)  # noqa: E731
         self.messages = {
@@ -104,9 +103,16 @@ class NewtonSolver:
             for n in sol.notes
             for i in [n[0]]
         ]
+        self._set_poses(S, problem, sol)
+        return sol.indicator
+
+    def _problem(self, S, q):
+        return _PoseProblem(self, S, q)
+
+    def _set_poses(self, S, problem, sol):
+        out = sol.u * problem.scale
         for k, n in enumerate(self.links):
             S[n].set_pose(out[:, 3 * k + 2], out[:, 3 * k], out[:, 3 * k + 1])
-        return sol.indicator
 
     def failure(self, S, i) -> str:
         return self.messages.get(
