@@ -659,7 +659,8 @@ def test_summary_of_chunks_equals_the_whole_runs(tmp_path, capsys, monkeypatch):
 @pytest.mark.parametrize("name, method, steps", [
     ("crank_rocker", "dyad", 20000), ("watt_sixbar", "dyad", 20000), ("shaper", "dyad", 20000),
     ("watt_sixbar", "global", 5000), ("watt_sixbar", "symbolic", 20000),
-    ("sixbar_class3", "dyad", 500), ("hydraulic_boom", "dyad", 500)])
+    ("sixbar_class3", "dyad", 500), ("hydraulic_boom", "dyad", 500),
+    ("printing_mechanism", "dyad", 500)])
 def test_memory_estimate_covers_the_measured_peak(name, method, steps):
     """tracemalloc's peak of a run (numbers, temporaries, result) per step is under
     ``bytes_per_step``, and not below a third of it (the estimate is not idle)."""

@@ -27,13 +27,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric import accuracy
+from linkage_sym.numeric import accuracy, loop_closure
 from linkage_sym.numeric.block import ResultLayout
 from linkage_sym.numeric.closed_form import DyadSolver, InputSolver
 from linkage_sym.numeric.cams import CamSolver, cam_records
 from linkage_sym.numeric.constraints import jacobian, scene_constraints
 from linkage_sym.numeric.gears import GearSolver
 from linkage_sym.numeric.kinetostatics import ForcePlan, check_method
+from linkage_sym.numeric.loop_closure import LoopClosureSolver
 from linkage_sym.numeric.newton import NewtonSolver
 from linkage_sym.numeric.result import Analysis
 from linkage_sym.numeric.solver import GroupSolver
@@ -79,6 +80,8 @@ class Plan:
                 self.solvers.append(GearSolver(scene, g))
             elif g.kind == "cam":  # a follower on its pivot or slide (others refused by name)
                 self.solvers.append(CamSolver(scene, g, self.L))
+            elif loop_closure.applies(scene, g, self.constraints):
+                self.solvers.append(LoopClosureSolver(scene, g, self.constraints, self.L))
             else:
                 self.solvers.append(NewtonSolver(scene, g, self.constraints, self.L))
         self.stages = needed_stages(scene)
