@@ -8,9 +8,10 @@ Solving positions and rates
     ``state`` (a link's pose and rates over the steps), ``loci`` (the circles
     and lines a dyad's joint lies on), ``solver`` (the ``GroupSolver``
     contract every group's solver meets), ``closed_form`` (input links and
-    dyads), ``gears`` (a gear on its pivot, mesh forces), ``newton`` (class-III
-    and other groups by Newton's method), ``batched_path`` (their continuation
-    over many path points at once).
+    dyads), ``gears`` (a gear on its pivot, mesh forces), ``newton`` (groups
+    by Newton's method in pose coordinates), ``loop_closure`` (groups of
+    revolute joints only -- class-III triads -- in their links' angles),
+    ``batched_path`` (their continuation over many path points at once).
 The one sweep engine both runtimes call (this plan and
 :mod:`linkage_sym.codegen.runtime`)
     ``sweep`` (the sweep, stages, solving path and unwrapping, step statuses,
