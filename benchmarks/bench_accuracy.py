@@ -381,9 +381,15 @@ def plot(results, path):
             n = seen.get(kind, 0)
             seen[kind] = n + 1
             dy = {"mpmath, digits": -9 * n, "float64 solver": 3 + 9 * n,
-                  "finite-difference rates, h": 2 if n % 2 == 0 else -9,
-                  "Newton tolerance": 12 - 9 * n}.get(kind, 2)
-            ax.annotate(_label(p["method"]), (x, y), fontsize=7, xytext=(5, dy),
+                  "finite-difference rates, h": 2 if n % 2 == 0 else -9}.get(kind, 2)
+            label = _label(p["method"])
+            if kind == "Newton tolerance":
+                # the tolerances land on one point (polishing goes on to rounding): one label
+                if n:
+                    continue
+                tols = [q["method"].split()[-1] for q in pts if _kind(q["method"]) == kind]
+                label, dy = f"tol {tols[0]} … {tols[-1]}", -14
+            ax.annotate(label, (x, y), fontsize=7, xytext=(5, dy),
                         textcoords="offset points", color=color)
         # the Pareto front: no point both faster and more accurate
         good = sorted((p["us_per_position"], max(p["error"], floor)) for p in pts
