@@ -8,7 +8,7 @@ A :class:`CompiledMechanism` holds the generated functions of one topology
    configuration through the steps; groups without a closed form by Newton
    on their loop equations, step by step (sub-stepped where a step fails);
 2. ``A xd = B qd`` and ``A xdd = rhs``: the generated entries, solved group
-   block by group block (Cramer for 2x2 blocks, LU otherwise);
+   block by group block (Cramer for 2x2 blocks, LU otherwise; :class:`_RateSystem`);
 3. points and the force blocks ``A_g F_g = b_g - C_g F_later``, solved from
    the last group back; the frame loads from the ground's reactions.
 
@@ -167,26 +167,98 @@ def _wrap(a):
     return (a + np.pi) % (2 * np.pi) - np.pi
 
 
-def _solve_blocks(A, rhs, blocks):
-    """Solve the block lower-triangular ``A x = rhs`` (arrays (K, m, m), (K, m))."""
-    K, m = rhs.shape
-    x = np.zeros((K, m))
-    for r0, r1, c0, c1 in blocks:
-        b = rhs[:, r0:r1]
-        if c0:
-            b = b - np.einsum("kij,kj->ki", A[:, r0:r1, :c0], x[:, :c0])
-        M = A[:, r0:r1, c0:c1]
-        n = c1 - c0
-        with np.errstate(invalid="ignore", divide="ignore"):
+class _RateSystem:
+    """``A`` of the rate problems at ``K`` steps, kept as its generated entries.
+
+    ``A`` is block lower-triangular (one block per group, in solving order) and
+    sparse; the generated ``rates`` function gives its non-zero entries, each an
+    array over the steps.  They stay coordinate-major: a group's 2x2 block is
+    four contiguous arrays, its determinant is formed once and serves the
+    singularity screen, the velocities and the accelerations; the coupling to
+    earlier groups is a sum over the pattern's entries.  A dense ``(K, m, m)``
+    matrix is formed only for the steps whose condition number is computed.
+    """
+
+    def __init__(self, entries: dict, blocks, m: int, K: int):
+        self.entries, self.blocks, self.m, self.K = entries, blocks, m, K
+        zero = np.zeros(K)
+        self._solvers = []
+        for r0, r1, c0, c1 in blocks:
+            n = c1 - c0
+            get = lambda i, j: entries.get((i, j), zero)  # noqa: E731
+            coupling = [(i - r0, j, v) for (i, j), v in entries.items() if r0 <= i < r1 and j < c0]
             if n == 1:
-                x[:, c0] = b[:, 0] / M[:, 0, 0]
+                own = (get(r0, c0),)
             elif n == 2:
-                det = M[:, 0, 0] * M[:, 1, 1] - M[:, 0, 1] * M[:, 1, 0]
-                x[:, c0] = (b[:, 0] * M[:, 1, 1] - b[:, 1] * M[:, 0, 1]) / det
-                x[:, c0 + 1] = (M[:, 0, 0] * b[:, 1] - M[:, 1, 0] * b[:, 0]) / det
+                a, b, c, d = get(r0, c0), get(r0, c0 + 1), get(r0 + 1, c0), get(r0 + 1, c0 + 1)
+                with np.errstate(invalid="ignore", over="ignore"):
+                    own = (a, b, c, d, a * d - b * c)
             else:
-                x[:, c0:c1] = np.linalg.solve(M, b[..., None])[..., 0]
-    return x
+                M = np.empty((K, n, n))
+                for i in range(n):
+                    for j in range(n):
+                        M[:, i, j] = get(r0 + i, c0 + j)
+                own = (M,)
+            self._solvers.append((c0, n, coupling, own))
+
+    @classmethod
+    def of(cls, pattern, values, blocks, m, K):
+        """From the generated function's outputs (the pattern's entries, in order)."""
+        return cls({tuple(ij): _full(v, K) for ij, v in zip(pattern, values)}, blocks, m, K)
+
+    def take(self, sel) -> "_RateSystem":
+        """The system at the steps ``sel`` (a boolean mask)."""
+        return _RateSystem({ij: v[sel] for ij, v in self.entries.items()}, self.blocks, self.m,
+                           int(np.count_nonzero(sel)))
+
+    def ratios(self) -> list:
+        """Each group block's Hadamard ratio (``|det|`` over the product of its row norms,
+        and of its column norms, whichever is smaller) at every step; ``None`` for a 1x1
+        block."""
+        out = []
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            for c0, n, _, own in self._solvers:
+                if n == 1:
+                    out.append(None)
+                elif n == 2:
+                    # a row that vanishes as a whole (every term of a loop projection zero)
+                    # leaves the row ratio near one, the column ratio catches it, and the
+                    # other way round
+                    a, b, c, d, det = own
+                    a2, b2, c2, d2 = a * a, b * b, c * c, d * d
+                    out.append(np.abs(det) / np.sqrt(np.fmax((a2 + b2) * (c2 + d2),
+                                                             (a2 + c2) * (b2 + d2))))
+                else:
+                    M = own[0]
+                    det = np.abs(np.linalg.det(M))
+                    out.append(np.fmin(det / np.prod(np.linalg.norm(M, axis=2), axis=1),
+                                       det / np.prod(np.linalg.norm(M, axis=1), axis=1)))
+        return out
+
+    def dense(self, steps) -> np.ndarray:
+        """``A`` (len(steps), m, m) at the steps ``steps``."""
+        A = np.zeros((len(steps), self.m, self.m))
+        for (i, j), v in self.entries.items():
+            A[:, i, j] = v[steps]
+        return A
+
+    def solve(self, rhs) -> np.ndarray:
+        """``x`` (m, K) of ``A x = rhs``, ``rhs`` a sequence of ``m`` arrays over the steps."""
+        x = np.zeros((self.m, self.K))
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            for (r0, r1, _, _), (c0, n, coupling, own) in zip(self.blocks, self._solvers):
+                b = [rhs[r0 + i] for i in range(r1 - r0)]
+                for i, j, v in coupling:
+                    b[i] = b[i] - v * x[j]
+                if n == 1:
+                    np.divide(b[0], own[0], out=x[c0])
+                elif n == 2:
+                    a, bb, c, d, det = own
+                    x[c0] = (b[0] * d - b[1] * bb) / det
+                    x[c0 + 1] = (a * b[1] - c * b[0]) / det
+                else:
+                    x[c0:c0 + n] = np.linalg.solve(own[0], np.stack(b, axis=1)[..., None])[..., 0].T
+        return x
 
 
 class CompiledMechanism:
@@ -397,32 +469,25 @@ class CompiledMechanism:
                     X[c] = np.broadcast_to(v, (N,))
             X = np.array(X)
             CS = (list(np.cos(X)), list(np.sin(X)))
-            A, Bqd = self.rate_matrix(X, Q, QD, CS)
-            XD = np.ascontiguousarray(_solve_blocks(A, Bqd, self.blocks).T)
+            A, Bqd = self.rate_system(X, Q, QD, CS)
+            XD = A.solve(Bqd)
             r = self._call("accelerations", X=list(X), XD=list(XD), Q=Q, QD=QD, QDD=QDD, CS=CS)
-            rhs = np.empty((N, self.m))
-            for i, v in enumerate(r):
-                rhs[:, i] = v
-            XDD = np.ascontiguousarray(_solve_blocks(A, rhs, self.blocks).T)
+            XDD = A.solve([_full(v, N) for v in r])
             pts = self._call(
                 "points", X=list(X), XD=list(XD), XDD=list(XDD), Q=Q, QD=QD, QDD=QDD, CS=CS
             )
         return {"x": X, "xd": XD, "xdd": XDD, "points": pts}
 
-    def rate_matrix(self, X, Q, QD, CS=None):
-        """``A`` (K, m, m) and ``B qd`` (K, m) at coordinates ``X`` (m, K)."""
+    def rate_system(self, X, Q, QD, CS=None):
+        """``A`` (a :class:`_RateSystem`) and ``B qd`` (a list of ``m`` arrays over the steps)
+        at coordinates ``X`` (m, K)."""
         K = X.shape[1]
         if CS is None:
             CS = (list(np.cos(X)), list(np.sin(X)))
         out = self._call("rates", X=list(X), Q=Q, QD=QD, CS=CS)
         pat = self.art["pattern"]
-        A = np.zeros((K, self.m, self.m))
-        for (i, j), v in zip(pat, out):
-            A[:, i, j] = v
-        rhs = np.empty((K, self.m))
-        for i, v in enumerate(out[len(pat):]):
-            rhs[:, i] = v
-        return A, rhs
+        A = _RateSystem.of(pat, out[:len(pat)], self.blocks, self.m, K)
+        return A, [_full(v, K) for v in out[len(pat):]]
 
     def condition_numbers(self, A):
         """Dimensionless condition number of ``A`` (K, m, m)."""
@@ -512,57 +577,39 @@ class CompiledMechanism:
             Xk = X[:, idx]
             Qk, QDk, QDDk = list(Qs[:, idx]), list(QDs[:, idx]), list(QDDs[:, idx])
         CS = (np.cos(Xk), np.sin(Xk))
-        A, Bqd = self.rate_matrix(Xk, Qk, QDk, (list(CS[0]), list(CS[1])))
+        A, Bqd = self.rate_system(Xk, Qk, QDk, (list(CS[0]), list(CS[1])))
         # singular steps: a block's Hadamard ratio screens, the exact condition number decides
         condition = np.full(N, np.nan)
         screen = np.ones(len(idx), bool) if exact_condition else np.zeros(len(idx), bool)
         ratio_min = np.full(len(idx), np.inf)  # the blocks' indicators, for the accuracy
-        for r0, r1, c0, c1 in self.blocks:
-            if c1 - c0 < 2:
-                continue
-            with np.errstate(invalid="ignore", divide="ignore"):
-                # |det| over the product of the row norms, and of the column norms: a row
-                # that vanishes as a whole (every term of a loop projection zero) leaves the
-                # row ratio near one, the column ratio catches it, and the other way round
-                if c1 - c0 == 2:
-                    a, b = A[:, r0, c0], A[:, r0, c0 + 1]
-                    c, d = A[:, r0 + 1, c0], A[:, r0 + 1, c0 + 1]
-                    det = np.abs(a * d - b * c)
-                    a2, b2, c2, d2 = a * a, b * b, c * c, d * d
-                    # the smaller ratio is the one over the larger product of norms
-                    ratio = det / np.sqrt(np.fmax((a2 + b2) * (c2 + d2), (a2 + c2) * (b2 + d2)))
-                else:
-                    M = A[:, r0:r1, c0:c1]
-                    det = np.abs(np.linalg.det(M))
-                    ratio = np.fmin(
-                        det / np.prod(np.linalg.norm(M, axis=2), axis=1),
-                        det / np.prod(np.linalg.norm(M, axis=1), axis=1),
-                    )
-            screen |= ~(ratio >= SCREEN)
-            ratio_min = np.fmin(ratio_min, ratio)
+        for ratio in A.ratios():
+            if ratio is not None:
+                screen |= ~(ratio >= SCREEN)
+                ratio_min = np.fmin(ratio_min, ratio)
         if screen.any():
-            mark_singular(status, messages, condition, idx[screen], self.condition_numbers(A[screen]))
+            steps = np.flatnonzero(screen)
+            mark_singular(status, messages, condition, idx[steps],
+                          self.condition_numbers(A.dense(steps)))
         ok = status == OK
         rate_ok = ok[idx]
         stages = tuple(art["stages"])
         K = len(idx)
         # the steps with rates: a slice (views, no copies) when every step has them
-        sel = slice(None) if rate_ok.all() else rate_ok
+        every = bool(rate_ok.all())
+        sel = slice(None) if every else rate_ok
         n_sel = int(rate_ok.sum())
+        As = A if every else A.take(rate_ok)
         XD = np.full((self.m, K), np.nan)
         XDD = np.full((self.m, K), np.nan)
         if "velocity" in stages and n_sel:
-            XD[:, sel] = _solve_blocks(A[sel], Bqd[sel], self.blocks).T
+            XD[:, sel] = As.solve([v[sel] for v in Bqd])
         if "acceleration" in stages and n_sel:
             r = self._call(
                 "accelerations", X=list(Xk[:, sel]), XD=list(XD[:, sel]),
                 CS=(list(CS[0][:, sel]), list(CS[1][:, sel])),
                 Q=[v[sel] for v in Qk], QD=[v[sel] for v in QDk], QDD=[v[sel] for v in QDDk],
             )
-            rhs = np.empty((n_sel, self.m))
-            for i, v in enumerate(r):
-                rhs[:, i] = v
-            XDD[:, sel] = _solve_blocks(A[sel], rhs, self.blocks).T
+            XDD[:, sel] = As.solve([_full(v, n_sel) for v in r])
         P0 = self._load_params(dict(zip(art["q"], Qk)))
 
         def points(flanks=None):
