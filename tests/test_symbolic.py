@@ -577,14 +577,14 @@ def test_cli_symbolic_matches_dyad(name, tmp_path):
 def test_rate_system_solves_as_the_dense_matrix():
     """The compiled run's rate solver (``runtime._RateSystem``: the generated entries kept
     per coordinate, block by block) against ``numpy.linalg.solve`` of the dense block
-    lower-triangular matrix, blocks of 1, 2 and 3 coordinates with coupling entries:
-    1e-12 relative; the Hadamard ratios against the determinant and norms of the dense
+    lower-triangular matrix, blocks of 1, 2, 3 (Cramer) and 4 (LU) coordinates with
+    coupling entries: 1e-12 relative; the Hadamard ratios against the determinant and norms of the dense
     blocks; ``dense`` and ``take`` against indexing the dense matrix."""
     from linkage_sym.codegen.runtime import _RateSystem
 
     rng = np.random.default_rng(11)
-    K, blocks = 50, [(0, 1, 0, 1), (1, 3, 1, 3), (3, 6, 3, 6)]
-    m = 6
+    K, blocks = 50, [(0, 1, 0, 1), (1, 3, 1, 3), (3, 6, 3, 6), (6, 10, 6, 10)]
+    m = 10
     A = np.zeros((K, m, m))
     for r0, r1, c0, c1 in blocks:
         A[:, r0:r1, c0:c1] = rng.normal(size=(K, r1 - r0, c1 - c0)) + 2 * np.eye(r1 - r0)

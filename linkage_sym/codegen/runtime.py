@@ -172,9 +172,10 @@ class _RateSystem:
 
     ``A`` is block lower-triangular (one block per group, in solving order) and
     sparse; the generated ``rates`` function gives its non-zero entries, each an
-    array over the steps.  They stay coordinate-major: a group's 2x2 block is
-    four contiguous arrays, its determinant is formed once and serves the
-    singularity screen, the velocities and the accelerations; the coupling to
+    array over the steps.  They stay coordinate-major: a group's 2x2 or 3x3
+    block is contiguous arrays, its determinant is formed once and serves the
+    singularity screen, the velocities and the accelerations (Cramer's rule,
+    as the 2x2 blocks always had; LU for larger blocks); the coupling to
     earlier groups is a sum over the pattern's entries.  A dense ``(K, m, m)``
     matrix is formed only for the steps whose condition number is computed.
     """
@@ -193,6 +194,12 @@ class _RateSystem:
                 a, b, c, d = get(r0, c0), get(r0, c0 + 1), get(r0 + 1, c0), get(r0 + 1, c0 + 1)
                 with np.errstate(invalid="ignore", over="ignore"):
                     own = (a, b, c, d, a * d - b * c)
+            elif n == 3:  # the rows, and the adjugate's first column with the determinant
+                R = [[get(r0 + i, c0 + j) for j in range(3)] for i in range(3)]
+                (a, b, c), (d, e, f), (g, h, k) = R
+                with np.errstate(invalid="ignore", over="ignore"):
+                    co = (e * k - f * h, f * g - d * k, d * h - e * g)
+                    own = (R, co, a * co[0] + b * co[1] + c * co[2])
             else:
                 M = np.empty((K, n, n))
                 for i in range(n):
@@ -228,6 +235,14 @@ class _RateSystem:
                     a2, b2, c2, d2 = a * a, b * b, c * c, d * d
                     out.append(np.abs(det) / np.sqrt(np.fmax((a2 + b2) * (c2 + d2),
                                                              (a2 + c2) * (b2 + d2))))
+                elif n == 3:
+                    R, _, det = own
+                    sq = [[v * v for v in row] for row in R]
+                    rows = np.sqrt((sq[0][0] + sq[0][1] + sq[0][2]) * (sq[1][0] + sq[1][1] + sq[1][2])
+                                   * (sq[2][0] + sq[2][1] + sq[2][2]))
+                    cols = np.sqrt((sq[0][0] + sq[1][0] + sq[2][0]) * (sq[0][1] + sq[1][1] + sq[2][1])
+                                   * (sq[0][2] + sq[1][2] + sq[2][2]))
+                    out.append(np.abs(det) / np.fmax(rows, cols))
                 else:
                     M = own[0]
                     det = np.abs(np.linalg.det(M))
@@ -256,6 +271,11 @@ class _RateSystem:
                     a, bb, c, d, det = own
                     x[c0] = (b[0] * d - b[1] * bb) / det
                     x[c0 + 1] = (a * b[1] - c * b[0]) / det
+                elif n == 3:  # Cramer: x = adj(M) b / det
+                    ((a, bb, c), (d, e, f), (g, h, k)), co, det = own
+                    x[c0] = (co[0] * b[0] + (c * h - bb * k) * b[1] + (bb * f - c * e) * b[2]) / det
+                    x[c0 + 1] = (co[1] * b[0] + (a * k - c * g) * b[1] + (c * d - a * f) * b[2]) / det
+                    x[c0 + 2] = (co[2] * b[0] + (bb * g - a * h) * b[1] + (a * e - bb * d) * b[2]) / det
                 else:
                     x[c0:c0 + n] = np.linalg.solve(own[0], np.stack(b, axis=1)[..., None])[..., 0].T
         return x
