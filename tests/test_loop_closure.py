@@ -1,8 +1,10 @@
-"""Revolute-only Newton groups in loop-closure coordinates (:mod:`linkage_sym.numeric.loop_closure`).
+"""Newton groups of R and P joints in loop-closure coordinates (:mod:`linkage_sym.numeric.loop_closure`).
 
 The class-III triad is solved in its four links' angles with four loop rows
 (the pose formulation, :class:`~linkage_sym.numeric.newton.NewtonSolver`,
-has twelve of each).  Checked against what shares no code with it:
+has twelve of each), the printing mechanism's triad (Dang and Zhang's
+example) in its four angles and its slide.  Checked against what shares no
+code with it:
 
 * **the Jacobian** (``i E_k W[k, r]`` of the linear form) against central
   differences of the rows themselves (step ``1e-6``: truncation ``~1e-12``,
@@ -11,12 +13,13 @@ has twelve of each).  Checked against what shares no code with it:
   in poses, the constraint rows of :mod:`~linkage_sym.numeric.constraints`):
   the same status at every step and every value within ``1e-10`` of its
   family's scale (positions: the mechanism's size), on the shipped class-III
-  six-bar and on random triads over a full turn, with limits and gaps; every
+  six-bar and printing mechanisms and on random triads and printing
+  mechanisms (joints moved, guide turned) over a full turn, with limits and gaps; every
   ``ok`` step closes and keeps the assembly mode by the tests' own joint
   equations and finite-difference Jacobian (:mod:`reference_kinematics`);
-* the rates against **finite differences of the positions** along a fine
-  sweep (velocities ``1e-7``, accelerations ``1e-5`` of their scale: the
-  central difference's truncation at 0.01 deg steps);
+* the rates against **finite differences of the positions** (Richardson's
+  rule on central differences over 0.01 and 0.02 deg: velocities ``1e-7``,
+  accelerations ``1e-5`` of their scale);
 * **the indicator** (``1 / (|J|_F |J^-1|_F)``) against the SVD: between
   ``r / n`` and ``r`` for ``r = sigma_min / sigma_max``, on matrices
   conditioned from 1 to 1e15, ``0`` for singular ones and NaN for non-finite.
@@ -24,6 +27,7 @@ has twelve of each).  Checked against what shares no code with it:
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import sys
@@ -40,6 +44,7 @@ import scenes  # noqa: E402
 from test_batched_continuation import _load, _triad_from, assert_same  # noqa: E402
 
 import linkage_sym  # noqa: E402
+from linkage_sym.examples import example_path  # noqa: E402
 from linkage_sym.numeric import continuation, loop_closure  # noqa: E402
 from linkage_sym.numeric.loop_closure import LoopClosureSolver  # noqa: E402
 from linkage_sym.numeric.newton import NewtonSolver  # noqa: E402
@@ -72,24 +77,67 @@ def _group_problem(plan):
     raise AssertionError("no loop-closure group")
 
 
-def test_the_triads_take_the_loop_closure_and_the_others_stay_in_poses():
+def test_the_triads_take_the_loop_closure_and_actuators_stay_in_poses():
     plan = compile_plan(linkage_sym.load_example("sixbar_class3"))
-    kinds = [type(sv) for sv in plan.solvers]
-    assert LoopClosureSolver in kinds
     sv = next(sv for sv in plan.solvers if isinstance(sv, LoopClosureSolver))
     assert sv.nvar == 4 and len(sv.loops) == 2  # 4 angles, 2 loops: 4 rows
-    # an actuator (a driven slide) and the printing mechanism's P joints: pose coordinates
-    for name in ("hydraulic_boom", "printing_mechanism"):
-        plan = compile_plan(linkage_sym.load_example(name))
-        newton = [sv for sv in plan.solvers if isinstance(sv, NewtonSolver)]
-        assert newton and not any(isinstance(sv, LoopClosureSolver) for sv in newton), name
+    plan = compile_plan(linkage_sym.load_example("printing_mechanism"))
+    sv = next(sv for sv in plan.solvers if isinstance(sv, LoopClosureSolver))
+    assert sv.nvar == 5 and len(sv.loops) == 2  # 4 angles and a slide; 2 loops, 1 angle row
+    # an actuator (a driven slide): pose coordinates
+    plan = compile_plan(linkage_sym.load_example("hydraulic_boom"))
+    newton = [sv for sv in plan.solvers if isinstance(sv, NewtonSolver)]
+    assert newton and not any(isinstance(sv, LoopClosureSolver) for sv in newton)
+
+
+def _triad_with_slide(axis_deg, steps=181):
+    """The triad with its joint D a slide of rocker_DE along the lever (``axis_deg``): a
+    guide that turns with the group (its slide's terms in the angle columns and the
+    Coriolis term of the accelerations)."""
+    d = _triad_from((0.0,) * 12, steps=steps)
+    for joint in d["joints"]:
+        if joint["name"] == "D":
+            joint["type"], joint["axis_deg"] = "P", axis_deg
+    return d
+
+
+def _printing_from(j, steps=181, guide="ground"):
+    """The printing mechanism (Dang and Zhang's example: a triad with a slider on a fixed
+    guide) with its triad's joints moved by ``j`` and its guide turned by ``j[-1]`` rad;
+    ``guide="crank"`` puts the slide on the crank instead (a known guide that turns)."""
+    d = json.loads(example_path("printing_mechanism").read_text())
+    for joint in d["joints"]:
+        if joint["name"] == "F_guide":
+            joint["links"] = [guide, "slider"]
+    moved = {"C": j[0:2], "D": j[2:4], "E": j[4:6], "F": j[6:8]}
+    for joint in d["joints"]:
+        if joint["name"] in moved:
+            joint["at"] = [joint["at"][0] + moved[joint["name"]][0],
+                           joint["at"][1] + moved[joint["name"]][1]]
+        if joint["name"] == "F_guide":
+            joint["axis_deg"] = joint["axis_deg"] + math.degrees(j[8])
+    d["drivers"][0]["steps"] = steps
+    return d
 
 
 @pytest.mark.parametrize("jitter", [None, (0.02, -0.01, 0.0, 0.015, -0.02, 0.01,
-                                           0.01, 0.0, -0.015, 0.02, 0.0, -0.01)])
+                                           0.01, 0.0, -0.015, 0.02, 0.0, -0.01), "printing",
+                                     "printing turned", "slide on the lever",
+                                     "guide on the crank"])
 def test_jacobian_against_central_differences(jitter):
-    scene = (linkage_sym.load_example("sixbar_class3") if jitter is None
-             else linkage_sym.load_scene(_triad_from(jitter)))
+    if jitter is None:
+        scene = linkage_sym.load_example("sixbar_class3")
+    elif jitter == "printing":
+        scene = linkage_sym.load_example("printing_mechanism")
+    elif jitter == "printing turned":
+        scene = linkage_sym.load_scene(_printing_from((0.02, 0.01, -0.01, 0.02, 0.0, 0.01,
+                                                       0.01, -0.02, 0.3)))
+    elif jitter == "slide on the lever":
+        scene = linkage_sym.load_scene(_triad_with_slide(60.0))
+    elif jitter == "guide on the crank":
+        scene = linkage_sym.load_scene(_printing_from((0.0,) * 8 + (0.3,), guide="crank"))
+    else:
+        scene = linkage_sym.load_scene(_triad_from(jitter))
     _, problem, n_points = _group_problem(compile_plan(scene))
     rng = np.random.default_rng(1)
     h = 1e-6
@@ -133,39 +181,85 @@ def test_random_triads_agree_with_the_pose_formulation(j):
     _against_poses(scene, "random triad")
 
 
+def test_the_printing_mechanism_agrees_with_the_pose_formulation():
+    for name in ("printing_mechanism", "printing_mechanism_stroke"):
+        a, _ = _against_poses(linkage_sym.load_example(name), name)
+        assert (a.status == "ok").all()
+
+
+@settings(**SETTINGS)
+@given(j=st.tuples(*[st.floats(-0.06, 0.06, allow_nan=False)] * 8,
+                   st.floats(-0.5, 0.5, allow_nan=False)))
+def test_random_printing_mechanisms_agree_with_the_pose_formulation(j):
+    """The printing mechanism's triad moved and its slider's guide turned at random, over a
+    full turn, the guide on the ground and on the crank: slides, limits, gaps."""
+    for guide in ("ground", "crank"):
+        scene = _load(_printing_from(j, guide=guide))
+        if scene is not None:
+            _against_poses(scene, f"random printing mechanism, guide on the {guide}")
+
+
+@pytest.mark.parametrize("axis_deg", [0.0, 60.0, 120.0, 150.0])
+def test_a_triad_sliding_on_its_lever_agrees_with_the_pose_formulation(axis_deg):
+    """The guide turns with the group; at 0, 120 and 150 deg parts of the turn cannot be
+    assembled (limits, gaps)."""
+    _against_poses(linkage_sym.load_scene(_triad_with_slide(axis_deg, steps=361)),
+                   f"triad sliding on its lever, {axis_deg} deg")
+
+
 def test_a_triad_past_a_limit_agrees_with_the_pose_formulation():
     scene = linkage_sym.load_scene(scenes.triad_jump())
     a, b = _against_poses(scene, "triad jump")
     assert any("passes a limit" in w for w in a.warnings)
 
 
-def test_rates_against_finite_differences_of_the_positions():
-    """Velocities and accelerations of every link against central differences of the
-    solved rotations and origins over 0.01 deg steps (the driver at constant speed 10
-    rad/s plus an acceleration of 1 rad/s^2, as the scene has it)."""
-    d = _triad_from((0.0,) * 12)
+@pytest.mark.parametrize("which", ["triad", "printing", "slide on the lever",
+                                   "guide on the crank"])
+def test_rates_against_finite_differences_of_the_positions(which):
+    """Velocities and accelerations of every link against finite differences of the
+    solved rotations and origins (the driver at constant speed 10 rad/s plus an
+    acceleration of 1 rad/s^2): central differences over 0.01 deg and 0.02 deg combined
+    by Richardson's rule, so the truncation is ``O(h^4)`` (a motion near a limit has a
+    third derivative large enough to put a plain central difference 4e-6 off) and the
+    rounding ``eps/h^2`` about 1e-8 for the second differences."""
+    triad = ("link_BC", "lever", "rocker_DE", "rocker_FG")
+    if which in ("triad", "slide on the lever"):
+        d = _triad_from((0.0,) * 12) if which == "triad" else _triad_with_slide(60.0)
+        links, th0 = triad, np.radians(np.arange(5.0, 355.0, 25.0))
+    else:
+        d = _printing_from((0.0,) * 8 + (0.3,), guide="ground" if which == "printing" else "crank")
+        links = ("coupler", "lever", "rocker", "slider")
+        th0 = np.radians(np.arange(305.0, 655.0, 12.5))
     h = math.radians(0.01)
-    th0 = np.radians(np.arange(5.0, 355.0, 25.0))
     w, al = 10.0, 1.0
-    q = np.stack([th0 - h, th0, th0 + h], axis=1).ravel()
+    q = (th0[:, None] + h * np.arange(-2, 3)[None, :]).ravel()
     plan = compile_plan(linkage_sym.load_scene(d))
     res = plan.run({"A": q}, {"A": np.full(len(q), w)}, {"A": np.full(len(q), al)})
-    assert (res.status == "ok").all()
-    for name in ("link_BC", "lever", "rocker_DE", "rocker_FG"):
+    ok = (res.status == "ok").reshape(-1, 5).all(axis=1)  # stencils solved whole
+    assert ok.sum() >= 8, res.status
+
+    def d1(f):  # d/dq, Richardson from steps h and 2 h
+        return (4 * (f[:, 3] - f[:, 1]) / (2 * h) - (f[:, 4] - f[:, 0]) / (4 * h)) / 3
+
+    def d2(f):  # d2/dq2, the same
+        return (4 * (f[:, 3] - 2 * f[:, 2] + f[:, 1]) / h**2
+                - (f[:, 4] - 2 * f[:, 2] + f[:, 0]) / (4 * h**2)) / 3
+
+    for name in links:
         lk = res.links[name]
-        th = lk.rotation.reshape(-1, 3)
-        xy = np.asarray(lk.origin).reshape(-1, 3, 2)
-        dth = (th[:, 2] - th[:, 0]) / (2 * h)  # d/dq
-        d2th = (th[:, 2] - 2 * th[:, 1] + th[:, 0]) / h**2
-        om = np.asarray(lk.omega).reshape(-1, 3)[:, 1]
-        alpha = np.asarray(lk.alpha).reshape(-1, 3)[:, 1]
+        th = lk.rotation.reshape(-1, 5)[ok]
+        xy = np.asarray(lk.origin).reshape(-1, 5, 2)[ok]
+        om = np.asarray(lk.omega).reshape(-1, 5)[ok, 2]
+        alpha = np.asarray(lk.alpha).reshape(-1, 5)[ok, 2]
+        v = np.asarray(lk.origin_velocity).reshape(-1, 5, 2)[ok, 2]
+        a = np.asarray(lk.origin_acceleration).reshape(-1, 5, 2)[ok, 2]
         # chain rule along the sweep: dtheta/dt = theta' w, d2theta/dt2 = theta'' w^2 + theta' al
-        scale_w, scale_a = np.max(np.abs(om)), np.max(np.abs(alpha))
-        assert np.max(np.abs(om - dth * w)) <= 1e-7 * scale_w, name
-        assert np.max(np.abs(alpha - (d2th * w * w + dth * al))) <= 1e-5 * scale_a, name
-        dxy = (xy[:, 2] - xy[:, 0]) / (2 * h)
-        v = np.asarray(lk.origin_velocity).reshape(-1, 3, 2)[:, 1]
+        scale_w, scale_a = max(np.max(np.abs(om)), 1.0), max(np.max(np.abs(alpha)), 1.0)
+        assert np.max(np.abs(om - d1(th) * w)) <= 1e-7 * scale_w, name
+        assert np.max(np.abs(alpha - (d2(th) * w * w + d1(th) * al))) <= 1e-5 * scale_a, name
+        dxy, d2xy = d1(xy), d2(xy)
         assert np.max(np.abs(v - dxy * w)) <= 1e-7 * np.max(np.abs(v)), name
+        assert np.max(np.abs(a - (d2xy * w * w + dxy * al))) <= 1e-5 * np.max(np.abs(a)), name
 
 
 def test_indicator_lies_between_r_over_n_and_r():

@@ -1,30 +1,35 @@
-"""Newton groups of revolute joints in loop-closure coordinates: the links' angles.
+"""Newton groups of lower pairs in loop-closure coordinates: the links' angles and the slides.
 
-A group whose joints are all revolute and which holds no driver (a class-III
-triad, a class-IV group, ...) is solved in its links' angles alone.  Each
-link is placed from a link already placed through one of its joints (a
-spanning tree taken in the group's joint order, as the symbolic layer takes
-it: :meth:`linkage_sym.symbolic.mechanism.MechanismEquations._group`); every
-other joint closes a loop, two rows ``P_a(J) - P_b(J) = 0`` with each side
-reached along the tree.  For the triad that is 4 unknowns and 4 rows where
+A group whose joints are all revolute or prismatic and which holds no driver
+(a class-III triad, the printing mechanism's triad with its slider, a
+class-IV group, ...) is solved in its links' angles and its slides alone,
+the symbolic layer's unknowns, rows and order
+(:meth:`linkage_sym.symbolic.mechanism.MechanismEquations._group`): each link
+is placed from a link already placed through one of its joints (a spanning
+tree taken in the group's joint order; through a P joint the slide is added
+along the guide, which turns with the joint's ``links[0]``); every other
+joint closes a loop, two rows (``P_a(J) - P_b(J)`` for R,
+``P_b(J) - P_a(J) - s u`` for P) with each side reached along the tree; every
+P joint adds its angle row ``theta_b - theta_a = 0`` (angles from the
+assembly configuration).  For the triad that is 4 unknowns and 4 rows where
 pose coordinates have 12 (:class:`linkage_sym.numeric.newton.NewtonSolver`,
-kept for every other group).  Both runtimes now solve the same equations.
+kept for groups with a driver of their own: actuators).
 
-**The linear form.**  With points as complex numbers and ``E_k = e^{i
-theta_k}``, a point ``X`` of group link ``k`` is the point of a known link
-where its branch of the tree starts plus ``sum_m E_m (X_m' - X_m)`` over the
-links on the way (each turns the segment between the joint that places it and
-the next one).  Every point is linear in ``E``, so the rows are ``E @ W + K``
-(``W`` complex constants made once, ``K`` the known links' points combined)
-and the Jacobian is ``dPhi_r / dtheta_k = i E_k W[k, r]``: a product and a
-sum per evaluation, whatever the tree.  The continuation (predictor, damped
-Newton, the assembly mode's determinant sign, limits, re-entry searches) is
+**The linear form.**  With points as complex numbers, ``E_k = e^{i theta_k}``
+and ``G_j`` the turn of slide ``j``'s guide (a group link's ``E`` or a known
+link's), every point is ``E @ M + (s G) @ V + K``: ``M`` and ``V`` complex
+constants made once from the tree, ``K`` the known links' points combined.
+The rows are one such form (and the angle rows linear in ``theta``), so
+residual and Jacobian are a few products per evaluation: ``d/dtheta_k = i
+E_k M[k] + i s_j G_j V[j]`` for the slides ``j`` that link ``k`` guides,
+``d/ds_j = G_j V[j]``.  The continuation (predictor, damped Newton, the
+assembly mode's determinant sign, limits, re-entry searches) is
 :mod:`linkage_sym.numeric.continuation`'s, unchanged.
 
-**Rates** from the same form: ``dPhi/dt = i (omega E) @ W + dK/dt`` and
-``d2Phi/dt2 = ((i alpha - omega^2) E) @ W + d2K/dt2``, so ``J omega = -dK/dt``
-and ``J alpha = -(d2K/dt2 - (omega^2 E) @ W)``; each link's origin follows from
-its own row of the form.
+**Rates** from the same form, differentiated: ``dE/dt = i omega E``,
+``dG/dt = i omega_g G``; the velocity and acceleration problems have the
+position Jacobian as their matrix, and each link's origin follows from its own
+form.
 """
 
 from __future__ import annotations
@@ -32,103 +37,177 @@ from __future__ import annotations
 import numpy as np
 
 from linkage_sym.numeric import continuation
-from linkage_sym.numeric.constraints import RJoint
+from linkage_sym.numeric.constraints import PJoint, RJoint
 from linkage_sym.numeric.newton import SINGULAR_IND, NewtonSolver, _PoseProblem
 
 
 def applies(scene, group, constraints) -> bool:
-    """Whether ``group`` is solved in loop-closure coordinates: revolute joints only, no
-    driver of its own (an actuator's slide stays in pose coordinates)."""
+    """Whether ``group`` is solved in loop-closure coordinates: revolute and prismatic
+    joints only, no driver of its own (an actuator's slide stays in pose coordinates)."""
     return not group.drivers and all(
-        isinstance(constraints[n].joint, RJoint) and scene.joint(n).type == "R"
+        isinstance(constraints[n].joint, (RJoint, PJoint)) and scene.joint(n).type in ("R", "P")
         for n in group.joints)
 
 
+class _Form:
+    """Points ``E @ M + (s G) @ V + K`` (complex), one column per point: ``M`` (links,
+    points), ``V`` (slides, points), ``Ksel`` (known points, points) their signs."""
+
+    def __init__(self, M, V, Ksel):
+        self.M, self.V, self.Ksel = M, V, Ksel
+
+
 class LoopClosureSolver(NewtonSolver):
-    """A revolute-only Newton group solved in its links' angles (see the module docstring)."""
+    """A Newton group of R and P joints solved in its angles and slides (module docstring)."""
 
     def __init__(self, scene, group, constraints, L):
         super().__init__(scene, group, constraints, L)
-        joints = [constraints[n].joint for n in group.joints]
+        joints = [scene.joint(n) for n in group.joints]
         links = list(group.links)
         # the spanning tree: each link placed through the first joint (group order) that
         # joins it to a link already placed
         placed = {n for n in [*scene.link_names, "ground"] if n not in links}
         pending = list(links)
         used = set()
-        self.parent, self.anchor_X = {}, {}
+        self.anchor = {}  # link -> (joint, the link it is placed from)
         while pending:
-            for k, c in enumerate(joints):
+            for k, J in enumerate(joints):
                 if k in used:
                     continue
-                a, b = c.links
+                a, b = J.links
                 if (a in placed) != (b in placed) and (a in pending or b in pending):
                     new, old = (b, a) if a in placed else (a, b)
-                    self.parent[new], self.anchor_X[new] = old, c.X
+                    self.anchor[new] = (J, old)
                     placed.add(new)
                     pending.remove(new)
                     used.add(k)
                     break
             else:  # pragma: no cover - a group is always connected to solved links
                 raise ValueError(f"group {links} is not connected to solved links")
-        self.column = {n: links.index(n) for n in links}  # unknown k is theta of links[k]
-        self.loops = [c for k, c in enumerate(joints) if k not in used]
-        self.nvar = len(links)
-        # every point of the group is linear in E = e^{i theta} of its links: a point X of
-        # link k is K + sum_m E_m c_m, K a combination of the known links' points
+        self.column = {n: links.index(n) for n in links}  # unknown k: theta of links[k]
+        self.n_links = len(links)
+        self.prismatic = [J for J in joints if J.type == "P"]
+        self.slide = {J.name: self.n_links + j for j, J in enumerate(self.prismatic)}
+        self.guide = [J.links[0] for J in self.prismatic]  # each slide turns with its guide
+        self.nvar = self.n_links + len(self.prismatic)
+        self.loops = [J for k, J in enumerate(joints) if k not in used]
         self.keys = []  # (link, X) of the known links' points used
-        loops = [self._difference(self._point(a, c.X), self._point(b, c.X))
-                 for c in self.loops for a, b in [c.links]]
-        self.W, self.K_loops = self._matrices(loops)
-        self.M_origins, self.K_origins = self._matrices(
-            [self._point(n, (0.0, 0.0)) for n in links])
+        self.L = L
+        rows = []
+        for J in self.loops:
+            a, b = J.links
+            pa, pb = self._point(a, J.at), self._point(b, J.at)
+            if J.type == "R":
+                rows.append(_combine(pa, pb, -1.0))
+            else:  # P_b - P_a - s u(theta_a)
+                row = _combine(pb, pa, -1.0)
+                row[1][J.name] = row[1].get(J.name, 0.0) - np.exp(1j * J.axis)
+                rows.append(row)
+        self.rows = self._form(rows)
+        self.origins = self._form([self._point(n, (0.0, 0.0)) for n in links])
+        # the P joints' angle rows theta_b - theta_a: on the group's angles (T) and the
+        # known links' (their names and signs)
+        self.T = np.zeros((self.n_links, len(self.prismatic)))
+        self.T_known = []
+        for r, J in enumerate(self.prismatic):
+            for link, sign in zip(J.links, (-1.0, 1.0)):
+                if link in self.column:
+                    self.T[self.column[link], r] += sign
+                else:
+                    self.T_known.append((r, link, sign))
+        self.guide_known = [g for g in dict.fromkeys(self.guide) if g not in self.column]
+        # the dimensionless problem's constants: loop rows over L
+        self.M_L = self.rows.M / L
+        self.dM = np.ascontiguousarray(1j * self.rows.M.T / L)  # (rows, links)
+        self.VT = np.ascontiguousarray(self.rows.V.T)  # (rows, slides)
+        # rows over L and slides over L: the physical problem's rows times row_scale, its
+        # unknowns over col_scale
+        nr = self.rows.M.shape[1]
+        self.row_scale = np.r_[np.full(2 * nr, 1.0 / L), np.ones(len(self.prismatic))]
+        self.col_scale = np.r_[np.ones(self.n_links), np.full(len(self.prismatic), L)]
 
     # -- the linear form -------------------------------------------------------
     def _point(self, link, X):
-        """Point ``X`` of ``link`` as ``({group link: coefficient}, {known key: sign})``."""
+        """Point ``X`` of ``link`` as ``({group link: c}, {slide: w}, {known key: sign})``."""
         if link not in self.column:  # a known link
             if (link, X) not in self.keys:
                 self.keys.append((link, X))
-            return {}, {self.keys.index((link, X)): 1.0}
-        XA = self.anchor_X[link]
-        coef, known = self._point(self.parent[link], XA)
-        coef = dict(coef)
+            return {}, {}, {self.keys.index((link, X)): 1.0}
+        J, parent = self.anchor[link]
+        XA = J.at
+        coef, slides, known = self._point(parent, XA)
+        coef, slides = dict(coef), dict(slides)
+        if J.type == "P":  # the slide along the guide, away from links[0]
+            w = np.exp(1j * J.axis) * (1.0 if link == J.links[1] else -1.0)
+            slides[J.name] = slides.get(J.name, 0.0) + w
         coef[link] = coef.get(link, 0.0) + _c(X) - _c(XA)
-        return coef, known
+        return coef, slides, known
 
-    @staticmethod
-    def _difference(p, q):
-        coef = dict(p[0])
-        for k, v in q[0].items():
-            coef[k] = coef.get(k, 0.0) - v
-        known = dict(p[1])
-        for k, v in q[1].items():
-            known[k] = known.get(k, 0.0) - v
-        return coef, known
-
-    def _matrices(self, points):
-        """``(M, Ksel)``: the coefficients ``M`` (links, points) and the known points'
-        signs ``Ksel`` (keys, points) of ``points``."""
-        M = np.zeros((self.nvar, len(points)), complex)
+    def _form(self, points) -> _Form:
+        M = np.zeros((self.n_links, len(points)), complex)
+        V = np.zeros((len(self.prismatic), len(points)), complex)
         Ksel = np.zeros((len(self.keys), len(points)))
-        for j, (coef, known) in enumerate(points):
+        for col, (coef, slides, known) in enumerate(points):
             for n, v in coef.items():
-                M[self.column[n], j] = v
+                M[self.column[n], col] = v
+            for name, v in slides.items():
+                V[self.slide[name] - self.n_links, col] = v
             for k, v in known.items():
-                Ksel[k, j] = v
-        return M, Ksel
+                Ksel[k, col] = v
+        return _Form(M, V, Ksel)
 
-    def known_points(self, S) -> np.ndarray:
-        """The known links' points (complex) in ``S``: (K, keys) arrays, or (keys,) if all
-        are constant."""
-        cols = [S[link].point(X) for link, X in self.keys]
-        if not any(np.ndim(x) or np.ndim(y) for x, y in cols):
-            return np.array([complex(x, y) for x, y in cols])
-        n = max(np.size(x) for xy in cols for x in xy)
+    def known_points(self, S, rate=None) -> np.ndarray:
+        """The known links' points (complex) in ``S`` -- or their velocities or
+        accelerations (``rate``: ``"point_velocity"``, ``"point_acceleration"``): (N, keys),
+        or (1, keys) if all are constant."""
+        cols = [getattr(S[link], rate or "point")(X) for link, X in self.keys]
+        n = max([np.size(v) for xy in cols for v in xy] + [1])
         out = np.empty((n, len(cols)), complex)
         for k, (x, y) in enumerate(cols):
             out[:, k].real, out[:, k].imag = x, y
         return out
+
+    def known_turns(self, S, field="th") -> dict:
+        """Each known guide's (or angle row's) ``field`` in ``S``."""
+        return {n: getattr(S[n], field) for n in
+                dict.fromkeys([*self.guide_known, *(l for _, l, _ in self.T_known)])}
+
+    def _guides(self, E, known_th):
+        """``G`` (m, slides): the turn of each slide's guide."""
+        m = len(E)
+        G = np.empty((m, len(self.guide)), complex)
+        for j, g in enumerate(self.guide):
+            G[:, j] = E[:, self.column[g]] if g in self.column else np.exp(1j * known_th[g])
+        return G
+
+    def _angle_known(self, known_th, m):
+        out = np.zeros((m, len(self.prismatic)))
+        for r, link, sign in self.T_known:
+            out[:, r] += sign * known_th[link]
+        return out
+
+    def scaled_jacobian(self, E, us, G):
+        """``d rows / d u`` (m, rows, nvar) of the dimensionless problem: loop rows over
+        ``L``, angle rows as they are, unknowns the angles and the slides over ``L``
+        (``us``).  ``d/dtheta_k = i E_k M[k] / L + i us_j G_j V[j]`` (the slides that
+        link ``k`` guides), ``d/dus_j = G_j V[j]``."""
+        f, nl, ns = self.rows, self.n_links, len(self.prismatic)
+        if not ns:
+            return _real_jacobian(E, self.dM)
+        m, nr = len(E), f.M.shape[1]
+        Jc = np.empty((m, nr, self.nvar), complex)
+        np.multiply(E[:, None, :], self.dM, out=Jc[:, :, :nl])
+        turn = (1j * us * G)[:, :, None] * f.V[None]  # (m, slides, rows)
+        for j, g in enumerate(self.guide):
+            if g in self.column:
+                Jc[:, :, self.column[g]] += turn[:, j, :]
+        np.multiply(G[:, None, :], self.VT, out=Jc[:, :, nl:])
+        J = np.empty((m, 2 * nr + ns, self.nvar))
+        J[:, :2 * nr] = Jc.view(float).reshape(m, nr, self.nvar, 2).transpose(0, 1, 3, 2).reshape(
+            m, 2 * nr, self.nvar)
+        J[:, 2 * nr:, :nl] = self.T.T
+        J[:, 2 * nr:, nl:] = 0.0
+        return J
 
     # -- positions -----------------------------------------------------------
     def _problem(self, S, q):
@@ -139,64 +218,105 @@ class LoopClosureSolver(NewtonSolver):
             S[n].set_pose(th, dx, dy, c, s)
 
     # -- rates -----------------------------------------------------------------
-    def _known_rates(self, S, which):
-        """The known links' points' velocities or accelerations (complex): (N, keys) or
-        (keys,)."""
-        rate = "point_velocity" if which == "velocity" else "point_acceleration"
-        cols = [getattr(S[link], rate)(X) for link, X in self.keys]
-        n = max([np.size(v) for xy in cols for v in xy] + [1])
-        out = np.empty((n, len(cols)), complex)
-        for k, (x, y) in enumerate(cols):
-            out[:, k].real, out[:, k].imag = x, y
-        return out
-
-    def _solve(self, S, which):
-        """``J x = -(loops' rates with x = 0)``, ``x`` the angular velocities or accelerations;
-        then every link's rates from the linear form."""
+    def _state(self, S):
+        """The group's angles' ``E``, slides ``s`` and guides' ``G`` at the steps (from the
+        poses of ``S``)."""
         n_steps = len(S[self.links[0]].c)
-        E = np.empty((n_steps, self.nvar), complex)
+        E = np.empty((n_steps, self.n_links), complex)
         for n, k in self.column.items():
             E[:, k].real, E[:, k].imag = S[n].c, S[n].s
-        inv, solvable = self._rate_block(E)
-        Kd = self._known_rates(S, which)
-        rhs = Kd @ self.K_loops
-        if which == "acceleration":  # the centripetal part: -w^2 E per link
-            w = np.stack([S[n].w for n in self.column], axis=1)  # column order
-            cent = -(w * w) * E
-            rhs = rhs + cent @ self.W
-        rhs = -np.ascontiguousarray(np.broadcast_to(rhs, (n_steps, rhs.shape[-1]))).view(float)
+        G = self._guides(E, self.known_turns(S))
+        s = np.empty((n_steps, len(self.prismatic)))
+        for j, J in enumerate(self.prismatic):
+            a, b = S[J.links[0]], S[J.links[1]]
+            pa, pb = a.point(J.at), b.point(J.at)  # b's reference point from a's
+            ux, uy = G[:, j].real * np.cos(J.axis) - G[:, j].imag * np.sin(J.axis), \
+                G[:, j].imag * np.cos(J.axis) + G[:, j].real * np.sin(J.axis)
+            s[:, j] = (pb[0] - pa[0]) * ux + (pb[1] - pa[1]) * uy
+        return E, s, G
+
+    def _rate_block(self, S):
+        """The dimensionless rate matrix's inverse at the steps and where it is solvable (its
+        indicator above :data:`SINGULAR_IND`); made once for the velocities and the
+        accelerations (the same poses)."""
+        cached = self._rates_cache
+        th = [S[n].th for n in self.column]
+        if cached is not None and all(a is b for a, b in zip(cached[0], th)):
+            return cached[1]
+        E, s, G = self._state(S)
+        J = self.scaled_jacobian(E, s / self.L, G)
+        finite = np.isfinite(J).all(axis=(1, 2))
+        if not finite.all():
+            J = np.where(finite[:, None, None], J, np.eye(self.nvar))
+        inv = continuation.inverses(J)
+        solvable = finite & (continuation.indicator(J, inv) > SINGULAR_IND)
+        block = (E, s, G, inv, solvable)
+        self._rates_cache = (th, block)
+        return block
+
+    def _solve(self, S, which):
+        """The velocity or acceleration problem: ``J x = -(the rows' rate with x = 0)``, ``x``
+        the angular rates and slide rates; then every link's rates from the form."""
+        E, s, G, inv, solvable = self._rate_block(S)
+        n_steps, nl, ns = len(E), self.n_links, len(self.prismatic)
+        f, o = self.rows, self.origins
+        rate = "point_velocity" if which == "velocity" else "point_acceleration"
+        Kd = self.known_points(S, rate)
+        wk = self.known_turns(S, "w")
+        # the guides' angular velocities (known ones now; the group's are unknowns)
+        wg = np.zeros((n_steps, ns))
+        for j, g in enumerate(self.guide):
+            if g not in self.column:
+                wg[:, j] = wk[g]
+        if which == "velocity":
+            rest_loop = Kd @ f.Ksel + (s * 1j * wg * G) @ f.V
+            rest_ang = self._angle_known(wk, n_steps)
+        else:
+            w = np.stack([S[n].w for n in self.column], axis=1)
+            sdot = self._slide_rates  # the velocity stage's
+            for j, g in enumerate(self.guide):
+                if g in self.column:
+                    wg[:, j] = w[:, self.column[g]]
+            ak = self.known_turns(S, "al")
+            alg = np.zeros((n_steps, ns))
+            for j, g in enumerate(self.guide):
+                if g not in self.column:
+                    alg[:, j] = ak[g]
+            slide_part = (2 * sdot * 1j * wg + s * (1j * alg - wg * wg)) * G
+            rest_loop = Kd @ f.Ksel - ((w * w) * E) @ f.M + slide_part @ f.V
+            rest_ang = self._angle_known(ak, n_steps)
+        nr = f.M.shape[1]
+        rhs = np.empty((n_steps, 2 * nr + ns))
+        rhs[:, :2 * nr] = _interleave(rest_loop, n_steps)
+        rhs[:, 2 * nr:] = rest_ang
+        np.negative(rhs, out=rhs)
         x = np.full((n_steps, self.nvar), np.nan)
         idx = np.flatnonzero(solvable & np.isfinite(rhs).all(axis=1))
-        if len(idx):
-            x[idx] = np.einsum("kij,kj->ki", inv[idx], rhs[idx])
-        turn = 1j * x * E
-        if which == "acceleration":
-            turn += cent
-        O = turn @ self.M_origins + Kd @ self.K_origins
+        if len(idx):  # the physical problem through the dimensionless one's inverse
+            every = len(idx) == n_steps
+            Ji, r = (inv, rhs) if every else (inv[idx], rhs[idx])
+            x[idx] = np.einsum("kij,kj->ki", Ji, r * self.row_scale) * self.col_scale
+        om, sr = x[:, :nl], x[:, nl:]
+        # every link's origin from its form, differentiated
+        if which == "velocity":
+            wgv = wg.copy()
+            for j, g in enumerate(self.guide):
+                if g in self.column:
+                    wgv[:, j] = om[:, self.column[g]]
+            O = (1j * om * E) @ o.M + ((sr + s * 1j * wgv) * G) @ o.V + Kd @ o.Ksel
+            self._slide_rates = sr
+        else:
+            for j, g in enumerate(self.guide):
+                if g in self.column:
+                    alg[:, j] = om[:, self.column[g]]
+            O = (((1j * om - w * w) * E) @ o.M
+                 + ((sr + 2 * sdot * 1j * wg + s * (1j * alg - wg * wg)) * G) @ o.V + Kd @ o.Ksel)
         for n, k in self.column.items():
             st = S[n]
             if which == "velocity":
-                st.w, st.vx, st.vy = x[:, k], O[:, k].real, O[:, k].imag
+                st.w, st.vx, st.vy = om[:, k], O[:, k].real, O[:, k].imag
             else:
-                st.al, st.ax, st.ay = x[:, k], O[:, k].real, O[:, k].imag
-
-    def _rate_block(self, E):
-        """The inverse of the group block at the steps (rows in length units) and where it
-        is solvable: where the indicator of the dimensionless block (rows over ``L``;
-        :func:`~linkage_sym.numeric.continuation.indicator`, at most ``sigma_min /
-        sigma_max``) is above :data:`SINGULAR_IND`.  Computed once for the velocities and
-        the accelerations (the same poses)."""
-        cached = self._rates_cache
-        if cached is not None and cached[0].shape == E.shape and np.array_equal(cached[0], E):
-            return cached[1], cached[2]
-        J = _real_jacobian(E, 1j * self.W.T)
-        finite = np.isfinite(J).all(axis=(1, 2))
-        inv = continuation.inverses(np.where(finite[:, None, None], J, np.eye(J.shape[1])))
-        # the indicator is invariant to the rows' common scale (J over L has inverse L J^-1);
-        # NaN where J is not finite
-        solvable = continuation.indicator(J, inv) > SINGULAR_IND
-        self._rates_cache = (E, inv, solvable)
-        return inv, solvable
+                st.al, st.ax, st.ay = om[:, k], O[:, k].real, O[:, k].imag
 
     def velocity(self, S, q, qd):
         self._solve(S, "velocity")
@@ -204,55 +324,97 @@ class LoopClosureSolver(NewtonSolver):
     def acceleration(self, S, q, qd, qdd):
         self._solve(S, "acceleration")
         self._rates_cache = None
+        self._slide_rates = None
 
 
 class _AngleProblem(_PoseProblem):
-    """A revolute-only group in its links' angles, for :func:`continuation.solve_path`.
+    """A group of R and P joints in its angles and slides, for
+    :func:`continuation.solve_path`.
 
-    Unknowns ``u``: the angles of ``group.links`` (radians, unscaled); rows: the
-    loop-closing joints' two coordinates over ``L``, in the group's joint order,
-    ``(E @ W + K) / L`` (:class:`LoopClosureSolver`); the Jacobian is
-    ``i E_k W[k, r] / L``.  The known links' points are taken once along the
-    whole path (the batched walk indexes them).
+    Unknowns ``u``: the angles of ``group.links`` (radians) and the slides over
+    ``L``; rows: the loop-closing joints' two coordinates over ``L``, then the P
+    joints' angle rows, in the group's joint order (:class:`LoopClosureSolver`).
+    The known links' points and turns are taken once along the whole path (the
+    batched walk indexes them).
     """
 
     def __init__(self, solver: LoopClosureSolver, S, q):
         super().__init__(solver, S, q)
-        self.scale = np.ones(solver.nvar)
-        self.angles = np.ones(solver.nvar, bool)
-        self.path_keys = solver.known_points(self.known)  # (K, keys), or (keys,) constants
-        self.K_loops = self.path_keys @ solver.K_loops
-        self.dJ = np.ascontiguousarray(1j * solver.W.T / solver.L)  # (loops, links)
+        self.scale = np.r_[np.ones(solver.n_links), np.full(len(solver.prismatic), solver.L)]
+        self.angles = np.r_[np.ones(solver.n_links, bool), np.zeros(len(solver.prismatic), bool)]
+        self.path_keys = solver.known_points(self.known)  # (K or 1, keys)
+        self.path_th = solver.known_turns(self.known)
+        self.K_loops = self.path_keys @ solver.rows.Ksel / solver.L
+        n = len(next(iter(q.values())))
+        self.path_angles = solver._angle_known(self.path_th, n) if solver.prismatic else None
 
-    def _rows(self, U, K):
+    def _rows(self, U, K, known_th, ang):
+        """Residual and Jacobian of the dimensionless problem; ``K`` the known points'
+        part of the loop rows over ``L``."""
         sv = self.sv
-        E = np.exp(1j * U)
-        R = ((E @ sv.W + K) / sv.L).view(float)  # x, y of each loop in turn
-        return R, _real_jacobian(E, self.dJ)
+        nl = sv.n_links
+        if not sv.prismatic:
+            E = np.exp(1j * U)
+            return (E @ sv.M_L + K).view(float), _real_jacobian(E, sv.dM)
+        E = np.exp(1j * U[:, :nl])
+        us = U[:, nl:]
+        G = sv._guides(E, known_th)
+        nr = sv.rows.M.shape[1]
+        R = np.empty((len(U), 2 * nr + len(sv.prismatic)))
+        R[:, :2 * nr] = (E @ sv.M_L + K + (us * G) @ sv.rows.V).view(float)
+        R[:, 2 * nr:] = U[:, :nl] @ sv.T + ang
+        return R, sv.scaled_jacobian(E, us, G)
 
     def evaluate_many(self, U, ctx):
-        return self._rows(U, self.sv.known_points(ctx[0]) @ self.sv.K_loops)
+        Sk = ctx[0]
+        sv = self.sv
+        th = sv.known_turns(Sk)
+        ang = sv._angle_known(th, 1) if sv.prismatic else None
+        return self._rows(U, sv.known_points(Sk) @ sv.rows.Ksel / sv.L, th, ang)
 
     def evaluate_points(self, U, idx):
-        K = self.K_loops[idx] if self.K_loops.ndim == 2 else self.K_loops
-        return self._rows(U, K)
+        K = self.K_loops[idx] if len(self.K_loops) > 1 else self.K_loops
+        th = {n: (v[idx] if np.ndim(v) else v) for n, v in self.path_th.items()}
+        ang = None if self.path_angles is None else self.path_angles[idx]
+        return self._rows(U, K, th, ang)
 
     def poses(self, U):
         """Each group link's ``(theta, dx, dy, cos, sin)`` at every path point (``U``: the
         solution's rows; NaN rows stay NaN)."""
         sv = self.sv
-        E = np.exp(1j * U)
-        O = E @ sv.M_origins + self.path_keys @ sv.K_origins
+        nl = sv.n_links
+        E = np.exp(1j * U[:, :nl])
+        o = sv.origins
+        O = E @ o.M + self.path_keys @ o.Ksel
+        if len(sv.prismatic):
+            O = O + (U[:, nl:] * sv.L * sv._guides(E, self.path_th)) @ o.V
         return {n: (U[:, k], O[:, k].real, O[:, k].imag, E[:, k].real, E[:, k].imag)
                 for n, k in sv.column.items()}
 
 
-def _real_jacobian(E, dW):
-    """The real Jacobian (m, 2 loops, links) of the rows ``E @ W``: ``dW = i W^T`` (over a
-    scale), the x and y rows of each loop in turn."""
-    m, (nl, n) = len(E), dW.shape
-    Jc = np.multiply(E[:, None, :], dW, order="C")  # (m, loops, links): d(x + i y)/d theta
+def _combine(p, q, sign):
+    """The form ``p + sign q`` of two points."""
+    out = []
+    for a, b in zip(p, q):
+        d = dict(a)
+        for k, v in b.items():
+            d[k] = d.get(k, 0.0) + sign * v
+        out.append(d)
+    return out
+
+
+def _real_jacobian(E, dM):
+    """The real Jacobian (m, 2 loops, links) of the rows ``E @ M`` from ``dM = i M^T``
+    (times a scale): the x and y rows of each loop in turn."""
+    m, (nl, n) = len(E), dM.shape
+    Jc = np.multiply(E[:, None, :], dM, order="C")  # (m, loops, links): d(x + i y)/d theta
     return Jc.view(float).reshape(m, nl, n, 2).transpose(0, 1, 3, 2).reshape(m, 2 * nl, n)
+
+
+def _interleave(Z, n):
+    """Complex (n or 1, r) as real (n, 2 r): x and y of each in turn."""
+    Z = np.ascontiguousarray(np.broadcast_to(Z, (n, Z.shape[-1])))
+    return Z.view(float)
 
 
 def _c(X) -> complex:

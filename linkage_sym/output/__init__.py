@@ -94,9 +94,9 @@ plus its temporaries peak at 1.8 (dyad), 5.5 (global: the sparse systems),
 2.3 (symbolic) times the result."""
 NEWTON_FACTOR = 3.0
 """Added to :data:`PEAK_FACTOR` for mechanisms with Newton groups (the path's solutions and
-their Jacobians: the peaks measured are 2.2 times the result for the class-III six-bar, solved
-in loop-closure coordinates, and 4.5 and 5.0 for the hydraulic boom and the printing mechanism,
-in pose coordinates)."""
+their Jacobians: the peaks measured are 2.2 times the result for the class-III six-bar and the
+printing mechanism, solved in loop-closure coordinates, and 4.5 for the hydraulic boom's
+actuator group, in pose coordinates)."""
 WRITER_BYTES = {"json": 0, "csv": 0, "npz": 0, "parquet": 24}
 """Bytes per number and step a writer holds while it writes a chunk (parquet: the
 Arrow arrays with their validity masks, and the encoded pages)."""
