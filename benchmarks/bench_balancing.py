@@ -4,7 +4,7 @@ Run on demand (not part of the tests)::
 
     PYTHONPATH=. python3 benchmarks/bench_balancing.py   # writes benchmarks/results/balancing.json
 
-For the shipped crank-rocker (four-bar), seed 002's six-bar and the Watt
+For the shipped crank-rocker (four-bar), Song and Wang's six-bar ([3] of the README's Sources) and the Watt
 six-bar (two loops, ternary links), all in one run:
 
 * **derive**, each in a fresh subprocess so that SymPy's caches are cold

@@ -1,8 +1,8 @@
 """Reconstruct the semi-automatic printing mechanism of Dang and Zhang (undated), section 4.
 
 Source: Dang Zuqi, Zhang Qixian, "A simplified force analysis of complex planar
-multi-bar linkages" (year and journal not shown in the text; OCR text in
-shared/seeds/000_*.txt; [1] of the README's Sources).  Fig. 6 is missing;
+multi-bar linkages" (year and journal not shown in the text; only its OCR text
+was available to us; [1] of the README's Sources).  Fig. 6 is missing;
 the text gives lengths, four link angles, joint and centre-of-mass coordinates,
 weights, inertia forces and the final reactions.  This script works out which
 joints connect which links and where the fixed pivots and the guide are, checks
