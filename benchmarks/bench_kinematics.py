@@ -42,7 +42,8 @@ Contenders:
   holds), with validity and singularity screening.
 * hand-written four-bar: the links' and centres of mass's motion and the
   moving joints' motion from a vectorised NumPy closed form written for
-  this one mechanism (circle intersection, eqs. 3-13/3-14/3-16 of seed 003),
+  this one mechanism (circle intersection, eqs. 3-13/3-14/3-16 of the textbook
+  chapter 3 on kinematic analysis, [4] of the README's Sources),
   no checks.
 * six-bar (the shipped Watt six-bar), 3600 and 100,000 steps.
 * the class-III six-bar (a Newton group), 3600 steps, in both runtimes
@@ -225,6 +226,40 @@ def newton_groups(outputs, steps=3600, repeats=5, slow_repeats=2):
             "target_within_10x_watt_met": bool(t_bat / t_six <= 10.0),
         }
     return out
+
+
+def printing_mechanism(steps=3600, repeats=5):
+    """The printing mechanism of Dang and Zhang (a triad with a slider, Newton group): its
+    group in loop-closure coordinates (angles and the slide, the default) and in pose
+    coordinates, against the Watt six-bar, kinematics, calls alternating, best of
+    ``repeats``; the two formulations are checked to agree first."""
+    from linkage_sym.numeric import loop_closure
+
+    scene = with_outputs(linkage_sym.load_example("printing_mechanism"), steps, ("kinematics",))
+    six = compile_plan(with_outputs(linkage_sym.load_example("watt_sixbar"), steps,
+                                    ("kinematics",)))
+    loop = compile_plan(scene)
+    applies = loop_closure.applies
+    loop_closure.applies = lambda *a: False
+    try:
+        pose = compile_plan(scene)
+    finally:
+        loop_closure.applies = applies
+    _agree(pose.run(), loop.run(), scene.characteristic_length(), "printing mechanism")
+    t_loop = t_pose = t_six = np.inf
+    for _ in range(repeats):
+        t_loop = min(t_loop, best_time(loop.run, 1))
+        t_pose = min(t_pose, best_time(pose.run, 1))
+        t_six = min(t_six, best_time(six.run, 1))
+    us = 1e6 / steps
+    return {
+        "steps": steps,
+        "loop_closure_us_per_position": t_loop * us,
+        "pose_coordinates_us_per_position": t_pose * us,
+        "watt_sixbar_us_per_position": t_six * us,
+        "loop_closure_over_watt": t_loop / t_six,
+        "pose_over_loop_closure": t_pose / t_loop,
+    }
 
 
 def knee_scene(steps=721):
@@ -420,6 +455,7 @@ def main():
         cases[f"sixbar_{n}"] = {"us_per_position": 1e6 * t / n, "seconds": t}
 
     cases["class3_sixbar_3600_newton"] = newton_groups(("kinematics",))
+    cases["printing_mechanism_3600"] = printing_mechanism()
     cases["knee_gaps_newton"] = newton_gaps()
 
     out = HERE / "results"
