@@ -51,6 +51,9 @@ Contenders:
   (:mod:`linkage_sym.numeric.batched_path`) and the point-by-point walk, in
   the same run, against the Watt six-bar in the same runtime (target: within
   10x of it);
+* the printing mechanism and the hydraulic boom (3600 steps): their Newton
+  groups in loop-closure coordinates (the default) and in pose coordinates,
+  against the Watt six-bar;
 * the root searches at the unassemblable steps of a knee linkage's Newton
   group (two turns of the knee, 721 steps), batched and point by point: their
   time per unassemblable step.
@@ -228,14 +231,15 @@ def newton_groups(outputs, steps=3600, repeats=5, slow_repeats=2):
     return out
 
 
-def printing_mechanism(steps=3600, repeats=5):
-    """The printing mechanism of Dang and Zhang (a triad with a slider, Newton group): its
-    group in loop-closure coordinates (angles and the slide, the default) and in pose
+def loop_versus_pose(name, steps=3600, repeats=5):
+    """A shipped example with a Newton group (the printing mechanism of Dang and Zhang: a
+    triad with a slider; the hydraulic boom: an actuator group with its driven slide): its
+    group in loop-closure coordinates (angles and slides, the default) and in pose
     coordinates, against the Watt six-bar, kinematics, calls alternating, best of
     ``repeats``; the two formulations are checked to agree first."""
     from linkage_sym.numeric import loop_closure
 
-    scene = with_outputs(linkage_sym.load_example("printing_mechanism"), steps, ("kinematics",))
+    scene = with_outputs(linkage_sym.load_example(name), steps, ("kinematics",))
     six = compile_plan(with_outputs(linkage_sym.load_example("watt_sixbar"), steps,
                                     ("kinematics",)))
     loop = compile_plan(scene)
@@ -245,7 +249,7 @@ def printing_mechanism(steps=3600, repeats=5):
         pose = compile_plan(scene)
     finally:
         loop_closure.applies = applies
-    _agree(pose.run(), loop.run(), scene.characteristic_length(), "printing mechanism")
+    _agree(pose.run(), loop.run(), scene.characteristic_length(), name)
     t_loop = t_pose = t_six = np.inf
     for _ in range(repeats):
         t_loop = min(t_loop, best_time(loop.run, 1))
@@ -455,7 +459,8 @@ def main():
         cases[f"sixbar_{n}"] = {"us_per_position": 1e6 * t / n, "seconds": t}
 
     cases["class3_sixbar_3600_newton"] = newton_groups(("kinematics",))
-    cases["printing_mechanism_3600"] = printing_mechanism()
+    cases["printing_mechanism_3600"] = loop_versus_pose("printing_mechanism")
+    cases["hydraulic_boom_3600"] = loop_versus_pose("hydraulic_boom")
     cases["knee_gaps_newton"] = newton_gaps()
 
     out = HERE / "results"

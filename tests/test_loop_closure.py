@@ -10,7 +10,8 @@ code with it:
   differences of the rows themselves (step ``1e-6``: truncation ``~1e-12``,
   rounding ``~1e-10``; ``1e-8`` of the Jacobian's scale);
 * **the positions and rates** against the pose formulation (the group solved
-  in poses, the constraint rows of :mod:`~linkage_sym.numeric.constraints`):
+  in poses, the constraint rows of :mod:`~linkage_sym.numeric.constraints`),
+  also for driven groups (the hydraulic boom's actuator, random knees):
   the same status at every step and every value within ``1e-10`` of its
   family's scale (positions: the mechanism's size), on the shipped class-III
   six-bar and printing mechanisms and on random triads and printing
@@ -41,7 +42,7 @@ sys.path.insert(0, os.path.dirname(__file__))
 
 import reference_kinematics as ref  # noqa: E402
 import scenes  # noqa: E402
-from test_batched_continuation import _load, _triad_from, assert_same  # noqa: E402
+from test_batched_continuation import _knee_from, _load, _triad_from, assert_same  # noqa: E402
 
 import linkage_sym  # noqa: E402
 from linkage_sym.examples import example_path  # noqa: E402
@@ -77,15 +78,18 @@ def _group_problem(plan):
     raise AssertionError("no loop-closure group")
 
 
-def test_the_triads_take_the_loop_closure_and_actuators_stay_in_poses():
+def test_the_newton_groups_take_the_loop_closure_and_gear_groups_stay_in_poses():
     plan = compile_plan(linkage_sym.load_example("sixbar_class3"))
     sv = next(sv for sv in plan.solvers if isinstance(sv, LoopClosureSolver))
     assert sv.nvar == 4 and len(sv.loops) == 2  # 4 angles, 2 loops: 4 rows
     plan = compile_plan(linkage_sym.load_example("printing_mechanism"))
     sv = next(sv for sv in plan.solvers if isinstance(sv, LoopClosureSolver))
     assert sv.nvar == 5 and len(sv.loops) == 2  # 4 angles and a slide; 2 loops, 1 angle row
-    # an actuator (a driven slide): pose coordinates
     plan = compile_plan(linkage_sym.load_example("hydraulic_boom"))
+    sv = next(sv for sv in plan.solvers if isinstance(sv, LoopClosureSolver))
+    assert sv.nvar == 4 and len(sv.lin_driver) == 1  # 3 angles and the driven slide
+    # a gear group of several links (a mesh row): pose coordinates
+    plan = compile_plan(linkage_sym.load_example("gear_linkage"))
     newton = [sv for sv in plan.solvers if isinstance(sv, NewtonSolver)]
     assert newton and not any(isinstance(sv, LoopClosureSolver) for sv in newton)
 
@@ -123,7 +127,7 @@ def _printing_from(j, steps=181, guide="ground"):
 @pytest.mark.parametrize("jitter", [None, (0.02, -0.01, 0.0, 0.015, -0.02, 0.01,
                                            0.01, 0.0, -0.015, 0.02, 0.0, -0.01), "printing",
                                      "printing turned", "slide on the lever",
-                                     "guide on the crank"])
+                                     "guide on the crank", "hydraulic boom", "knee"])
 def test_jacobian_against_central_differences(jitter):
     if jitter is None:
         scene = linkage_sym.load_example("sixbar_class3")
@@ -136,6 +140,10 @@ def test_jacobian_against_central_differences(jitter):
         scene = linkage_sym.load_scene(_triad_with_slide(60.0))
     elif jitter == "guide on the crank":
         scene = linkage_sym.load_scene(_printing_from((0.0,) * 8 + (0.3,), guide="crank"))
+    elif jitter == "hydraulic boom":
+        scene = linkage_sym.load_example("hydraulic_boom")
+    elif jitter == "knee":
+        scene = linkage_sym.load_scene(_knee_from((0.02, -0.01, 0.03, 0.0, -0.02, 0.01)))
     else:
         scene = linkage_sym.load_scene(_triad_from(jitter))
     _, problem, n_points = _group_problem(compile_plan(scene))
@@ -207,6 +215,25 @@ def test_a_triad_sliding_on_its_lever_agrees_with_the_pose_formulation(axis_deg)
                    f"triad sliding on its lever, {axis_deg} deg")
 
 
+def test_the_hydraulic_boom_agrees_with_the_pose_formulation():
+    """A driven slide inside the group (the actuator): its driver row ``s - q``."""
+    a, _ = _against_poses(linkage_sym.load_example("hydraulic_boom"), "hydraulic boom")
+    assert (a.status == "ok").all()
+
+
+@settings(**{**SETTINGS, "max_examples": 4})
+@given(j=st.tuples(*[st.floats(-0.12, 0.12, allow_nan=False)] * 6), long=st.booleans())
+def test_random_knees_agree_with_the_pose_formulation(j, long):
+    """Knee linkages driven at the knee (a driver row on two of the group's angles) over
+    180 deg or two turns (6 deg steps; the pose formulation's re-entry searches make finer
+    sweeps slow here, test_batched_continuation walks them at 1 deg): limits,
+    unassemblable stretches, re-entries."""
+    kw = dict(start_deg=-180, stop_deg=540, steps=121) if long else {}
+    scene = _load(_knee_from(j, **kw))
+    if scene is not None:
+        _against_poses(scene, "random knee")
+
+
 def test_a_triad_past_a_limit_agrees_with_the_pose_formulation():
     scene = linkage_sym.load_scene(scenes.triad_jump())
     a, b = _against_poses(scene, "triad jump")
@@ -214,27 +241,35 @@ def test_a_triad_past_a_limit_agrees_with_the_pose_formulation():
 
 
 @pytest.mark.parametrize("which", ["triad", "printing", "slide on the lever",
-                                   "guide on the crank"])
+                                   "guide on the crank", "hydraulic boom", "knee"])
 def test_rates_against_finite_differences_of_the_positions(which):
     """Velocities and accelerations of every link against finite differences of the
-    solved rotations and origins (the driver at constant speed 10 rad/s plus an
-    acceleration of 1 rad/s^2): central differences over 0.01 deg and 0.02 deg combined
-    by Richardson's rule, so the truncation is ``O(h^4)`` (a motion near a limit has a
+    solved rotations and origins (the driver at constant speed plus an acceleration, the
+    chain rule along the sweep): central differences over two steps combined by
+    Richardson's rule, so the truncation is ``O(h^4)`` (a motion near a limit has a
     third derivative large enough to put a plain central difference 4e-6 off) and the
-    rounding ``eps/h^2`` about 1e-8 for the second differences."""
+    rounding ``eps/h^2`` about 1e-8 for the second differences (the slide's steps:
+    ``1e-4`` of the mechanism's size)."""
     triad = ("link_BC", "lever", "rocker_DE", "rocker_FG")
+    driver, h, w, al = "A", math.radians(0.01), 10.0, 1.0
     if which in ("triad", "slide on the lever"):
         d = _triad_from((0.0,) * 12) if which == "triad" else _triad_with_slide(60.0)
-        links, th0 = triad, np.radians(np.arange(5.0, 355.0, 25.0))
+        links, q0 = triad, np.radians(np.arange(5.0, 355.0, 25.0))
+    elif which == "hydraulic boom":
+        d = json.loads(example_path("hydraulic_boom").read_text())
+        links, driver, h, w, al = ("boom", "cylinder", "rod"), "P", 1e-4, 0.05, 0.02
+        q0 = np.linspace(-0.19, 0.29, 14)
+    elif which == "knee":
+        d = _knee_from((0.02, -0.01, 0.03, 0.0, -0.02, 0.01))
+        links, driver = ("thigh", "shin", "rocker"), "K"
+        q0 = np.radians(np.arange(-95.0, 5.0, 7.5))  # an assemblable stretch
     else:
         d = _printing_from((0.0,) * 8 + (0.3,), guide="ground" if which == "printing" else "crank")
         links = ("coupler", "lever", "rocker", "slider")
-        th0 = np.radians(np.arange(305.0, 655.0, 12.5))
-    h = math.radians(0.01)
-    w, al = 10.0, 1.0
-    q = (th0[:, None] + h * np.arange(-2, 3)[None, :]).ravel()
+        q0 = np.radians(np.arange(305.0, 655.0, 12.5))
+    q = (q0[:, None] + h * np.arange(-2, 3)[None, :]).ravel()
     plan = compile_plan(linkage_sym.load_scene(d))
-    res = plan.run({"A": q}, {"A": np.full(len(q), w)}, {"A": np.full(len(q), al)})
+    res = plan.run({driver: q}, {driver: np.full(len(q), w)}, {driver: np.full(len(q), al)})
     ok = (res.status == "ok").reshape(-1, 5).all(axis=1)  # stencils solved whole
     assert ok.sum() >= 8, res.status
 

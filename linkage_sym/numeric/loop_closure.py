@@ -1,9 +1,9 @@
 """Newton groups of lower pairs in loop-closure coordinates: the links' angles and the slides.
 
-A group whose joints are all revolute or prismatic and which holds no driver
-(a class-III triad, the printing mechanism's triad with its slider, a
-class-IV group, ...) is solved in its links' angles and its slides alone,
-the symbolic layer's unknowns, rows and order
+A group whose joints are all revolute or prismatic (a class-III triad, the
+printing mechanism's triad with its slider, an actuator group with its driven
+slide, a class-IV group, ...) is solved in its links' angles and its slides
+alone, the symbolic layer's unknowns, rows and order
 (:meth:`linkage_sym.symbolic.mechanism.MechanismEquations._group`): each link
 is placed from a link already placed through one of its joints (a spanning
 tree taken in the group's joint order; through a P joint the slide is added
@@ -11,9 +11,11 @@ along the guide, which turns with the joint's ``links[0]``); every other
 joint closes a loop, two rows (``P_a(J) - P_b(J)`` for R,
 ``P_b(J) - P_a(J) - s u`` for P) with each side reached along the tree; every
 P joint adds its angle row ``theta_b - theta_a = 0`` (angles from the
-assembly configuration).  For the triad that is 4 unknowns and 4 rows where
-pose coordinates have 12 (:class:`linkage_sym.numeric.newton.NewtonSolver`,
-kept for groups with a driver of their own: actuators).
+assembly configuration) and every driver its row (``theta_b - theta_a +
+phi0 - q`` for R, ``s - q`` for P).  For the triad that is 4 unknowns and 4
+rows where pose coordinates have 12
+(:class:`linkage_sym.numeric.newton.NewtonSolver`, kept for the groups a gear
+mesh closes).
 
 **The linear form.**  With points as complex numbers, ``E_k = e^{i theta_k}``
 and ``G_j`` the turn of slide ``j``'s guide (a group link's ``E`` or a known
@@ -43,8 +45,8 @@ from linkage_sym.numeric.newton import SINGULAR_IND, NewtonSolver, _PoseProblem
 
 def applies(scene, group, constraints) -> bool:
     """Whether ``group`` is solved in loop-closure coordinates: revolute and prismatic
-    joints only, no driver of its own (an actuator's slide stays in pose coordinates)."""
-    return not group.drivers and all(
+    joints only (with their drivers: an actuator's driven slide)."""
+    return all(
         isinstance(constraints[n].joint, (RJoint, PJoint)) and scene.joint(n).type in ("R", "P")
         for n in group.joints)
 
@@ -105,16 +107,38 @@ class LoopClosureSolver(NewtonSolver):
                 rows.append(row)
         self.rows = self._form(rows)
         self.origins = self._form([self._point(n, (0.0, 0.0)) for n in links])
-        # the P joints' angle rows theta_b - theta_a: on the group's angles (T) and the
-        # known links' (their names and signs)
-        self.T = np.zeros((self.n_links, len(self.prismatic)))
+        # the linear rows, after the loops: each P joint's angle row theta_b - theta_a, then
+        # each driver's row (R: theta_b - theta_a + phi0 - q; P: s - q, a length), in the
+        # symbolic layer's order; on the group's angles (T) and slides (Ts), the known links'
+        # angles (T_known), a constant and the driver (q over L for a slide)
+        drivers = [d for d in scene.drivers if d.joint in group.drivers]
+        nlin = len(self.prismatic) + len(drivers)
+        self.T = np.zeros((self.n_links, nlin))
+        self.Ts = np.zeros((len(self.prismatic), nlin))
         self.T_known = []
-        for r, J in enumerate(self.prismatic):
+        self.lin_const = np.zeros(nlin)
+        self.lin_length = np.zeros(nlin, bool)
+        self.lin_driver = []  # (row, driver joint)
+
+        def angle_terms(r, J):
             for link, sign in zip(J.links, (-1.0, 1.0)):
                 if link in self.column:
                     self.T[self.column[link], r] += sign
                 else:
                     self.T_known.append((r, link, sign))
+
+        for r, J in enumerate(self.prismatic):
+            angle_terms(r, J)
+        for r, d in enumerate(drivers, start=len(self.prismatic)):
+            J = scene.joint(d.joint)
+            self.lin_driver.append((r, d.joint))
+            if J.type == "R":
+                angle_terms(r, J)
+                self.lin_const[r] = constraints[d.joint].driver.phi0
+            else:
+                self.Ts[self.slide[J.name] - self.n_links, r] = 1.0
+                self.lin_length[r] = True
+        self.lin_scale = np.where(self.lin_length, 1.0 / L, 1.0)
         self.guide_known = [g for g in dict.fromkeys(self.guide) if g not in self.column]
         # the dimensionless problem's constants: loop rows over L
         self.M_L = self.rows.M / L
@@ -123,7 +147,7 @@ class LoopClosureSolver(NewtonSolver):
         # rows over L and slides over L: the physical problem's rows times row_scale, its
         # unknowns over col_scale
         nr = self.rows.M.shape[1]
-        self.row_scale = np.r_[np.full(2 * nr, 1.0 / L), np.ones(len(self.prismatic))]
+        self.row_scale = np.r_[np.full(2 * nr, 1.0 / L), self.lin_scale]
         self.col_scale = np.r_[np.ones(self.n_links), np.full(len(self.prismatic), L)]
 
     # -- the linear form -------------------------------------------------------
@@ -180,10 +204,28 @@ class LoopClosureSolver(NewtonSolver):
             G[:, j] = E[:, self.column[g]] if g in self.column else np.exp(1j * known_th[g])
         return G
 
-    def _angle_known(self, known_th, m):
-        out = np.zeros((m, len(self.prismatic)))
+    def _linear_known(self, known, q, m):
+        """The linear rows' part without the group's unknowns (physical units): the known
+        links' angles (or their rates, ``known``), the constants (``q`` the drivers' values;
+        ``None`` for the rates, whose constants vanish) and minus the drivers (their values
+        or rates ``q``)."""
+        out = np.zeros((m, self.T.shape[1]))
         for r, link, sign in self.T_known:
-            out[:, r] += sign * known_th[link]
+            out[:, r] += sign * known[link]
+        if q is not None:
+            out += self.lin_const
+        for r, name in self.lin_driver:
+            out[:, r] -= q[name] if q is not None else 0.0
+        return out
+
+    def _linear_rates(self, known, qrate, m):
+        """The linear rows' rate with the group's rates zero: known links' rates minus the
+        drivers' rates."""
+        out = np.zeros((m, self.T.shape[1]))
+        for r, link, sign in self.T_known:
+            out[:, r] += sign * known[link]
+        for r, name in self.lin_driver:
+            out[:, r] -= qrate[name]
         return out
 
     def scaled_jacobian(self, E, us, G):
@@ -192,7 +234,8 @@ class LoopClosureSolver(NewtonSolver):
         (``us``).  ``d/dtheta_k = i E_k M[k] / L + i us_j G_j V[j]`` (the slides that
         link ``k`` guides), ``d/dus_j = G_j V[j]``."""
         f, nl, ns = self.rows, self.n_links, len(self.prismatic)
-        if not ns:
+        nlin = self.T.shape[1]
+        if not nlin:
             return _real_jacobian(E, self.dM)
         m, nr = len(E), f.M.shape[1]
         Jc = np.empty((m, nr, self.nvar), complex)
@@ -202,11 +245,11 @@ class LoopClosureSolver(NewtonSolver):
             if g in self.column:
                 Jc[:, :, self.column[g]] += turn[:, j, :]
         np.multiply(G[:, None, :], self.VT, out=Jc[:, :, nl:])
-        J = np.empty((m, 2 * nr + ns, self.nvar))
+        J = np.empty((m, 2 * nr + nlin, self.nvar))
         J[:, :2 * nr] = Jc.view(float).reshape(m, nr, self.nvar, 2).transpose(0, 1, 3, 2).reshape(
             m, 2 * nr, self.nvar)
-        J[:, 2 * nr:, :nl] = self.T.T
-        J[:, 2 * nr:, nl:] = 0.0
+        J[:, 2 * nr:, :nl] = self.T.T * self.lin_scale[:, None]
+        J[:, 2 * nr:, nl:] = self.Ts.T * (self.lin_scale * self.L)[:, None]
         return J
 
     # -- positions -----------------------------------------------------------
@@ -254,7 +297,7 @@ class LoopClosureSolver(NewtonSolver):
         self._rates_cache = (th, block)
         return block
 
-    def _solve(self, S, which):
+    def _solve(self, S, which, qrate):
         """The velocity or acceleration problem: ``J x = -(the rows' rate with x = 0)``, ``x``
         the angular rates and slide rates; then every link's rates from the form."""
         E, s, G, inv, solvable = self._rate_block(S)
@@ -270,7 +313,7 @@ class LoopClosureSolver(NewtonSolver):
                 wg[:, j] = wk[g]
         if which == "velocity":
             rest_loop = Kd @ f.Ksel + (s * 1j * wg * G) @ f.V
-            rest_ang = self._angle_known(wk, n_steps)
+            rest_ang = self._linear_rates(wk, qrate, n_steps)
         else:
             w = np.stack([S[n].w for n in self.column], axis=1)
             sdot = self._slide_rates  # the velocity stage's
@@ -284,9 +327,9 @@ class LoopClosureSolver(NewtonSolver):
                     alg[:, j] = ak[g]
             slide_part = (2 * sdot * 1j * wg + s * (1j * alg - wg * wg)) * G
             rest_loop = Kd @ f.Ksel - ((w * w) * E) @ f.M + slide_part @ f.V
-            rest_ang = self._angle_known(ak, n_steps)
+            rest_ang = self._linear_rates(ak, qrate, n_steps)
         nr = f.M.shape[1]
-        rhs = np.empty((n_steps, 2 * nr + ns))
+        rhs = np.empty((n_steps, 2 * nr + self.T.shape[1]))
         rhs[:, :2 * nr] = _interleave(rest_loop, n_steps)
         rhs[:, 2 * nr:] = rest_ang
         np.negative(rhs, out=rhs)
@@ -319,10 +362,10 @@ class LoopClosureSolver(NewtonSolver):
                 st.al, st.ax, st.ay = om[:, k], O[:, k].real, O[:, k].imag
 
     def velocity(self, S, q, qd):
-        self._solve(S, "velocity")
+        self._solve(S, "velocity", qd)
 
     def acceleration(self, S, q, qd, qdd):
-        self._solve(S, "acceleration")
+        self._solve(S, "acceleration", qdd)
         self._rates_cache = None
         self._slide_rates = None
 
@@ -346,37 +389,41 @@ class _AngleProblem(_PoseProblem):
         self.path_th = solver.known_turns(self.known)
         self.K_loops = self.path_keys @ solver.rows.Ksel / solver.L
         n = len(next(iter(q.values())))
-        self.path_angles = solver._angle_known(self.path_th, n) if solver.prismatic else None
+        self.path_linear = (solver._linear_known(self.path_th, q, n) * solver.lin_scale
+                            if solver.T.shape[1] else None)
 
-    def _rows(self, U, K, known_th, ang):
+    def _rows(self, U, K, known_th, lin):
         """Residual and Jacobian of the dimensionless problem; ``K`` the known points'
-        part of the loop rows over ``L``."""
+        part of the loop rows over ``L``, ``lin`` the linear rows' known part (scaled)."""
         sv = self.sv
         nl = sv.n_links
-        if not sv.prismatic:
+        if not sv.T.shape[1]:
             E = np.exp(1j * U)
             return (E @ sv.M_L + K).view(float), _real_jacobian(E, sv.dM)
         E = np.exp(1j * U[:, :nl])
         us = U[:, nl:]
         G = sv._guides(E, known_th)
         nr = sv.rows.M.shape[1]
-        R = np.empty((len(U), 2 * nr + len(sv.prismatic)))
-        R[:, :2 * nr] = (E @ sv.M_L + K + (us * G) @ sv.rows.V).view(float)
-        R[:, 2 * nr:] = U[:, :nl] @ sv.T + ang
+        R = np.empty((len(U), 2 * nr + sv.T.shape[1]))
+        Rc = E @ sv.M_L + K
+        if sv.prismatic:
+            Rc = Rc + (us * G) @ sv.rows.V
+        R[:, :2 * nr] = Rc.view(float)
+        R[:, 2 * nr:] = (U[:, :nl] @ sv.T + us @ sv.Ts * sv.L) * sv.lin_scale + lin
         return R, sv.scaled_jacobian(E, us, G)
 
     def evaluate_many(self, U, ctx):
         Sk = ctx[0]
         sv = self.sv
         th = sv.known_turns(Sk)
-        ang = sv._angle_known(th, 1) if sv.prismatic else None
-        return self._rows(U, sv.known_points(Sk) @ sv.rows.Ksel / sv.L, th, ang)
+        lin = sv._linear_known(th, ctx[1], 1) * sv.lin_scale if sv.T.shape[1] else None
+        return self._rows(U, sv.known_points(Sk) @ sv.rows.Ksel / sv.L, th, lin)
 
     def evaluate_points(self, U, idx):
         K = self.K_loops[idx] if len(self.K_loops) > 1 else self.K_loops
         th = {n: (v[idx] if np.ndim(v) else v) for n, v in self.path_th.items()}
-        ang = None if self.path_angles is None else self.path_angles[idx]
-        return self._rows(U, K, th, ang)
+        lin = None if self.path_linear is None else self.path_linear[idx]
+        return self._rows(U, K, th, lin)
 
     def poses(self, U):
         """Each group link's ``(theta, dx, dy, cos, sin)`` at every path point (``U``: the
