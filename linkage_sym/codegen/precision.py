@@ -446,13 +446,10 @@ class PreciseMechanism:
 
     def _accuracy(self, res, base_accuracy, stages) -> dict:
         """The float64 run's ``K`` with ``10^-digits`` for eps, plus the rounding to float64
-        (coordinates: half an ulp of the largest one, over the mechanism's size)."""
+        (positions: an ulp of the largest coordinate over the mechanism's size or of the
+        largest rotation, :func:`accuracy.magnitude_floor`)."""
         K = accuracy.condition_of(base_accuracy)
-        L = self.cm.L
-        big = np.zeros(len(res.status))
-        for jk in res.joints.values():
-            big = np.fmax(big, np.nanmax(np.abs(jk.position), axis=1))
-        floor = {"position": accuracy.EPS * np.fmax(1.0, big / L), "velocity": accuracy.EPS,
+        floor = {"position": accuracy.magnitude_floor(res, self.cm.L), "velocity": accuracy.EPS,
                  "acceleration": accuracy.EPS, "forces": accuracy.EPS}
         return accuracy.accuracy(K, res.status == OK, stages, unit=10.0 ** (-self.digits),
                                  floor=floor)

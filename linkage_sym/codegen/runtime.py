@@ -548,7 +548,8 @@ class CompiledMechanism:
             return None
         G = self._calibration.ratio(self.sweep, self.run)
         K = accuracy.condition_estimate(pose_k, ok, indicator, G)
-        return accuracy.accuracy(K, ok, tuple(self.art["stages"]), accuracy.amplification_of(res.forces))
+        return accuracy.accuracy(K, ok, tuple(self.art["stages"]), accuracy.amplification_of(res.forces),
+                                 floor={"position": accuracy.magnitude_floor(res, self.L)})
 
     def step_positions(self, q, qd, qdd):
         """Positions at the steps, solved along the path from the assembly configuration.

@@ -131,6 +131,21 @@ def accuracy(K, ok, stages, amplification=None, unit=EPS, floor=0.0) -> dict:
     return out
 
 
+def magnitude_floor(res, L: float, unit: float = EPS) -> np.ndarray:
+    """The rounding each step's positions carry in their own representation: ``unit``
+    times the largest of 1, its coordinates over the mechanism's size ``L`` and its
+    rotations (rad).  A coordinate far from the origin, or a gear's rotation after several
+    turns (20 rad: an ulp is 3.6e-15), is no more exact than that, however well
+    conditioned the step; the position estimate adds it."""
+    big = np.ones(len(res.status))
+    for jk in res.joints.values():  # fmax skips the NaN of steps without a solution
+        p = np.abs(np.asarray(jk.position))
+        big = np.fmax(big, np.fmax(p[:, 0], p[:, 1]) / L)
+    for lk in res.links.values():
+        big = np.fmax(big, np.abs(np.asarray(lk.rotation)))
+    return unit * big
+
+
 def condition_of(acc: dict) -> np.ndarray:
     """The ``K`` an :func:`accuracy` result was computed from (inverse of its position entry)."""
     return acc["position"] / (C_POSITION * EPS)

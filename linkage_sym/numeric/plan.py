@@ -239,7 +239,9 @@ class Plan:
             G = self._calibration.ratio(
                 self._sweep_values, lambda *d: self.run(*d, exact_condition=True))
             K = accuracy.condition_estimate(res.condition, ok, ind_min, G)
-            res.accuracy = accuracy.accuracy(K, ok, self.stages, accuracy.amplification_of(res.forces))
+            res.accuracy = accuracy.accuracy(
+                K, ok, self.stages, accuracy.amplification_of(res.forces),
+                floor={"position": accuracy.magnitude_floor(res, self.L)})
         return res
 
     def _sweep_values(self):
