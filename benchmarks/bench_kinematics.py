@@ -51,9 +51,9 @@ Contenders:
   (:mod:`linkage_sym.numeric.batched_path`) and the point-by-point walk, in
   the same run, against the Watt six-bar in the same runtime (target: within
   10x of it);
-* the printing mechanism and the hydraulic boom (3600 steps): their Newton
-  groups in loop-closure coordinates (the default) and in pose coordinates,
-  against the Watt six-bar;
+* the printing mechanism, the hydraulic boom and the planetary train (3600
+  steps): their Newton groups in loop-closure coordinates (the default) and
+  in pose coordinates, against the Watt six-bar;
 * the root searches at the unassemblable steps of a knee linkage's Newton
   group (two turns of the knee, 721 steps), batched and point by point: their
   time per unassemblable step.
@@ -233,7 +233,8 @@ def newton_groups(outputs, steps=3600, repeats=5, slow_repeats=2):
 
 def loop_versus_pose(name, steps=3600, repeats=5):
     """A shipped example with a Newton group (the printing mechanism of Dang and Zhang: a
-    triad with a slider; the hydraulic boom: an actuator group with its driven slide): its
+    triad with a slider; the hydraulic boom: an actuator group with its driven slide; the
+    planetary train: arm and planet, two mesh rows): its
     group in loop-closure coordinates (angles and slides, the default) and in pose
     coordinates, against the Watt six-bar, kinematics, calls alternating, best of
     ``repeats``; the two formulations are checked to agree first."""
@@ -461,6 +462,7 @@ def main():
     cases["class3_sixbar_3600_newton"] = newton_groups(("kinematics",))
     cases["printing_mechanism_3600"] = loop_versus_pose("printing_mechanism")
     cases["hydraulic_boom_3600"] = loop_versus_pose("hydraulic_boom")
+    cases["planetary_train_3600"] = loop_versus_pose("planetary_train")
     cases["knee_gaps_newton"] = newton_gaps()
 
     out = HERE / "results"

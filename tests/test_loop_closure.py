@@ -45,7 +45,7 @@ import scenes  # noqa: E402
 from test_batched_continuation import _knee_from, _load, _triad_from, assert_same  # noqa: E402
 
 import linkage_sym  # noqa: E402
-from linkage_sym.examples import example_path  # noqa: E402
+from linkage_sym.examples import example_names, example_path  # noqa: E402
 from linkage_sym.numeric import continuation, loop_closure  # noqa: E402
 from linkage_sym.numeric.loop_closure import LoopClosureSolver  # noqa: E402
 from linkage_sym.numeric.newton import NewtonSolver  # noqa: E402
@@ -78,7 +78,7 @@ def _group_problem(plan):
     raise AssertionError("no loop-closure group")
 
 
-def test_the_newton_groups_take_the_loop_closure_and_gear_groups_stay_in_poses():
+def test_every_newton_group_takes_the_loop_closure():
     plan = compile_plan(linkage_sym.load_example("sixbar_class3"))
     sv = next(sv for sv in plan.solvers if isinstance(sv, LoopClosureSolver))
     assert sv.nvar == 4 and len(sv.loops) == 2  # 4 angles, 2 loops: 4 rows
@@ -88,10 +88,15 @@ def test_the_newton_groups_take_the_loop_closure_and_gear_groups_stay_in_poses()
     plan = compile_plan(linkage_sym.load_example("hydraulic_boom"))
     sv = next(sv for sv in plan.solvers if isinstance(sv, LoopClosureSolver))
     assert sv.nvar == 4 and len(sv.lin_driver) == 1  # 3 angles and the driven slide
-    # a gear group of several links (a mesh row): pose coordinates
+    # gear groups of several links: their mesh rows and no loop
     plan = compile_plan(linkage_sym.load_example("gear_linkage"))
-    newton = [sv for sv in plan.solvers if isinstance(sv, NewtonSolver)]
-    assert newton and not any(isinstance(sv, LoopClosureSolver) for sv in newton)
+    sv = next(sv for sv in plan.solvers if isinstance(sv, LoopClosureSolver))
+    assert sv.nvar == 2 and not sv.loops and sv.T.shape[1] == 2  # two mesh rows
+    # every shipped Newton group takes it; the pose formulation stays for any other row
+    for name in example_names():
+        plan = compile_plan(linkage_sym.load_example(name))
+        for sv in plan.solvers:
+            assert not isinstance(sv, NewtonSolver) or isinstance(sv, LoopClosureSolver), name
 
 
 def _triad_with_slide(axis_deg, steps=181):
@@ -127,7 +132,8 @@ def _printing_from(j, steps=181, guide="ground"):
 @pytest.mark.parametrize("jitter", [None, (0.02, -0.01, 0.0, 0.015, -0.02, 0.01,
                                            0.01, 0.0, -0.015, 0.02, 0.0, -0.01), "printing",
                                      "printing turned", "slide on the lever",
-                                     "guide on the crank", "hydraulic boom", "knee"])
+                                     "guide on the crank", "hydraulic boom", "knee",
+                                     "gear_linkage", "planetary_train"])
 def test_jacobian_against_central_differences(jitter):
     if jitter is None:
         scene = linkage_sym.load_example("sixbar_class3")
@@ -144,6 +150,8 @@ def test_jacobian_against_central_differences(jitter):
         scene = linkage_sym.load_example("hydraulic_boom")
     elif jitter == "knee":
         scene = linkage_sym.load_scene(_knee_from((0.02, -0.01, 0.03, 0.0, -0.02, 0.01)))
+    elif jitter in ("gear_linkage", "planetary_train"):
+        scene = linkage_sym.load_example(jitter)
     else:
         scene = linkage_sym.load_scene(_triad_from(jitter))
     _, problem, n_points = _group_problem(compile_plan(scene))
@@ -215,6 +223,16 @@ def test_a_triad_sliding_on_its_lever_agrees_with_the_pose_formulation(axis_deg)
                    f"triad sliding on its lever, {axis_deg} deg")
 
 
+@pytest.mark.parametrize("name", ["gear_linkage", "planetary_train"])
+def test_gear_groups_agree_with_the_pose_formulation(name):
+    """Gear groups of several links: their mesh rows (linear in the angles), no loop."""
+    scene = linkage_sym.load_example(name)
+    a = linkage_sym.analyze(scene)
+    b = _pose_plan(scene).run()
+    assert_same(b, a, name, scene.characteristic_length(), words=False)
+    assert (a.status == "ok").all()
+
+
 def test_the_hydraulic_boom_agrees_with_the_pose_formulation():
     """A driven slide inside the group (the actuator): its driver row ``s - q``."""
     a, _ = _against_poses(linkage_sym.load_example("hydraulic_boom"), "hydraulic boom")
@@ -241,7 +259,8 @@ def test_a_triad_past_a_limit_agrees_with_the_pose_formulation():
 
 
 @pytest.mark.parametrize("which", ["triad", "printing", "slide on the lever",
-                                   "guide on the crank", "hydraulic boom", "knee"])
+                                   "guide on the crank", "hydraulic boom", "knee",
+                                   "planetary_train"])
 def test_rates_against_finite_differences_of_the_positions(which):
     """Velocities and accelerations of every link against finite differences of the
     solved rotations and origins (the driver at constant speed plus an acceleration, the
@@ -259,6 +278,10 @@ def test_rates_against_finite_differences_of_the_positions(which):
         d = json.loads(example_path("hydraulic_boom").read_text())
         links, driver, h, w, al = ("boom", "cylinder", "rod"), "P", 1e-4, 0.05, 0.02
         q0 = np.linspace(-0.19, 0.29, 14)
+    elif which == "planetary_train":
+        d = json.loads(example_path("planetary_train").read_text())
+        links, driver = ("arm", "planet"), "O_sun"
+        q0 = np.radians(np.arange(5.0, 355.0, 25.0))
     elif which == "knee":
         d = _knee_from((0.02, -0.01, 0.03, 0.0, -0.02, 0.01))
         links, driver = ("thigh", "shin", "rocker"), "K"

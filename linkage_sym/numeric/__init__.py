@@ -10,8 +10,9 @@ Solving positions and rates
     contract every group's solver meets), ``closed_form`` (input links and
     dyads), ``gears`` (a gear on its pivot, mesh forces), ``newton`` (groups
     by Newton's method in pose coordinates), ``loop_closure`` (groups of
-    R and P joints -- class-III triads, the printing mechanism's, actuator
-    groups -- in their links' angles and slides),
+    R and P joints and gear meshes -- class-III triads, the printing
+    mechanism's, actuator groups, gear trains -- in their links' angles and
+    slides),
     ``batched_path`` (their continuation over many path points at once).
 The one sweep engine both runtimes call (this plan and
 :mod:`linkage_sym.codegen.runtime`)

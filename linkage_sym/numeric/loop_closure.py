@@ -1,8 +1,8 @@
-"""Newton groups of lower pairs in loop-closure coordinates: the links' angles and the slides.
+"""Newton groups in loop-closure coordinates: the links' angles and the slides.
 
-A group whose joints are all revolute or prismatic (a class-III triad, the
-printing mechanism's triad with its slider, an actuator group with its driven
-slide, a class-IV group, ...) is solved in its links' angles and its slides
+A group whose joints are revolute, prismatic or gear meshes (a class-III
+triad, the printing mechanism's triad with its slider, an actuator group with
+its driven slide, a gear train's arm and planet, a class-IV group, ...) is solved in its links' angles and its slides
 alone, the symbolic layer's unknowns, rows and order
 (:meth:`linkage_sym.symbolic.mechanism.MechanismEquations._group`): each link
 is placed from a link already placed through one of its joints (a spanning
@@ -11,11 +11,14 @@ along the guide, which turns with the joint's ``links[0]``); every other
 joint closes a loop, two rows (``P_a(J) - P_b(J)`` for R,
 ``P_b(J) - P_a(J) - s u`` for P) with each side reached along the tree; every
 P joint adds its angle row ``theta_b - theta_a = 0`` (angles from the
-assembly configuration) and every driver its row (``theta_b - theta_a +
-phi0 - q`` for R, ``s - q`` for P).  For the triad that is 4 unknowns and 4
-rows where pose coordinates have 12
-(:class:`linkage_sym.numeric.newton.NewtonSolver`, kept for the groups a gear
-mesh closes).
+assembly configuration), every gear mesh its rolling row (linear in the
+angles; a mesh places no link) and every driver its row (``theta_b -
+theta_a + phi0 - q`` for R, ``s - q`` for P).  For the triad that is 4
+unknowns and 4 rows where pose coordinates have 12
+(:class:`linkage_sym.numeric.newton.NewtonSolver`, kept for groups with a
+cam contact or any other row).  The symbolic layer writes a mesh's row among
+the loops, in joint order; here the meshes follow the P joints' angle rows,
+so the two runtimes' rows are the same up to that order.
 
 **The linear form.**  With points as complex numbers, ``E_k = e^{i theta_k}``
 and ``G_j`` the turn of slide ``j``'s guide (a group link's ``E`` or a known
@@ -39,15 +42,16 @@ from __future__ import annotations
 import numpy as np
 
 from linkage_sym.numeric import continuation
-from linkage_sym.numeric.constraints import PJoint, RJoint
+from linkage_sym.numeric.constraints import GMesh, PJoint, RJoint
 from linkage_sym.numeric.newton import SINGULAR_IND, NewtonSolver, _PoseProblem
 
 
 def applies(scene, group, constraints) -> bool:
     """Whether ``group`` is solved in loop-closure coordinates: revolute and prismatic
-    joints only (with their drivers: an actuator's driven slide)."""
+    joints (with their drivers: an actuator's driven slide) and gear meshes."""
     return all(
-        isinstance(constraints[n].joint, (RJoint, PJoint)) and scene.joint(n).type in ("R", "P")
+        isinstance(constraints[n].joint, (RJoint, PJoint, GMesh))
+        and scene.joint(n).type in ("R", "P", "G")
         for n in group.joints)
 
 
@@ -74,7 +78,7 @@ class LoopClosureSolver(NewtonSolver):
         self.anchor = {}  # link -> (joint, the link it is placed from)
         while pending:
             for k, J in enumerate(joints):
-                if k in used:
+                if k in used or J.type == "G":  # a mesh places no link
                     continue
                 a, b = J.links
                 if (a in placed) != (b in placed) and (a in pending or b in pending):
@@ -92,7 +96,8 @@ class LoopClosureSolver(NewtonSolver):
         self.slide = {J.name: self.n_links + j for j, J in enumerate(self.prismatic)}
         self.guide = [J.links[0] for J in self.prismatic]  # each slide turns with its guide
         self.nvar = self.n_links + len(self.prismatic)
-        self.loops = [J for k, J in enumerate(joints) if k not in used]
+        self.loops = [J for k, J in enumerate(joints) if k not in used and J.type != "G"]
+        meshes = [constraints[J.name].joint for J in joints if J.type == "G"]
         self.keys = []  # (link, X) of the known links' points used
         self.L = L
         rows = []
@@ -105,14 +110,15 @@ class LoopClosureSolver(NewtonSolver):
                 row = _combine(pb, pa, -1.0)
                 row[1][J.name] = row[1].get(J.name, 0.0) - np.exp(1j * J.axis)
                 rows.append(row)
-        self.rows = self._form(rows)
-        self.origins = self._form([self._point(n, (0.0, 0.0)) for n in links])
+        origins = [self._point(n, (0.0, 0.0)) for n in links]
+        # the forms after every point is written: they hold a row for every known point
+        self.rows, self.origins = self._form(rows), self._form(origins)
         # the linear rows, after the loops: each P joint's angle row theta_b - theta_a, then
         # each driver's row (R: theta_b - theta_a + phi0 - q; P: s - q, a length), in the
         # symbolic layer's order; on the group's angles (T) and slides (Ts), the known links'
         # angles (T_known), a constant and the driver (q over L for a slide)
         drivers = [d for d in scene.drivers if d.joint in group.drivers]
-        nlin = len(self.prismatic) + len(drivers)
+        nlin = len(self.prismatic) + len(meshes) + len(drivers)
         self.T = np.zeros((self.n_links, nlin))
         self.Ts = np.zeros((len(self.prismatic), nlin))
         self.T_known = []
@@ -129,7 +135,15 @@ class LoopClosureSolver(NewtonSolver):
 
         for r, J in enumerate(self.prismatic):
             angle_terms(r, J)
-        for r, d in enumerate(drivers, start=len(self.prismatic)):
+        # each mesh's rolling row: r_a (th_a - th_c) +- r_b (th_b - th_c), a length
+        for r, mesh in enumerate(meshes, start=len(self.prismatic)):
+            for link, k in zip(mesh.links, mesh.k):
+                if link in self.column:
+                    self.T[self.column[link], r] += k
+                else:
+                    self.T_known.append((r, link, k))
+            self.lin_length[r] = True
+        for r, d in enumerate(drivers, start=len(self.prismatic) + len(meshes)):
             J = scene.joint(d.joint)
             self.lin_driver.append((r, d.joint))
             if J.type == "R":
@@ -238,16 +252,17 @@ class LoopClosureSolver(NewtonSolver):
         if not nlin:
             return _real_jacobian(E, self.dM)
         m, nr = len(E), f.M.shape[1]
-        Jc = np.empty((m, nr, self.nvar), complex)
-        np.multiply(E[:, None, :], self.dM, out=Jc[:, :, :nl])
-        turn = (1j * us * G)[:, :, None] * f.V[None]  # (m, slides, rows)
-        for j, g in enumerate(self.guide):
-            if g in self.column:
-                Jc[:, :, self.column[g]] += turn[:, j, :]
-        np.multiply(G[:, None, :], self.VT, out=Jc[:, :, nl:])
         J = np.empty((m, 2 * nr + nlin, self.nvar))
-        J[:, :2 * nr] = Jc.view(float).reshape(m, nr, self.nvar, 2).transpose(0, 1, 3, 2).reshape(
-            m, 2 * nr, self.nvar)
+        if nr:
+            Jc = np.empty((m, nr, self.nvar), complex)
+            np.multiply(E[:, None, :], self.dM, out=Jc[:, :, :nl])
+            turn = (1j * us * G)[:, :, None] * f.V[None]  # (m, slides, rows)
+            for j, g in enumerate(self.guide):
+                if g in self.column:
+                    Jc[:, :, self.column[g]] += turn[:, j, :]
+            np.multiply(G[:, None, :], self.VT, out=Jc[:, :, nl:])
+            J[:, :2 * nr] = Jc.view(float).reshape(m, nr, self.nvar, 2).transpose(
+                0, 1, 3, 2).reshape(m, 2 * nr, self.nvar)
         J[:, 2 * nr:, :nl] = self.T.T * self.lin_scale[:, None]
         J[:, 2 * nr:, nl:] = self.Ts.T * (self.lin_scale * self.L)[:, None]
         return J
