@@ -99,7 +99,6 @@ class LoopClosureSolver(NewtonSolver):
         self.loops = [J for k, J in enumerate(joints) if k not in used and J.type != "G"]
         meshes = [constraints[J.name].joint for J in joints if J.type == "G"]
         self.keys = []  # (link, X) of the known links' points used
-        self.L = L
         rows = []
         for J in self.loops:
             a, b = J.links
@@ -113,10 +112,11 @@ class LoopClosureSolver(NewtonSolver):
         origins = [self._point(n, (0.0, 0.0)) for n in links]
         # the forms after every point is written: they hold a row for every known point
         self.rows, self.origins = self._form(rows), self._form(origins)
-        # the linear rows, after the loops: each P joint's angle row theta_b - theta_a, then
-        # each driver's row (R: theta_b - theta_a + phi0 - q; P: s - q, a length), in the
-        # symbolic layer's order; on the group's angles (T) and slides (Ts), the known links'
-        # angles (T_known), a constant and the driver (q over L for a slide)
+        # the linear rows, after the loops: each P joint's angle row theta_b - theta_a, each
+        # mesh's rolling row r_a (th_a - th_c) +- r_b (th_b - th_c) (a length), then each
+        # driver's row (R: theta_b - theta_a + phi0 - q; P: s - q, a length); on the group's
+        # angles (T) and slides (Ts), the known links' angles (T_known), a constant and the
+        # driver
         drivers = [d for d in scene.drivers if d.joint in group.drivers]
         nlin = len(self.prismatic) + len(meshes) + len(drivers)
         self.T = np.zeros((self.n_links, nlin))
@@ -126,28 +126,23 @@ class LoopClosureSolver(NewtonSolver):
         self.lin_length = np.zeros(nlin, bool)
         self.lin_driver = []  # (row, driver joint)
 
-        def angle_terms(r, J):
-            for link, sign in zip(J.links, (-1.0, 1.0)):
-                if link in self.column:
-                    self.T[self.column[link], r] += sign
-                else:
-                    self.T_known.append((r, link, sign))
-
-        for r, J in enumerate(self.prismatic):
-            angle_terms(r, J)
-        # each mesh's rolling row: r_a (th_a - th_c) +- r_b (th_b - th_c), a length
-        for r, mesh in enumerate(meshes, start=len(self.prismatic)):
-            for link, k in zip(mesh.links, mesh.k):
+        def angle_terms(r, links, coefs):
+            for link, k in zip(links, coefs):
                 if link in self.column:
                     self.T[self.column[link], r] += k
                 else:
                     self.T_known.append((r, link, k))
+
+        for r, J in enumerate(self.prismatic):
+            angle_terms(r, J.links, (-1.0, 1.0))
+        for r, mesh in enumerate(meshes, start=len(self.prismatic)):
+            angle_terms(r, mesh.links, mesh.k)
             self.lin_length[r] = True
         for r, d in enumerate(drivers, start=len(self.prismatic) + len(meshes)):
             J = scene.joint(d.joint)
             self.lin_driver.append((r, d.joint))
             if J.type == "R":
-                angle_terms(r, J)
+                angle_terms(r, J.links, (-1.0, 1.0))
                 self.lin_const[r] = constraints[d.joint].driver.phi0
             else:
                 self.Ts[self.slide[J.name] - self.n_links, r] = 1.0
@@ -220,21 +215,12 @@ class LoopClosureSolver(NewtonSolver):
 
     def _linear_known(self, known, q, m):
         """The linear rows' part without the group's unknowns (physical units): the known
-        links' angles (or their rates, ``known``), the constants (``q`` the drivers' values;
-        ``None`` for the rates, whose constants vanish) and minus the drivers (their values
-        or rates ``q``)."""
-        out = np.zeros((m, self.T.shape[1]))
-        for r, link, sign in self.T_known:
-            out[:, r] += sign * known[link]
-        if q is not None:
-            out += self.lin_const
-        for r, name in self.lin_driver:
-            out[:, r] -= q[name] if q is not None else 0.0
-        return out
+        links' angles ``known``, the constants, minus the drivers' values ``q``."""
+        return self._linear_rates(known, q, m) + self.lin_const
 
     def _linear_rates(self, known, qrate, m):
-        """The linear rows' rate with the group's rates zero: known links' rates minus the
-        drivers' rates."""
+        """The linear rows' rate with the group's rates zero: the known links' rates
+        ``known`` minus the drivers' rates ``qrate`` (without the constants)."""
         out = np.zeros((m, self.T.shape[1]))
         for r, link, sign in self.T_known:
             out[:, r] += sign * known[link]
