@@ -205,13 +205,17 @@ class LoopClosureSolver(NewtonSolver):
         return {n: getattr(S[n], field) for n in
                 dict.fromkeys([*self.guide_known, *(l for _, l, _ in self.T_known)])}
 
+    def _per_guide(self, group, known):
+        """(m, slides): for each slide, its guide's value -- the column of ``group`` (m,
+        links) for a group link, ``known[g]`` for a known one."""
+        out = np.empty((len(group), len(self.guide)), group.dtype)
+        for j, g in enumerate(self.guide):
+            out[:, j] = group[:, self.column[g]] if g in self.column else known[g]
+        return out
+
     def _guides(self, E, known_th):
         """``G`` (m, slides): the turn of each slide's guide."""
-        m = len(E)
-        G = np.empty((m, len(self.guide)), complex)
-        for j, g in enumerate(self.guide):
-            G[:, j] = E[:, self.column[g]] if g in self.column else np.exp(1j * known_th[g])
-        return G
+        return self._per_guide(E, {g: np.exp(1j * known_th[g]) for g in self.guide_known})
 
     def _linear_known(self, known, q, m):
         """The linear rows' part without the group's unknowns (physical units): the known
@@ -302,37 +306,36 @@ class LoopClosureSolver(NewtonSolver):
         """The velocity or acceleration problem: ``J x = -(the rows' rate with x = 0)``, ``x``
         the angular rates and slide rates; then every link's rates from the form."""
         E, s, G, inv, solvable = self._rate_block(S)
-        n_steps, nl, ns = len(E), self.n_links, len(self.prismatic)
+        n_steps, nl = len(E), self.n_links
         f, o = self.rows, self.origins
-        rate = "point_velocity" if which == "velocity" else "point_acceleration"
-        Kd = self.known_points(S, rate)
+        velocity = which == "velocity"
+        Kd = self.known_points(S, "point_velocity" if velocity else "point_acceleration")
         wk = self.known_turns(S, "w")
-        # the guides' angular velocities (known ones now; the group's are unknowns)
-        wg = np.zeros((n_steps, ns))
-        for j, g in enumerate(self.guide):
-            if g not in self.column:
-                wg[:, j] = wk[g]
-        if which == "velocity":
-            rest_loop = Kd @ f.Ksel + (s * 1j * wg * G) @ f.V
-            rest_ang = self._linear_rates(wk, qrate, n_steps)
+        if velocity:
+            known_rates = wk
         else:
+            ak = known_rates = self.known_turns(S, "al")
             w = np.stack([S[n].w for n in self.column], axis=1)
+            wg = self._per_guide(w, wk)  # the guides' angular velocities, all known now
             sdot = self._slide_rates  # the velocity stage's
-            for j, g in enumerate(self.guide):
-                if g in self.column:
-                    wg[:, j] = w[:, self.column[g]]
-            ak = self.known_turns(S, "al")
-            alg = np.zeros((n_steps, ns))
-            for j, g in enumerate(self.guide):
-                if g not in self.column:
-                    alg[:, j] = ak[g]
-            slide_part = (2 * sdot * 1j * wg + s * (1j * alg - wg * wg)) * G
-            rest_loop = Kd @ f.Ksel - ((w * w) * E) @ f.M + slide_part @ f.V
-            rest_ang = self._linear_rates(ak, qrate, n_steps)
+
+        def rate(form, x):
+            """The form's velocity or acceleration with the group's angular rates and slide
+            rates ``x``: ``dE/dt = i omega E``, ``dG/dt = i omega_g G``."""
+            om, sr = x[:, :nl], x[:, nl:]
+            if velocity:
+                return ((1j * om * E) @ form.M + ((sr + s * 1j * self._per_guide(om, wk)) * G)
+                        @ form.V + Kd @ form.Ksel)
+            alg = self._per_guide(om, ak)
+            return (((1j * om - w * w) * E) @ form.M
+                    + ((sr + 2 * sdot * 1j * wg + s * (1j * alg - wg * wg)) * G) @ form.V
+                    + Kd @ form.Ksel)
+
+        # the right-hand side: the rows' rate with the group's own rates zero
         nr = f.M.shape[1]
         rhs = np.empty((n_steps, 2 * nr + self.T.shape[1]))
-        rhs[:, :2 * nr] = _interleave(rest_loop, n_steps)
-        rhs[:, 2 * nr:] = rest_ang
+        rhs[:, :2 * nr] = _interleave(rate(f, np.zeros((n_steps, self.nvar))), n_steps)
+        rhs[:, 2 * nr:] = self._linear_rates(known_rates, qrate, n_steps)
         np.negative(rhs, out=rhs)
         x = np.full((n_steps, self.nvar), np.nan)
         idx = np.flatnonzero(solvable & np.isfinite(rhs).all(axis=1))
@@ -340,24 +343,13 @@ class LoopClosureSolver(NewtonSolver):
             every = len(idx) == n_steps
             Ji, r = (inv, rhs) if every else (inv[idx], rhs[idx])
             x[idx] = np.einsum("kij,kj->ki", Ji, r * self.row_scale) * self.col_scale
-        om, sr = x[:, :nl], x[:, nl:]
-        # every link's origin from its form, differentiated
-        if which == "velocity":
-            wgv = wg.copy()
-            for j, g in enumerate(self.guide):
-                if g in self.column:
-                    wgv[:, j] = om[:, self.column[g]]
-            O = (1j * om * E) @ o.M + ((sr + s * 1j * wgv) * G) @ o.V + Kd @ o.Ksel
-            self._slide_rates = sr
-        else:
-            for j, g in enumerate(self.guide):
-                if g in self.column:
-                    alg[:, j] = om[:, self.column[g]]
-            O = (((1j * om - w * w) * E) @ o.M
-                 + ((sr + 2 * sdot * 1j * wg + s * (1j * alg - wg * wg)) * G) @ o.V + Kd @ o.Ksel)
+        om = x[:, :nl]
+        O = rate(o, x)  # every link's origin from its form, differentiated
+        if velocity:
+            self._slide_rates = x[:, nl:]
         for n, k in self.column.items():
             st = S[n]
-            if which == "velocity":
+            if velocity:
                 st.w, st.vx, st.vy = om[:, k], O[:, k].real, O[:, k].imag
             else:
                 st.al, st.ax, st.ay = om[:, k], O[:, k].real, O[:, k].imag
