@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkage_sym.design.errors import SweepError
+from linkage_sym.numeric import heap
 from linkage_sym.output import chunk_bounds, progress_bar
 
 __all__ = ["Spec", "evaluate_chunk", "run_chunks", "chunk_bounds"]
@@ -51,9 +52,6 @@ SETTLE_BYTES = 30 << 20
 """The block :func:`settle_allocator` allocates and frees (below glibc's 32 MB cap of its
 dynamic mmap threshold)."""
 
-_settled = False
-
-
 def settle_allocator() -> None:
     """Free one large block once per process, so the chunks' arrays stop costing page faults.
 
@@ -63,13 +61,9 @@ def settle_allocator() -> None:
     threshold, so every chunk faulted its pages in again (measured: 1.6 million page
     faults and half the time in the kernel for 10^5 four-bars).  Freeing a mapped block
     raises both thresholds (to the block's size and twice that), after which the arrays
-    come from the heap and stay there.  A block that is never touched costs no page; on
-    other allocators this is one allocation and nothing else.
+    come from the heap and stay there (:func:`linkage_sym.numeric.heap.settle`).
     """
-    global _settled
-    if not _settled:
-        np.empty(SETTLE_BYTES // 8)  # allocated and freed at once
-        _settled = True
+    heap.settle(SETTLE_BYTES)
 
 
 @functools.lru_cache(maxsize=4)

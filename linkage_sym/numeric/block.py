@@ -8,6 +8,12 @@ block laid out by :class:`ResultLayout`, hand out the
 :class:`~linkage_sym.numeric.result.JointKinematics` records as views of it
 (:meth:`ResultLayout.records`), and blank the steps without a solution by
 one rule (:meth:`ResultLayout.invalidate`).
+
+A run's block and its temporaries take a few megabytes; :meth:`ResultLayout.warm`
+touches them once, when a plan is compiled, so that a fresh process's first run does
+not fault them in page by page (:mod:`linkage_sym.numeric.heap`;
+``benchmarks/bench_kinematics.py``, case ``fourbar_3600_fresh``, measures the first
+call and the compile time this adds).
 """
 
 from __future__ import annotations
@@ -15,7 +21,13 @@ from __future__ import annotations
 import numpy as np
 
 from linkage_sym.model import Scene
+from linkage_sym.numeric import heap
 from linkage_sym.numeric.result import OK, SINGULAR, JointKinematics, LinkKinematics
+
+
+WARM_FACTOR = 2.0
+"""Memory a run takes, in units of its result block: the block and its temporaries
+(measured with tracemalloc, a kinematics run peaks at 1.8 blocks)."""
 
 
 class ResultLayout:
@@ -70,6 +82,11 @@ class ResultLayout:
                 put(("point", pt.name, name), 2)
         self.rows = rows
         self.n_rows = i
+
+    def warm(self, n_steps: int) -> int:
+        """Warm the memory a run of ``n_steps`` takes (:func:`heap.warm`); returns the bytes
+        touched."""
+        return heap.warm(WARM_FACTOR * 8 * self.n_rows * n_steps)
 
     def rate_rows(self, block, link) -> dict:
         """The rows of ``block`` a link's rate fields are bound to (see ``LinkState``)."""
