@@ -21,8 +21,11 @@ Three states are measured:
 
 * ``fresh``: each contender alone in its own new interpreter: the first
   (cold) call and the best of the following calls, with the minor page
-  faults of a warm call, and the bytes a call allocates (tracemalloc: what
-  the result keeps, and the peak).  Whether glibc keeps the heap depends on
+  faults of the first and of a warm call, and the bytes a call allocates
+  (tracemalloc: what the result keeps, and the peak).  ``compile_plan``
+  warms the memory a run takes (:func:`linkage_sym.numeric.block.warm`);
+  ``linkage_sym_unwarmed`` is the same plan compiled without that, so the
+  compile time it adds and the first call it saves are measured in one run.  Whether glibc keeps the heap depends on
   its layout after the imports, which varies between interpreters, so each
   contender runs in ``FRESH_RUNS`` interpreters; medians and ranges.
   ``fresh_memory``, in the same interpreter state as a first ``Plan.run``
@@ -79,6 +82,7 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 import linkage_sym  # noqa: E402
+from linkage_sym.numeric import block  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
@@ -338,13 +342,24 @@ def fourbar_contenders():
     return four, {"linkage_sym": plan.run, "handwritten": handwritten_fourbar(four)}
 
 
-def fresh_memory():
-    """In this (fresh) interpreter, in the state a first ``Plan.run`` meets (imports done,
-    the plan compiled): the time and minor page faults of writing one array of the size of
-    that run's result block -- the first touch of fresh memory that no later call pays."""
+def fresh_plan(warm):
+    """The four-bar's plan compiled in this (fresh) interpreter, with or without warming
+    the memory of its runs; returns ``(run, compile seconds)``."""
+    if not warm:
+        block.ResultLayout.warm = lambda self, n_steps: 0
     four = with_steps(linkage_sym.load_example("crank_rocker"), 3600)
+    t0 = time.perf_counter()
     plan = compile_plan(four)
-    n = plan.layout.n_rows * 3600
+    return plan.run, time.perf_counter() - t0
+
+
+def fresh_memory():
+    """In this (fresh) interpreter, in the state a first ``Plan.run`` of a plan compiled
+    without warming meets (imports done, the plan compiled): the time and minor page faults
+    of writing one array of the size of that run's result block -- the first touch of fresh
+    memory that no later call pays, and that ``compile_plan`` now does instead."""
+    run, _ = fresh_plan(warm=False)
+    n = run.__self__.layout.n_rows * 3600
     f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
     t0 = time.perf_counter()
     a = np.empty(n)
@@ -358,11 +373,20 @@ def fresh(name):
     """Measure one contender alone in this (fresh) interpreter; returns a dict."""
     if name == "fresh_memory":
         return fresh_memory()
-    _, contenders = fourbar_contenders()
-    fn = contenders[name]
+    compiled = {}
+    if name.startswith("linkage_sym"):
+        fn, t_compile = fresh_plan(warm=name == "linkage_sym")
+        compiled = {"compile_ms": 1e3 * t_compile}
+    else:
+        fn = fourbar_contenders()[1][name]
+    f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
     t0 = time.perf_counter()
     fn()
     cold = time.perf_counter() - t0
+    cold_faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0
+    t0 = time.perf_counter()
+    fn()
+    second = time.perf_counter() - t0
     warm = best_time(fn)
     f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
     fn()
@@ -375,8 +399,11 @@ def fresh(name):
     del res
     tracemalloc.stop()
     return {
+        **compiled,
         "cold_us_per_position": 1e6 * cold / 3600,
+        "second_us_per_position": 1e6 * second / 3600,
         "us_per_position": 1e6 * warm / 3600,
+        "minor_page_faults_first_call": cold_faults,
         "minor_page_faults_per_call": faults,
         "result_MB": (kept - base) / 1e6,
         "peak_MB": (peak - base) / 1e6,
@@ -406,7 +433,7 @@ def main():
     # whether glibc keeps the heap depends on the heap's layout after the imports, so
     # one interpreter is one sample; medians and ranges are reported
     env = {k: v for k, v in os.environ.items() if not k.startswith("MALLOC_")}
-    samples = {name: [] for name in [*contenders, "fresh_memory"]}
+    samples = {name: [] for name in [*contenders, "linkage_sym_unwarmed", "fresh_memory"]}
     for _ in range(FRESH_RUNS):
         for name in samples:
             out = subprocess.run(
@@ -427,14 +454,27 @@ def main():
     fr["ratio_of_medians_cold"] = (
         lib["cold_us_per_position"]["median"] / hand["cold_us_per_position"]["median"]
     )
-    # the first call against later ones, and without the first touch of its result block's
-    # fresh memory (measured alone in the same interpreter state)
+    # the first call against later ones
     first = lib["cold_us_per_position"]["median"]
     later = lib["us_per_position"]["median"]
-    touch = fr["fresh_memory"]["us_per_position"]["median"]
     fr["first_over_later"] = first / later
-    fr["first_less_fresh_memory_over_later"] = (first - touch) / later
     fr["target_first_within_2x_met"] = bool(first / later <= 2.0)
+    # the same plan compiled without warming its runs' memory: what warming moves; and that
+    # first call without the first touch of its result block's fresh memory (measured alone
+    # in the same interpreter state)
+    cold = fr["linkage_sym_unwarmed"]
+    first_cold = cold["cold_us_per_position"]["median"]
+    later_cold = cold["us_per_position"]["median"]
+    touch = fr["fresh_memory"]["us_per_position"]["median"]
+    fr["unwarmed_first_over_later"] = first_cold / later_cold
+    fr["unwarmed_first_less_fresh_memory_over_later"] = (first_cold - touch) / later_cold
+    fr["warming_adds_to_compile_ms"] = lib["compile_ms"]["median"] - cold["compile_ms"]["median"]
+    # compile, first and second call (a 3600-step call's ms is 3.6 times its us per position)
+    fr["compile_and_first_two_calls_ms"] = {
+        k: fr[k]["compile_ms"]["median"] + 3.6 * (
+            fr[k]["cold_us_per_position"]["median"] + fr[k]["second_us_per_position"]["median"])
+        for k in ("linkage_sym", "linkage_sym_unwarmed")
+    }
     cases["fourbar_3600_fresh"] = fr
 
     # steady: both in this process after a large block was freed
