@@ -14,10 +14,11 @@ tests check what that must not change:
   stacking in ``result.py``, no code shared with the in-place writers) to
   1e-12 of the mechanism's size (rates: of the sweep's largest value),
   and nothing but a failed step holds NaN;
-* compiling warms the memory a run takes (``numeric.heap.warm``): in a fresh
-  interpreter the first run of a four-bar over 3600 steps touches no fresh
-  page, where without the warming it touches hundreds (counted by the kernel's
-  minor page faults, not timed: the time is the benchmark's).
+* compiling a plan, or loading a compiled symbolic mechanism, warms the memory
+  a run takes (``numeric.heap.warm``): in a fresh interpreter the first run of
+  a four-bar over 3600 steps touches no fresh page, where without the warming
+  it touches hundreds (counted by the kernel's minor page faults, not timed:
+  the time is the benchmark's).
 """
 
 from __future__ import annotations
@@ -159,13 +160,15 @@ def test_heap_settles_and_warms_each_size_once(monkeypatch):
 FIRST_RUN = """
 import dataclasses, json, resource, sys
 import linkage_sym
+from linkage_sym.codegen.runtime import load_compiled
 from linkage_sym.numeric import block
 from linkage_sym.numeric.plan import compile_plan
 if sys.argv[1] == "cold":
     block.ResultLayout.warm = lambda self, n: 0
 scene = linkage_sym.load_example("crank_rocker")
 drivers = tuple(dataclasses.replace(d, steps=3600) for d in scene.drivers)
-plan = compile_plan(dataclasses.replace(scene, drivers=drivers, outputs=("kinematics",)))
+scene = dataclasses.replace(scene, drivers=drivers, outputs=("kinematics",))
+plan = compile_plan(scene) if sys.argv[2] == "numeric" else load_compiled(scene)
 faults = []
 for _ in range(3):
     f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
@@ -178,14 +181,21 @@ print(json.dumps(faults))
 
 @pytest.mark.skipif(platform.system() != "Linux" or platform.libc_ver()[0] != "glibc",
                     reason="counts the page faults of glibc's heap on Linux")
-def test_first_run_touches_no_fresh_memory():
+@pytest.mark.parametrize("runtime", ["numeric", "symbolic"])
+def test_first_run_touches_no_fresh_memory(runtime):
+    scene = _scene("crank_rocker", 3600)
+    if runtime == "symbolic":  # into this session's cache, which the subprocess reads
+        from linkage_sym.codegen.compile import compile_mechanism
+
+        compile_mechanism(scene)
+
     def faults(mode):
-        p = subprocess.run([sys.executable, "-c", FIRST_RUN, mode], capture_output=True,
+        p = subprocess.run([sys.executable, "-c", FIRST_RUN, mode, runtime], capture_output=True,
                            text=True, check=True)
         return json.loads(p.stdout)
 
     warm, cold = faults("warm"), faults("cold")
-    pages = 8 * compile_plan(_scene("crank_rocker", 3600)).layout.n_rows * 3600 / 4096
+    pages = 8 * compile_plan(scene).layout.n_rows * 3600 / 4096
     # without warming, the first two runs fault in at least their result blocks' pages
     assert min(cold[:2]) > 0.9 * pages, cold
     # warmed, no run does (a few pages of slack for the interpreter's own objects)

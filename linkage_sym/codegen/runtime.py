@@ -15,6 +15,11 @@ A :class:`CompiledMechanism` holds the generated functions of one topology
 The result is the same :class:`~linkage_sym.numeric.result.Analysis` the
 numeric solver returns, with ``forces.method == "symbolic"``.
 
+Made once, when the mechanism is bound to a scene (as ``compile_plan`` does
+for the numeric plan): the assembly modes, the accuracy calibration on the
+scene's own sweep, and the memory a run of that sweep takes, warmed
+(:mod:`linkage_sym.numeric.heap`); every run, the first one too, only solves.
+
 Size: about 700 lines: the run's three stages share the bound functions,
 the block structure and the coordinate layout of one compiled mechanism; the
 bookkeeping both runtimes share is in :mod:`linkage_sym.numeric.sweep` and
@@ -325,6 +330,11 @@ class CompiledMechanism:
         self._layout = None  # the result block's layout, made on the first run
         self._own = None  # the scene's own sweep: driver arrays and solving path, made once
         self._decomposition = None
+        # the accuracy calibration and the memory of a run belong to the scene: made here,
+        # once, so that every run, the first one too, only solves (as the numeric plan does)
+        self._calibration.ratio(self.sweep, self.run)
+        self._layout = ResultLayout(scene, tuple(art["stages"]))
+        self._layout.warm(len(next(iter(self.sweep()[0].values()))))
 
     # -- positions -----------------------------------------------------------------
     def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, P=None,
