@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 
 class SceneError(ValueError):
     """A scene that cannot be analysed.
@@ -39,6 +41,36 @@ class BalanceError(ValueError):
     def __init__(self, reason: str):
         self.reason = reason
         super().__init__(f"cannot balance: {reason}")
+
+
+def finite_number(field: str, value, error: type) -> float:
+    """``value`` as a finite float, else ``error(field, reason)``.
+
+    One rule for every number a user types or passes (synthesis requests,
+    design parameters and options): a bool is not a number, a string is read
+    as ``float`` reads it, NaN and infinities are refused.
+
+    Examples
+    --------
+    >>> class E(ValueError):
+    ...     def __init__(self, field, reason):
+    ...         super().__init__(f"{field}: {reason}")
+    >>> finite_number("l_AB", "0.05", E)
+    0.05
+    >>> finite_number("l_AB", True, E)
+    Traceback (most recent call last):
+    ...
+    linkage_sym.errors.E: l_AB: a finite number is expected, got True
+    """
+    if isinstance(value, bool):
+        raise error(field, f"a finite number is expected, got {value!r}")
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise error(field, f"a finite number is expected, got {value!r}") from None
+    if not math.isfinite(x):
+        raise error(field, f"a finite number is expected, got {value!r}")
+    return x
 
 
 SYMBOLIC_LACKS = {"cam": "cam contacts"}

@@ -27,13 +27,13 @@ Examples
 from __future__ import annotations
 
 import csv
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from linkage_sym.design.errors import SweepError
+from linkage_sym.errors import finite_number
 
 __all__ = ["Designs", "grid", "monte_carlo", "read_samples", "parse_axis", "parse_tolerance",
            "check_names", "parameter_list"]
@@ -57,13 +57,7 @@ class Designs:
 
 
 def _finite(where: str, v) -> float:
-    try:
-        x = float(v)
-    except (TypeError, ValueError):
-        raise SweepError(where, f"a number is expected, got {v!r}") from None
-    if not math.isfinite(x):
-        raise SweepError(where, f"a finite number is expected, got {v!r}")
-    return x
+    return finite_number(where, v, SweepError)
 
 
 def grid(axes) -> Designs:

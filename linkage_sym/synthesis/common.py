@@ -18,6 +18,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from linkage_sym.errors import finite_number
+
 PI = math.pi
 
 TANGENCY = 1e-9
@@ -106,15 +108,7 @@ def number(name: str, value) -> float:
     ...
     linkage_sym.synthesis.common.SynthesisError: rocker: a finite number is expected, got nan
     """
-    if isinstance(value, bool):
-        raise SynthesisError(name, f"a finite number is expected, got {value!r}")
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise SynthesisError(name, f"a finite number is expected, got {value!r}") from None
-    if not math.isfinite(x):
-        raise SynthesisError(name, f"a finite number is expected, got {value!r}")
-    return x
+    return finite_number(name, value, SynthesisError)
 
 
 def positive(name: str, value) -> float:
