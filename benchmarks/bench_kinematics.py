@@ -346,7 +346,7 @@ def fresh_plan(warm):
     """The four-bar's plan compiled in this (fresh) interpreter, with or without warming
     the memory of its runs; returns ``(run, compile seconds)``."""
     if not warm:
-        block.ResultLayout.warm = lambda self, n_steps: 0
+        block.ResultLayout.warm = lambda self, n_steps, runtime: 0
     four = with_steps(linkage_sym.load_example("crank_rocker"), 3600)
     t0 = time.perf_counter()
     plan = compile_plan(four)

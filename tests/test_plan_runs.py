@@ -164,7 +164,7 @@ from linkage_sym.codegen.runtime import load_compiled
 from linkage_sym.numeric import block
 from linkage_sym.numeric.plan import compile_plan
 if sys.argv[1] == "cold":
-    block.ResultLayout.warm = lambda self, n: 0
+    block.ResultLayout.warm = lambda self, n, runtime: 0
 scene = linkage_sym.load_example("crank_rocker")
 drivers = tuple(dataclasses.replace(d, steps=3600) for d in scene.drivers)
 scene = dataclasses.replace(scene, drivers=drivers, outputs=("kinematics",))

@@ -330,11 +330,13 @@ class CompiledMechanism:
         self._layout = None  # the result block's layout, made on the first run
         self._own = None  # the scene's own sweep: driver arrays and solving path, made once
         self._decomposition = None
-        # the accuracy calibration and the memory of a run belong to the scene: made here,
-        # once, so that every run, the first one too, only solves (as the numeric plan does)
+        # the scene's own sweep and solving path, the accuracy calibration and the memory of
+        # a run belong to the scene: made here, once, so that every run, the first one too,
+        # only solves (as the numeric plan does)
+        n_steps = self._drivers(None, None, None)[3].shape[1]
         self._calibration.ratio(self.sweep, self.run)
         self._layout = ResultLayout(scene, tuple(art["stages"]))
-        self._layout.warm(len(next(iter(self.sweep()[0].values()))))
+        self._layout.warm(n_steps, "symbolic")
 
     # -- positions -----------------------------------------------------------------
     def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, P=None,
@@ -643,9 +645,10 @@ class CompiledMechanism:
             XDD[:, sel] = As.solve([_full(v, n_sel) for v in r])
         P0 = self._load_params(dict(zip(art["q"], Qk)))
 
-        def points(flanks=None):
+        def points(flanks=None, arrays=True):
             """The points function's outputs at the K steps; ``flanks``: each mesh's flank
-            at every step (the parameters' +1 otherwise)."""
+            at every step (the parameters' +1 otherwise); ``arrays`` false: a constant
+            output stays a scalar (the result block's rows broadcast it)."""
             P = P0
             if flanks is not None:
                 P = list(self.params if P0 is None else P0)
@@ -654,9 +657,9 @@ class CompiledMechanism:
             with np.errstate(invalid="ignore"):
                 got = self._call("points", X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk, QD=QDk,
                                  QDD=QDDk, CS=(list(CS[0]), list(CS[1])), P=P)
-            return [_full(v, K) for v in got]
+            return [_full(v, K) for v in got] if arrays else got
 
-        pts = points()
+        pts = points(arrays="forces" in stages)  # the force solve indexes every output
         forces = None
         if "forces" in stages:
             forces = self._forces(pts, points, Xk, CS, rate_ok, idx, N)
@@ -802,10 +805,12 @@ class CompiledMechanism:
         every = len(idx) == N
         motion = {}  # link -> cos, sin of its rotation, origin (, omega, its velocity, alpha, ...)
 
-        def put(dest, v):  # a row (N,), or a pair of rows (2, N) given as two arrays
+        def put(dest, v):  # a row (N,), or a pair of rows (2, N) given as two values
             if dest.ndim == 2:
-                put(dest[0], v[0])
-                put(dest[1], v[1])
+                if every:
+                    dest[0], dest[1] = v[0], v[1]
+                else:
+                    dest[0, idx], dest[1, idx] = v[0], v[1]
             elif every:
                 dest[...] = v
             else:

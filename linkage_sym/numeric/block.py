@@ -25,9 +25,10 @@ from linkage_sym.numeric import heap
 from linkage_sym.numeric.result import OK, SINGULAR, JointKinematics, LinkKinematics
 
 
-WARM_FACTOR = 2.0
-"""Memory a run takes, in units of its result block: the block and its temporaries
-(measured with tracemalloc, a kinematics run peaks at 1.8 blocks)."""
+WARM_FACTOR = {"numeric": (2.0, 2.5), "symbolic": (2.5, 3.0)}
+"""Memory a run takes, in units of its result block, by runtime: kinematics, and with forces.
+tracemalloc's peaks over 3600 steps of the four-bar, the offset slider-crank and the Watt and
+class-III six-bars: numeric 1.7-2.0 blocks (2.1-2.3 with forces), symbolic 2.3-2.5 (2.8-2.9)."""
 
 
 class ResultLayout:
@@ -47,6 +48,7 @@ class ResultLayout:
     """
 
     def __init__(self, scene: Scene, stages):
+        self.stages = tuple(stages)
         rows = {}
         i = 0
 
@@ -83,10 +85,12 @@ class ResultLayout:
         self.rows = rows
         self.n_rows = i
 
-    def warm(self, n_steps: int) -> int:
-        """Warm the memory a run of ``n_steps`` takes (:func:`heap.warm`); returns the bytes
+    def warm(self, n_steps: int, runtime: str) -> int:
+        """Warm the memory a run of ``n_steps`` by ``runtime`` (``"numeric"`` or
+        ``"symbolic"``) takes (:data:`WARM_FACTOR`, :func:`heap.warm`); returns the bytes
         touched."""
-        return heap.warm(WARM_FACTOR * 8 * self.n_rows * n_steps)
+        factor = WARM_FACTOR[runtime]["forces" in self.stages]
+        return heap.warm(factor * 8 * self.n_rows * n_steps)
 
     def rate_rows(self, block, link) -> dict:
         """The rows of ``block`` a link's rate fields are bound to (see ``LinkState``)."""

@@ -108,7 +108,7 @@ class Plan:
         self._calibration.ratio(self._sweep_values, lambda *d: self.run(*d, exact_condition=True))
         # and the memory a run of the scene's sweep takes, touched once here, so that the
         # first run does not pay the first touch of fresh pages (numeric.block.warm)
-        self.layout.warm(len(next(iter(self._own_sweep[0].values()))))
+        self.layout.warm(len(next(iter(self._own_sweep[0].values()))), "numeric")
 
     # -- the sweep ---------------------------------------------------------
     def sweep(self):
