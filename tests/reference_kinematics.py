@@ -1,12 +1,12 @@
-"""Independent closed-form kinematics references (seed 003, chapter 3).
+"""Independent closed-form kinematics references (the kinematics chapter [4]).
 
 Nothing here imports ``linkage_sym``: these are the yardsticks the solver is
-measured against, written from the closed vector loops of seed 003 and
+measured against, written from the closed vector loops of chapter 3 [4] and
 re-derived by hand (the OCR of the printed formulas has typos).
 
 Conventions (all angles in radians, counter-clockwise from +x):
 
-* Four-bar (seed 003 fig. 3-11, eqs. 3-8..3-18): crank pivot A at the origin,
+* Four-bar ([4] fig. 3-11, eqs. 3-8..3-18): crank pivot A at the origin,
   rocker pivot D at ``(l4, 0)``; ``l1 = AB`` (crank, angle ``th1``),
   ``l2 = BC`` (coupler, angle ``th2`` of B->C), ``l3 = DC`` (rocker, angle
   ``th3`` of D->C).  Closure ``l1 e^{i th1} + l2 e^{i th2} = l4 + l3 e^{i th3}``.
@@ -29,7 +29,7 @@ import mpmath as mp
 import numpy as np
 
 # --------------------------------------------------------------------------
-# four-bar: seed 003 eqs. 3-9 / 3-10 (position), 3-13 / 3-14 (velocity),
+# four-bar: eqs. 3-9 / 3-10 of [4] (position), 3-13 / 3-14 (velocity),
 # 3-16 / 3-17 (acceleration), 3-18 (coupler point)
 # --------------------------------------------------------------------------
 
@@ -281,7 +281,7 @@ def slider_crank_mp(l1, l2, e, th1, w1, a1=0, sigma=1):
 
 
 # --------------------------------------------------------------------------
-# guide-bar (inverted slider-crank) of seed 003 examples 3-1 / 3-6
+# guide-bar (inverted slider-crank) of examples 3-1 / 3-6 of [4]
 # --------------------------------------------------------------------------
 
 
@@ -325,7 +325,7 @@ def guide_bar(l1, l3, l4, gamma, th1, w1, a1=0.0, sigma=1):
 
 
 # --------------------------------------------------------------------------
-# shaper of seed 003 example 3-7 (matrix method)
+# shaper of example 3-7 of [4] (matrix method)
 # --------------------------------------------------------------------------
 
 
@@ -398,7 +398,7 @@ def shaper(l1, l3, l4, l6, l6p, th1, w1, a1=0.0, sigma4=-1):
                 dds3=xdd[:, 0], a3=xdd[:, 1], a4=xdd[:, 2], aE=xdd[:, 3])
 
 
-# Seed 003 Table 3-1 (example 3-7, l1 = 0.125 m, l3 = 0.600 m, l4 = 0.150 m,
+# Table 3-1 of [4] (example 3-7, l1 = 0.125 m, l3 = 0.600 m, l4 = 0.150 m,
 # w1 = 1 rad/s): th1 [deg] -> th3 [deg], th4 [deg], sE [m], w3, w4 [rad/s],
 # vE [m/s], a3, a4 [rad/s^2], aE [m/s^2], as printed.
 TABLE_3_1 = {

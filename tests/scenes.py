@@ -143,7 +143,7 @@ def slider_crank(l1, l2, e, *, start_deg=0.0, stop_deg=360.0, steps=361, speed=1
 def guide_bar(l1, l3, l4, gamma_deg, *, start_deg=0.0, stop_deg=360.0, steps=361,
               speed=10.0, acceleration=0.0, assembly_deg=None, sigma=1, rotate_deg=0.0,
               origin=(0.0, 0.0), name="guide_bar"):
-    """Guide-bar of seed 003 examples 3-1/3-6: ``crank`` (A-B), ``block``
+    """Guide-bar of examples 3-1/3-6 of [4]: ``crank`` (A-B), ``block``
     pinned at B and sliding (P joint ``S``, axis on ``guide``) on the guide
     line through C at ``gamma`` from the arm DC; ``guide`` turns about D."""
     pl = Placement(rotate_deg, origin)
@@ -175,7 +175,7 @@ def guide_bar(l1, l3, l4, gamma_deg, *, start_deg=0.0, stop_deg=360.0, steps=361
 def shaper(l1=0.125, l3=0.600, l4=0.150, l6=0.275, l6p=0.575, *, start_deg=0.0,
            stop_deg=360.0, steps=361, speed=1.0, acceleration=0.0, assembly_deg=None,
            sigma4=-1, name="shaper"):
-    """Shaper of seed 003 example 3-7 (fig. 3-13), in the frame of
+    """Shaper of example 3-7 of [4] (fig. 3-13), in the frame of
     :func:`reference_kinematics.shaper_position`: guide pivot C at the origin,
     crank pivot A at ``(0, l6)``, ram line ``y = l6p``.  Links ``crank``,
     ``block`` (slides on ``guide``: P joint ``S``), ``guide`` (C-D), ``rod``

@@ -1,15 +1,15 @@
-"""Balancing (issue 5): seed 002's module, its assembly, and the force and moment conditions.
+"""Balancing (issue 5): Song and Wang's [3] module, its assembly, and the force and moment conditions.
 
 Every derived result is checked against something that shares no code with it:
 
 * the link module against its defining identity (proved symbolically) and
-  against seed 002's printed eq. 6 (lines 2-4 as printed; line 1 with the
+  against Song and Wang's [3] printed eq. 6 (lines 2-4 as printed; line 1 with the
   OCR's ``-`` read as the product it must be);
 * the assembled shaking moment and force (lambdified modules fed with the
   numeric kinematics) against the kinetostatic solver's frame moment and
   force with inertia as the only effect, on every shipped hinged example;
 * the force conditions against Berkof and Lowen's four-bar conditions and
-  seed 002's eq. 14 (same solution set), and against the force solver: a
+  Song and Wang's [3] eq. 14 (same solution set), and against the force solver: a
   design built from them has no shaking force, and breaking one condition
   brings it back.
 """
@@ -60,7 +60,7 @@ def test_module_identity_holds_symbolically():
 
 
 def test_module_matches_printed_eq6_up_to_its_ocr_error():
-    """Seed 002, eq. 6. Lines 2-4 are printed correctly; line 1 prints
+    """Song and Wang [3], eq. 6. Lines 2-4 are printed correctly; line 1 prints
     ``m/a^2 - [(a-p)^2 + q^2 + k^2]``, where dimensions demand the product."""
     mod = link_module()
     m, a, p, q, k = mod.m, mod.a, mod.p, mod.q, mod.k
@@ -199,7 +199,7 @@ def test_fourbar_conditions_are_berkof_lowen():
 
 
 def test_song_wang_sixbar_conditions_are_its_eq14():
-    """Seed 002, eq. 14 (from its ref. [1]), for the six-bar of its Fig. 2."""
+    """Song and Wang [3], eq. 14 (from its ref. [1]), for the six-bar of its Fig. 2."""
     fb = force_balance(load_example("song_wang_sixbar"))
     m = {i: sp.Symbol(f"m_{i}", positive=True) for i in range(1, 6)}
     a = {i: sp.Symbol(f"a_{i}", positive=True) for i in range(1, 6)}
@@ -267,7 +267,7 @@ def test_fourbar_remaining_moment_is_eq18():
     assert b.remaining.has(sp.Symbol("phidd_2", real=True))
 
 
-def test_seed002_conditions_reproduce_eq13_15_18():
+def test_song_wang_conditions_reproduce_eq13_15_18():
     b = derive_balance(load_example("song_wang_sixbar"))
     # eqs. 10-11: the vanishing and the merged acceleration parameters
     assert set(b.moment.vanishing) == {"D_AB_1", "D_AB_2", "D_AB_3", "D_DC_1", "D_FE_1"}

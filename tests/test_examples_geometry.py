@@ -428,7 +428,7 @@ def test_watt_and_stephenson_chains():
 
 
 # ---------------------------------------------------------------------------
-# the shaper against Table 3-1 of seed 003 (example 3-7)
+# the shaper against Table 3-1 of the kinematics chapter [4] (example 3-7)
 # ---------------------------------------------------------------------------
 
 # th1 (deg) -> printed (th3 deg, th4 deg, sE m)
@@ -480,7 +480,7 @@ def test_shaper_reproduces_table_3_1():
 
 
 # ---------------------------------------------------------------------------
-# the printing mechanism against seed 000, section 4
+# the printing mechanism against Dang and Zhang [1], section 4
 # ---------------------------------------------------------------------------
 
 PRINTED_POINTS = {"B": (0.1, -0.1732), "C": (-0.8687, -0.122), "D": (-0.8913, -0.4152), "F": (-0.8436, 0.203),

@@ -345,7 +345,7 @@ def slider_crank_case():
 
 
 def rocker_driven_fourbar():
-    """Crank-rocker (seed dimensions 24, 63, 48, 78 mm) driven at its rocker
+    """Crank-rocker (example 3-1 of [4]: 24, 63, 48, 78 mm) driven at its rocker
     (R driver on D, ground -> rocker): crank and coupler stretched in line at the
     rocker's extreme angle, where the RRR dyad (crank, coupler) is singular.
     Torque on the crank (the output), a force on the coupler, masses, gravity."""

@@ -321,14 +321,15 @@ def test_tangency_tolerance_is_rounding_only():
 # (3) link-length ratios 1e-3 and 1e3, absolute scales 1e-3 and 1e3
 # ---------------------------------------------------------------------------
 
-L_SEED = (0.024, math.hypot(0.042, 0.047), 0.048, 0.078)
+# the dimensions of example 3-1 of the kinematics chapter [4]
+L_EXAMPLE_3_1 = (0.024, math.hypot(0.042, 0.047), 0.048, 0.078)
 
 
 @pytest.mark.parametrize("lengths", [
     pytest.param((1e-3, 1.0, 0.8, 0.9), id="crank-1e-3-of-the-others"),
     pytest.param((1.0, 1e3, 800.0, 900.0), id="others-1e3-times-crank"),
-    pytest.param(tuple(x * 1e-3 for x in L_SEED), id="seed-scaled-1e-3"),
-    pytest.param(tuple(x * 1e3 for x in L_SEED), id="seed-scaled-1e3"),
+    pytest.param(tuple(x * 1e-3 for x in L_EXAMPLE_3_1), id="example-3-1-scaled-1e-3"),
+    pytest.param(tuple(x * 1e3 for x in L_EXAMPLE_3_1), id="example-3-1-scaled-1e3"),
 ])
 def test_fourbar_extreme_ratios(lengths):
     d, _ = scenes.fourbar(*lengths, steps=25, speed=W1, acceleration=A1, sigma=1)
@@ -377,8 +378,8 @@ def test_slider_crank_extreme_ratios(l1, l2, e):
 def test_crank_too_long_for_part_of_the_turn():
     """Triple rocker driven through a full turn: |BD| > l2 + l3 for th1 in
     (129.84, 230.16) deg.  Those steps are ``unassemblable`` with a message and
-    no positions in to_dict(); the others match the closed form (seed 003
-    eqs. 3-9..3-17) to 1e-10 and mpmath to the conditioned tolerance; after the
+    no positions in to_dict(); the others match the closed form (eqs.
+    3-9..3-17 of [4]) to 1e-10 and mpmath to the conditioned tolerance; after the
     gap the solution resumes in the assembly mode (sign of the dyad's
     determinant) and the rotations continue with the value nearest the last
     solved step; no NaN anywhere in to_dict()."""

@@ -1,4 +1,4 @@
-"""The numeric kinematics against independent closed forms (seed 003 ch. 3).
+"""The numeric kinematics against independent closed forms (the kinematics chapter [4]).
 
 References live in ``reference_kinematics.py`` (no linkage_sym import); each
 check names its source.  Tolerance: ``rtol = 1e-10`` relative to the largest
@@ -29,10 +29,10 @@ import scenes  # noqa: E402
 
 RTOL = 1e-10
 
-# Spec example (``scene-format.md``) = seed 003 example 3-1 dimensions: AB 24,
+# Spec example (``scene-format.md``) = the dimensions of example 3-1 of [4]: AB 24,
 # AD 78, CD 48 mm; BC read off the spec's assembly points B (0.024, 0) and
 # C (0.066, 0.047).
-L_SEED = (0.024, math.hypot(0.042, 0.047), 0.048, 0.078)
+L_EXAMPLE_3_1 = (0.024, math.hypot(0.042, 0.047), 0.048, 0.078)
 
 
 # ---------------------------------------------------------------------------
@@ -45,7 +45,7 @@ def test_reference_fourbar_rates_are_derivatives_of_positions(sigma):
     """eqs. 3-13/3-14 and 3-16/3-17 (a1 kept) = mpmath derivatives of the
     eq. 3-9/3-10 positions; numpy reference = mpmath reference."""
     mp.mp.dps = 50
-    l = L_SEED
+    l = L_EXAMPLE_3_1
     w1, a1 = 10.0, 3.0
     th = np.linspace(0, 2 * np.pi, 9)
     r = ref.fourbar(*l, th, w1, a1, sigma)
@@ -149,7 +149,7 @@ def test_reference_guide_bar_rates_are_derivatives():
 
 
 def test_reference_guide_bar_matches_example_3_1_graphical_answer():
-    """Seed 003 example 3-1 (graphical, phi1 = 60 deg, w1 = 10 rad/s ccw):
+    """Example 3-1 of [4] (graphical, phi1 = 60 deg, w1 = 10 rad/s ccw):
     w3 = 3.91 rad/s clockwise, alpha3 = 62.3 rad/s^2, BD = 69 mm.  A velocity
     polygon read at 0.01 (m/s)/mm to 2-3 digits: 1 % tolerance."""
     r = ref.guide_bar(0.024, 0.048, 0.078, math.radians(100), math.radians(60), 10.0, 0.0, 1)
@@ -176,7 +176,7 @@ def test_reference_shaper_rates_are_derivatives():
 
 def _table_check(values_by_angle, what):
     """Compare {th1_deg: dict(th3 [deg], th4 [deg], sE, w3, w4, vE, a3, a4)} with
-    seed 003 Table 3-1.
+    Table 3-1 of [4].
 
     * Angles: 1e-4 deg.  The table's th3 column sits 4e-5..6e-5 deg above the
       exact atan(l6/l1) = 65.556045 deg at 0 deg -- a rad->deg conversion with
@@ -248,10 +248,10 @@ def _check_driver(res, d, joint="A"):
 
 
 FOURBAR_CASES = [
-    pytest.param(dict(l=L_SEED, sigma=1, speed=10.0, acc=3.0, rot=0.0, origin=(0.0, 0.0),
-                      start=0.0, stop=360.0), id="seed-open"),
-    pytest.param(dict(l=L_SEED, sigma=-1, speed=-5.0, acc=-2.0, rot=30.0, origin=(0.1, -0.2),
-                      start=45.0, stop=405.0), id="seed-crossed-rotated"),
+    pytest.param(dict(l=L_EXAMPLE_3_1, sigma=1, speed=10.0, acc=3.0, rot=0.0, origin=(0.0, 0.0),
+                      start=0.0, stop=360.0), id="example-3-1-open"),
+    pytest.param(dict(l=L_EXAMPLE_3_1, sigma=-1, speed=-5.0, acc=-2.0, rot=30.0, origin=(0.1, -0.2),
+                      start=45.0, stop=405.0), id="example-3-1-crossed-rotated"),
     pytest.param(dict(l=(1.0, 4.0, 3.0, 3.5), sigma=1, speed=2.0, acc=0.0, rot=-100.0,
                       origin=(3.0, 1.0), start=360.0, stop=0.0), id="clockwise-sweep"),
 ]
@@ -259,7 +259,7 @@ FOURBAR_CASES = [
 
 @pytest.mark.parametrize("case", FOURBAR_CASES)
 def test_fourbar_matches_complex_vector_solution(case):
-    """Four-bar vs seed 003 eqs. 3-9/3-10 (positions), 3-13/3-14 (omega),
+    """Four-bar vs eqs. 3-9/3-10 of [4] (positions), 3-13/3-14 (omega),
     3-16/3-17 (alpha, a1 kept), 3-18 (coupler point / centre of mass)."""
     l, sigma, pl_rot = case["l"], case["sigma"], case["rot"]
     cp = (0.6 * l[1], 0.3 * l[1])  # coupler point E: a along BC, b normal to it
@@ -277,7 +277,7 @@ def test_fourbar_matches_complex_vector_solution(case):
     th1a = math.radians(case["start"])
     th2a, th3a = (float(v) for v in ref.fourbar_position(*l, th1a, sigma))
     size = scene.characteristic_length()
-    src = "seed 003 eqs. 3-9/3-10"
+    src = "eqs. 3-9/3-10 of the kinematics chapter [4]"
     # angles (rotation from assembly, continuous)
     scenes.assert_close(res.links["crank"].rotation, th1 - th1a, RTOL, f"crank rotation ({src})")
     scenes.assert_close(res.links["coupler"].rotation, scenes.unwrap_from_assembly(r["th2"], th2a),
@@ -359,7 +359,7 @@ def test_offset_slider_crank_matches_closed_form(sigma, rot, e):
 
 @pytest.mark.parametrize("sigma,rot", [(1, 0.0), (-1, 20.0)])
 def test_guide_bar_matches_example_3_6(sigma, rot):
-    """Guide-bar of seed 003 examples 3-1/3-6 (l1 = 24, l3 = 48, l4 = 78 mm,
+    """Guide-bar of examples 3-1/3-6 of [4] (l1 = 24, l3 = 48, l4 = 78 mm,
     gamma = 100 deg, w1 = 10 rad/s) vs the example 3-6 loop
     ``l1 e^{i th1} = l4 + l3 e^{i th3} + s2 e^{i(th3 + gamma)}`` and its derivatives."""
     l1, l3, l4, g, w1, a1 = 0.024, 0.048, 0.078, 100.0, 10.0, 3.0
@@ -373,7 +373,7 @@ def test_guide_bar_matches_example_3_6(sigma, rot):
     r = ref.guide_bar(l1, l3, l4, math.radians(g), th1, w1, a1, sigma)
     th3a = float(ref.guide_bar(l1, l3, l4, math.radians(g), math.radians(60), 0, 0, sigma)["th3"])
     size = scene.characteristic_length()
-    src = "seed 003 example 3-6"
+    src = "example 3-6 of the kinematics chapter [4]"
     rot3 = scenes.unwrap_from_assembly(r["th3"], th3a)
     for ln in ("guide", "block"):
         lk = res.links[ln]
@@ -437,7 +437,7 @@ def _shaper_state(res, scene):
 
 @pytest.mark.parametrize("w1,a1", [(1.0, 0.0), (-3.0, 2.0)])
 def test_shaper_matches_matrix_method(w1, a1):
-    """Shaper of seed 003 example 3-7 vs the 4x4 matrix method (eqs. 3-28/3-29
+    """Shaper of example 3-7 of [4] vs the 4x4 matrix method (eqs. 3-28/3-29
     form, a1 kept): A xd = w1 B, A xdd = -Adot xd + w1 Bdot + a1 B."""
     d = scenes.shaper(steps=73, speed=w1, acceleration=a1)
     scene, res = scenes.run(d)
@@ -446,7 +446,7 @@ def test_shaper_matches_matrix_method(w1, a1):
     th1 = _q(res)
     r = ref.shaper(0.125, 0.6, 0.15, 0.275, 0.575, th1, w1, a1)
     s = _shaper_state(res, scene)
-    src = "seed 003 example 3-7 matrix method"
+    src = "example 3-7 of the kinematics chapter [4], matrix method"
     size = scene.characteristic_length()
     th3a, th4a = s["th3a"], s["th4a"]
     scenes.assert_close(res.links["guide"].rotation, scenes.unwrap_from_assembly(r["th3"], th3a),
@@ -489,7 +489,7 @@ def test_shaper_scene_reproduces_table_3_1():
 
 
 def test_shipped_shaper_example_reproduces_table_3_1():
-    """The shipped example 'shaper' vs Table 3-1 (seed 003 example 3-7)."""
+    """The shipped example 'shaper' vs Table 3-1 (example 3-7 of [4])."""
     import linkage_sym
 
     try:
@@ -501,7 +501,7 @@ def test_shipped_shaper_example_reproduces_table_3_1():
     ro = _shaper_roles(scene)
     size = math.hypot(ro["D"].at[0] - ro["C"].at[0], ro["D"].at[1] - ro["C"].at[1])
     if abs(size - 0.6) > 1e-6 or abs(ro["E"].at[1] - 0.575) > 1e-6:
-        pytest.skip("example 'shaper' is not the seed 003 example 3-7 geometry "
+        pytest.skip("example 'shaper' is not the geometry of example 3-7 of [4] "
                     f"(l3 = {size}, ram height {ro['E'].at[1]})")
     res = linkage_sym.analyze(scene)
     _table_check(_table_values(res, scene), "solver (shipped example 'shaper')")

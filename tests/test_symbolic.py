@@ -4,7 +4,7 @@ against references that share no code with it.
 References and tolerances
 -------------------------
 * **Numeric solver** (``linkage_sym.analyze``: dyad closed forms, Newton,
-  seed-000 superposition -- none of it in ``linkage_sym.symbolic`` or
+  Dang and Zhang's [1] superposition -- none of it in ``linkage_sym.symbolic`` or
   ``linkage_sym.codegen``).  Issue requirement: every quantity within
   ``1e-10`` *relative to its family's scale* (``RTOL``), because quantities
   that are exactly zero or tiny in the reference (a ground pivot's

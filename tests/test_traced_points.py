@@ -1,6 +1,6 @@
 """Traced points (the scene format's ``points`` extension): validation, JSON, symbolic path.
 
-Their motion against seed 003's eq. 3-18 is checked in
+Their motion against eq. 3-18 of the kinematics chapter [4] is checked in
 ``test_kinematics_reference.test_fourbar_matches_complex_vector_solution``.
 """
 
