@@ -153,27 +153,32 @@ def handwritten_fourbar(scene):
         vc = (-w3 * (cy - D[1]), w3 * (cx - D[0]))
         ab = (-a1 * l1 * s1 - w1 * w1 * l1 * c1, a1 * l1 * c1 - w1 * w1 * l1 * s1)
         ac = (-al3 * (cy - D[1]) - w3 * w3 * (cx - D[0]), al3 * (cx - D[0]) - w3 * w3 * (cy - D[1]))
-        out = {}
         # a centre of mass moves with its link's origin (the coupler's is B, which moves)
-        for name, th, w, al, O, vO, aO, t0 in (
-            ("crank", th1, w1, a1, (A[0], A[1]), (0.0, 0.0), (0.0, 0.0), t10),
-            ("coupler", th2, w2, al2, (bx, by), vb, ab, t20),
-            ("rocker", th3, w3, al3, (D[0], D[1]), (0.0, 0.0), (0.0, 0.0), t30),
-        ):
-            r = th - t0
-            c, s = np.cos(r), np.sin(r)
-            x, y = local[name]
-            rx, ry = c * x - s * y, s * x + c * y
-            out[name] = (
-                r, w, al,
-                O[0] + rx, O[1] + ry,
-                vO[0] - w * ry, vO[1] + w * rx,
-                aO[0] - al * ry - w * w * rx, aO[1] + al * rx - w * w * ry,
-            )
+        zero = (0.0, 0.0)
+        out = {
+            "crank": rigid_motion(th1 - t10, w1, a1, (A[0], A[1]), zero, zero, local["crank"]),
+            "coupler": rigid_motion(th2 - t20, w2, al2, (bx, by), vb, ab, local["coupler"]),
+            "rocker": rigid_motion(th3 - t30, w3, al3, (D[0], D[1]), zero, zero, local["rocker"]),
+        }
         out["joints"] = (bx, by, cx, cy, vb, vc, ab, ac)
         return out
 
     return run
+
+
+def rigid_motion(r, w, al, O, vO, aO, local):
+    """A link's rotation ``r`` from its assembly angle, ``w``, ``al``, and the position,
+    velocity and acceleration of its point at ``local`` (assembly frame, relative to the
+    point ``O`` whose motion is ``O, vO, aO``) -- the hand-written contenders' rigid body."""
+    c, s = np.cos(r), np.sin(r)
+    x, y = local
+    rx, ry = c * x - s * y, s * x + c * y
+    return (
+        r, w, al,
+        O[0] + rx, O[1] + ry,
+        vO[0] - w * ry, vO[1] + w * rx,
+        aO[0] - al * ry - w * w * rx, aO[1] + al * rx - w * w * ry,
+    )
 
 
 def with_outputs(scene, steps, outputs):

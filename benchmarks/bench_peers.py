@@ -85,7 +85,7 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 import linkage_sym  # noqa: E402
-from bench_kinematics import best_time, handwritten_fourbar, steady_heap  # noqa: E402
+from bench_kinematics import best_time, handwritten_fourbar, rigid_motion, steady_heap  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -198,21 +198,12 @@ def handwritten_slider_crank(scene):
         vb = (dbx * w1, dby * w1)
         ab = (-(bx - A[0]) * w1 * w1 + dbx * a1, -(by - A[1]) * w1 * w1 + dby * a1)
         vc, ac = (vs * ux, vs * uy), (as_ * ux, as_ * uy)
-        out = {}
-        for name, th, w_, al, O, vO, aO, t0 in (
-            ("crank", th1, w1, a1, (A[0], A[1]), (0.0, 0.0), (0.0, 0.0), t10),
-            ("connecting_rod", th2, w2, al2, (bx, by), vb, ab, t20),
-        ):
-            r = th - t0
-            c, s_ = np.cos(r), np.sin(r)
-            x, y = local[name]
-            qx, qy = c * x - s_ * y, s_ * x + c * y
-            out[name] = (
-                r, w_, al,
-                O[0] + qx, O[1] + qy,
-                vO[0] - w_ * qy, vO[1] + w_ * qx,
-                aO[0] - al * qy - w_ * w_ * qx, aO[1] + al * qx - w_ * w_ * qy,
-            )
+        zero = (0.0, 0.0)
+        out = {
+            "crank": rigid_motion(th1 - t10, w1, a1, (A[0], A[1]), zero, zero, local["crank"]),
+            "connecting_rod": rigid_motion(th2 - t20, w2, al2, (bx, by), vb, ab,
+                                           local["connecting_rod"]),
+        }
         x, y = local["slider"]
         out["slider"] = (0.0, 0.0, 0.0, cx + x, cy + y, vc[0], vc[1], ac[0], ac[1])
         out["joints"] = (bx, by, cx, cy, vb, vc, ab, ac)
