@@ -225,6 +225,8 @@ def _write(tmp_path, d):
 def _field(name):
     """A column's quantity (its scale is shared): ``position``, ``omega``, ``driving``, ..."""
     parts = name.split(".")
+    if parts[0] == "instant_centres":  # a centre may lie far beyond the joints
+        return "instant_centres." + (parts[-2] if parts[-1] in ("x", "y") else parts[-1])
     if parts[0] in ("driving", "frame"):
         return ".".join(parts[:2]) if parts[0] == "frame" else "driving"
     return parts[-2] if parts[-1] in ("x", "y") else parts[-1]
@@ -284,11 +286,24 @@ def _npz_columns(path):
 
 
 def _flat(record, prefix=""):
-    """A JSON step record flattened to ``{path: number}`` (vectors as ``.x``/``.y``)."""
+    """A JSON step record flattened to ``{path: number}`` (vectors as ``.x``/``.y``).
+
+    The ``instant_centres`` list as docs/scene-format.md maps it to columns: per pair
+    ``a, b`` its ``position`` or ``direction`` vector, and the flags ``undefined`` and
+    ``from_velocities`` (``method: "velocity"``) as 1 or 0."""
     out = {}
     for k, v in record.items():
         key = f"{prefix}{k}"
-        if isinstance(v, dict):
+        if k == "instant_centres":
+            for rec in v:
+                a, b = rec["links"]
+                pair = f"{key}.{a}.{b}"
+                for vector in ("position", "direction"):
+                    if vector in rec:
+                        out[f"{pair}.{vector}.x"], out[f"{pair}.{vector}.y"] = rec[vector]
+                out[f"{pair}.undefined"] = 1.0 if rec.get("undefined") else 0.0
+                out[f"{pair}.from_velocities"] = 1.0 if rec.get("method") == "velocity" else 0.0
+        elif isinstance(v, dict):
             out.update(_flat(v, key + "."))
         elif isinstance(v, list):
             out[key + ".x"], out[key + ".y"] = v
@@ -366,8 +381,22 @@ def _check_columns_against_json(whole, names, read, what):
                 assert got is None, (what, n, i)
 
 
-@pytest.mark.parametrize("make", [_slider_with_gap, scenes.change_point_fourbar,
-                                  lambda: example_dict("watt_sixbar")])
+def _with_centres(d, speed=None):
+    """``d`` with the ``instant_centres`` output too (and every driver at ``speed``)."""
+    d = dict(d, outputs=[*d.get("outputs", ["kinematics"]), "instant_centres"])
+    if speed is not None:
+        d["drivers"] = [dict(dr, speed=speed, acceleration=0.0) for dr in d["drivers"]]
+    return d
+
+
+@pytest.mark.parametrize("make", [
+    _slider_with_gap, scenes.change_point_fourbar, lambda: example_dict("watt_sixbar"),
+    # instant centres: at infinity and a gap; found from the velocities; undefined at rest
+    lambda: _with_centres(_slider_with_gap()),
+    lambda: _with_centres(_with_steps(example_dict("fivebar"), 13)),
+    lambda: _with_centres(_with_steps(example_dict("guide_bar_quick_return"), 13), speed=0.0),
+], ids=["slider_with_gap", "change_point_fourbar", "watt_sixbar", "centres_slider_with_gap",
+        "centres_fivebar", "centres_at_rest"])
 def test_csv_npz_parquet_hold_the_json_numbers(make, tmp_path):
     pq = pytest.importorskip("pyarrow.parquet")
     d = make()
@@ -491,6 +520,19 @@ def test_chunked_equals_whole_on_every_example(name, tmp_path):
         assert_same_as_whole(whole, cols, f"{name}, chunks of {chunk}", newton=name in NEWTON)
         assert stats.warnings == whole.warnings
         assert [str(m) for m in cols["message"]] == [m or "" for m in whole.messages]
+
+
+@pytest.mark.parametrize("make", [
+    lambda: _with_centres(_slider_with_gap()),
+    lambda: _with_centres(_with_steps(example_dict("fivebar"), 97)),
+], ids=["slider_with_gap", "fivebar"])
+def test_chunked_equals_whole_with_instant_centres(make, tmp_path):
+    d = make()
+    whole = compile_plan(linkage_sym.load_scene(d)).run()
+    for chunk in (1, 37):
+        stats, cols = _chunked(d, tmp_path, chunk)
+        assert_same_as_whole(whole, cols, f"{d['name']}, chunks of {chunk}")
+        assert stats.warnings == whole.warnings
 
 
 @pytest.mark.slow

@@ -342,7 +342,11 @@ class Analysis:
         # only these records can hold a value of a column to leave out; keys of a record
         # that no column covers are checked at every step
         suspect = self.not_finite(a, b)
-        covered = {"status", "message", *(n.split(".", 1)[0] for n, _, _ in self.columns())}
+        cols = self.columns()
+        covered = {"status", "message", *(n.split(".", 1)[0] for n, _, _ in cols)}
+        # a record whose values are there only where finite (instant centres) is checked
+        # at every step, as one without columns
+        covered -= {n.split(".", 1)[0] for n, _, when in cols if when == "finite"}
         for i in range(b - a):
             st = str(status[i])
             step: dict = {"status": st}
@@ -413,7 +417,7 @@ class Analysis:
         present = {"positions": (st == OK) | (st == SINGULAR), "ok": st == OK}
         out = np.zeros(stop - start, bool)
         for name, v, when in self.columns():
-            if name in ("status", "message"):
+            if name in ("status", "message") or when == "finite":
                 continue
             bad = ~np.isfinite(v[start:stop])
             out |= bad if when == "always" else bad & present[when]
@@ -504,9 +508,12 @@ class Analysis:
         ``frame.*``, ``accuracy.*``.  Numeric columns are (N,) float arrays (views of the
         result, NaN where the JSON leaves the value out because it was not
         computed).  ``when`` says at which steps the JSON holds the value:
-        ``"always"``, ``"positions"`` (``ok`` and ``singular`` steps) or
-        ``"ok"``.  The same columns exist whatever the steps' statuses, so
-        every chunk of a sweep has them.
+        ``"always"``, ``"positions"`` (``ok`` and ``singular`` steps),
+        ``"ok"``, or ``"finite"`` (wherever the value is finite: an instant
+        centre's position or direction, of which a record has one or neither;
+        ``instant_centres.a.b.*`` last, see :func:`_centre_columns`).  The same
+        columns exist whatever the steps' statuses, so every chunk of a sweep
+        has them.
         """
         want_kin = "kinematics" in self.outputs
         has_vel = "velocity" in self.stages
@@ -566,7 +573,34 @@ class Analysis:
                 out.append(("frame.moment", forces.frame_moment, "ok"))
         if self.accuracy:  # extension: each ok step's estimated relative accuracy
             out += [(f"accuracy.{k}", v, "ok") for k, v in self.accuracy.items()]
+        centres = self.instant_centres if "instant_centres" in self.outputs else None
+        if centres is not None:  # extension: every pair's instant centre, at the ok steps
+            out += _centre_columns(centres)
         return out
+
+
+def _centre_columns(centres) -> list:
+    """The columns of the ``instant_centres`` records (:meth:`Analysis.columns`).
+
+    Per pair ``a, b`` (in the records' order): ``instant_centres.a.b.position.x``, ``.y``
+    where the record has a ``position``, ``direction.x``, ``.y`` where it is ``at_infinity``
+    (both ``"finite"``: NaN wherever the record has no such number), and two flags at
+    every ``ok`` step, 1 or 0: ``undefined`` (the record says ``undefined``) and
+    ``from_velocities`` (its ``method`` is ``"velocity"``).
+    """
+    rates = np.asarray(centres.rates, bool)
+    out = []
+    for k, (a, b) in enumerate(centres.pairs):
+        und = centres.undefined[:, k]
+        flags = {"undefined": und, "from_velocities": centres.from_velocities[:, k] & ~und}
+        p = f"instant_centres.{a}.{b}"
+        out += [(f"{p}.position.x", centres.position[:, k, 0], "finite"),
+                (f"{p}.position.y", centres.position[:, k, 1], "finite"),
+                (f"{p}.direction.x", centres.direction[:, k, 0], "finite"),
+                (f"{p}.direction.y", centres.direction[:, k, 1], "finite")]
+        out += [(f"{p}.{name}", np.where(rates, f.astype(float), np.nan), "ok")
+                for name, f in flags.items()]
+    return out
 
 
 _RECORD_BLOCK = 1024
