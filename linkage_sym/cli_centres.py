@@ -212,6 +212,7 @@ def _polygon_lines(scene, pq, num) -> list:
 def _problems_at(scene, args):
     """Option problems that the scene alone shows (before solving)."""
     from linkage_sym.cli_common import OptionError
+    from linkage_sym.scene.fields import ANGLE_WHY, MAX_ANGLE_DEG
 
     if args.deg is not None:
         if len(scene.drivers) != 1 or scene.drivers[0].kind != "R":
@@ -219,6 +220,8 @@ def _problems_at(scene, args):
             raise OptionError(f"--deg: needs a scene with one R driver; its drivers: {have}")
         if not math.isfinite(args.deg):
             raise OptionError(f"--deg: {args.deg} is not a finite angle")
+        if abs(args.deg) > MAX_ANGLE_DEG:  # as a scene's start_deg
+            raise OptionError(f"--deg: {ANGLE_WHY}, got {args.deg:g}")
     if args.step is not None and not 0 <= args.step < scene.steps:
         raise OptionError(f"--step: {args.step} is not a step of the sweep (0 to {scene.steps - 1})")
 
@@ -239,6 +242,7 @@ def cmd_centres(args) -> int:
     """
     from linkage_sym.centres import centrodes, floating_links, instant_centres, polygon_quantities
     from linkage_sym.cli_common import OptionError, check_outputs as _check_outputs, load as _load, write as _write
+    from linkage_sym.errors import SceneError
     from linkage_sym.numeric.plan import compile_plan
 
     _check_outputs(files=[("-o/--output", args.output)], folders=[("--plots", args.plots)])
@@ -250,7 +254,12 @@ def cmd_centres(args) -> int:
     if args.deg is not None:
         d = scene.drivers[0]
         one = lambda v: {d.joint: np.array([float(v)])}  # noqa: E731
-        analysis = plan.run(q=one(math.radians(args.deg)), qd=one(d.speed), qdd=one(d.acceleration))
+        try:
+            analysis = plan.run(q=one(math.radians(args.deg)), qd=one(d.speed),
+                                qdd=one(d.acceleration))
+        except SceneError as err:  # the path to that angle: name the option that asked for it
+            raise OptionError([f"--deg {args.deg:g}: {p.split(': ', 1)[1]}"
+                               for p in err.problems]) from err
         i = 0
         where = f"--deg {args.deg:g}"
     else:

@@ -330,3 +330,56 @@ def test_summary_names_shaking_loads_and_warnings(tmp_path):
     text = "\n".join(summary(scene, res))
     assert "peak shaking force:" in text and "peak shaking moment:" in text
     assert "warning: made-up warning for the test" in text
+
+
+# -- found by fuzzing the commands: sizes no machine holds, and malformed sweep options --------
+
+@pytest.mark.parametrize("command", ["analyze", "centres", "balance", "sweep --list"])
+@pytest.mark.parametrize("steps", [10**12, 2**63, 10**20])
+def test_a_sweep_too_large_for_memory_is_refused_by_its_field(tmp_path, command, steps):
+    """Each of these ended in a MemoryError, ValueError or IndexError of numpy's linspace."""
+    scene = small_scene(tmp_path, steps=steps)
+    p = run(*command.split(), scene)
+    assert p.returncode == 2, p.stderr
+    assert "Traceback" not in p.stderr
+    assert f"drivers[0].steps: {steps} steps do not fit in memory" in p.stderr
+
+
+def test_a_solving_path_far_longer_than_the_sweep_is_refused():
+    """``centres --deg 1e12`` asked for a path of 5e11 points from the assembly configuration
+    (numpy's 3.6 TiB allocation, or 'Maximum allowed size exceeded'): the option is held to a
+    scene angle's limit, and a run given such driver values says what its path would take."""
+    import numpy as np
+
+    from linkage_sym.errors import SceneError
+    from linkage_sym.numeric.plan import compile_plan
+
+    p = run("centres", CRANK_ROCKER, "--deg", "1e12")
+    assert p.returncode == 2 and "Traceback" not in p.stderr, p.stderr
+    assert p.stderr.startswith("linkage-sym centres: --deg: an angle must be within +-1e+06 degrees")
+    assert run("centres", CRANK_ROCKER, "--deg", "3630").returncode == 0  # ten turns: solved
+    plan = compile_plan(linkage_sym.load_example("crank_rocker"))
+    one = lambda v: {"A": np.array([v])}  # noqa: E731
+    with pytest.raises(SceneError) as err:
+        plan.run(q=one(1e10), qd=one(1.0), qdd=one(0.0))
+    assert err.value.problems[0].startswith("drivers[0]: the solving path from the assembly")
+    assert "would add 2.86e+11 points to the 1 step (at most 1000000)" in err.value.problems[0]
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--samples", "BINARY"], "--samples: 'BINARY' is not a text (UTF-8) CSV file: byte 0xff at position 0"),
+    (["--monte-carlo", "10", "--tolerance", "l_AB=0.001", "--random-state", "-1"],
+     "--random-state: a whole number >= 0 is expected, got -1"),
+    (["--monte-carlo", "1000000000000", "--tolerance", "l_AB=0.001"],
+     "--monte-carlo: 1000000000000 designs do not fit in memory"),
+    (["--vary", "l_AB=0.02:0.03:1000000000000"], "--vary: 1000000000000 designs do not fit in memory"),
+    (["--vary", "l_AB=0.02:0.03:1000000", "--vary", "l_BC=0.05:0.06:1000000"],
+     "--vary: 1000000000000 designs do not fit in memory"),
+    (["--vary", "l_AB=0.02:0.03:3", "--dask", ""], "--dask: '' is not a scheduler address"),
+])
+def test_malformed_sweep_options_are_refused_by_name(tmp_path, args, message):
+    (tmp_path / "BINARY").write_bytes(b"\xff\xfe\x00l_AB\n")
+    pytest.importorskip("dask.distributed") if "--dask" in args else None
+    p = run("sweep", small_scene(tmp_path), *args, cwd=tmp_path)
+    assert p.returncode == 2 and "Traceback" not in p.stderr, p.stderr
+    assert p.stderr.startswith(f"linkage-sym sweep: {message}"), p.stderr

@@ -168,6 +168,9 @@ def dask_client(address, workers=None):
         client = Client(address, timeout=30)
     except OSError as err:
         raise SweepError("--dask", f"cannot reach the scheduler at {address!r}: {err}") from None
+    except ValueError as err:  # not an address dask can parse ('', 'tcp://', 'host:')
+        raise SweepError("--dask", f"{address!r} is not a scheduler address (HOST:PORT, "
+                                   f"tcp://HOST:PORT, or 'local'): {err}") from None
     return client, [client]
 
 

@@ -27,12 +27,14 @@ Examples
 from __future__ import annotations
 
 import csv
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from linkage_sym.design.errors import SweepError
+from linkage_sym.numeric import heap
 from linkage_sym.errors import finite_number
 
 __all__ = ["Designs", "grid", "monte_carlo", "read_samples", "parse_axis", "parse_tolerance",
@@ -54,6 +56,21 @@ class Designs:
 
     def __len__(self) -> int:
         return len(self.values)
+
+
+DESIGN_BYTES = 64
+"""Memory a design takes besides its parameters' values, at the least: its row of the
+result table (a few metrics) and the designs' bookkeeping."""
+
+
+def _fits(n_designs: int, n_names: int, field_name: str) -> None:
+    """Refuse a sweep whose designs' table alone would not fit in the memory left."""
+    need = n_designs * (8 * n_names + DESIGN_BYTES)
+    available = heap.available_memory()
+    if available is not None and need > available:
+        raise SweepError(field_name, f"{n_designs} designs do not fit in memory: their table "
+                                     f"alone takes {need / 2**30:.3g} GiB, and this process can "
+                                     f"take {available / 2**30:.3g} GiB more")
 
 
 def _finite(where: str, v) -> float:
@@ -78,6 +95,7 @@ def grid(axes) -> Designs:
         if len(v) == 0:
             raise SweepError(f"parameters[{n!r}]", "no value given")
         vals.append(v)
+    _fits(math.prod(len(v) for v in vals), len(names), "parameters")
     mesh = np.meshgrid(*vals, indexing="ij")
     table = np.stack([m.ravel() for m in mesh], axis=1)
     return Designs(names, table, "grid", tuple(zip(names, vals)))
@@ -112,6 +130,7 @@ def parse_axis(text: str) -> tuple[str, np.ndarray]:
             raise SweepError("--vary", f"{text!r}: N must be a whole number, got {parts[2]!r}") from None
         if n < 1:
             raise SweepError("--vary", f"{text!r}: N must be at least 1")
+        _fits(n, 1, "--vary")
         return name, np.linspace(lo, hi, n)
     return name, np.array([_finite(f"--vary {name}", p) for p in rest.split(",")])
 
@@ -154,7 +173,11 @@ def monte_carlo(base, tolerance, n: int, random_state: int = 0) -> Designs:
         raise SweepError("--monte-carlo", f"a number of designs is expected, got {n!r}") from None
     if n < 1:
         raise SweepError("--monte-carlo", f"at least one design is needed, got {n}")
+    if not (isinstance(random_state, (int, np.integer)) and not isinstance(random_state, bool)
+            and random_state >= 0):
+        raise SweepError("--random-state", f"a whole number >= 0 is expected, got {random_state!r}")
     names = tuple(tolerance)
+    _fits(n, len(names), "--monte-carlo")
     for k in names:
         if k not in base:
             raise SweepError("--tolerance", f"unknown parameter {k!r}")
@@ -177,9 +200,12 @@ def read_samples(path) -> Designs:
     """
     p = Path(path)
     try:
-        text = p.read_text()
+        text = p.read_text(encoding="utf-8")
     except OSError as err:
         raise SweepError("--samples", f"{str(path)!r}: {err.strerror or err}") from None
+    except UnicodeDecodeError as err:
+        raise SweepError("--samples", f"{str(path)!r} is not a text (UTF-8) CSV file: byte "
+                                      f"{err.object[err.start]:#04x} at position {err.start}") from None
     rows = [r for r in csv.reader(text.splitlines()) if any(c.strip() for c in r)]
     if not rows:
         raise SweepError("--samples", f"{str(path)!r} is empty; a header of parameter names is expected")

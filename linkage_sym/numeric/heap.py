@@ -16,10 +16,15 @@ after which blocks of that size come from the heap and their pages stay.
   should not pay them (``compile_plan`` warms the memory of its runs).
 
 On other allocators both are an allocation and a free.  A process does each
-size once: what it has settled or warmed, it keeps.
+size once: what it has settled or warmed, it keeps.  :func:`available_memory`
+tells how much more the process can take (result files are chunked by it, a
+sweep too large for it is refused before its arrays are made).
 """
 
 from __future__ import annotations
+
+import os
+from pathlib import Path
 
 import numpy as np
 
@@ -73,3 +78,41 @@ def warm(nbytes: int) -> int:
     bytearray(nbytes)  # allocated, zeroed, freed
     _warmed = nbytes
     return nbytes
+
+
+def _read_int(path: str) -> int | None:
+    try:
+        text = Path(path).read_text().strip()
+    except OSError:
+        return None
+    return int(text) if text.isdigit() else None
+
+
+def available_memory() -> int | None:
+    """Bytes this process can still take (``None`` if unknown).
+
+    Linux's estimate of memory available without swapping (``MemAvailable``
+    of ``/proc/meminfo``), lowered to what a cgroup's memory limit leaves
+    (v2 ``memory.max - memory.current``, v1 ``limit_in_bytes -
+    usage_in_bytes``); elsewhere the free physical pages.
+    """
+    found = []
+    try:
+        for line in Path("/proc/meminfo").read_text().splitlines():
+            if line.startswith("MemAvailable:"):
+                found.append(int(line.split()[1]) * 1024)
+                break
+    except (OSError, ValueError, IndexError):
+        pass
+    for limit, usage in (("/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory.current"),
+                         ("/sys/fs/cgroup/memory/memory.limit_in_bytes",
+                          "/sys/fs/cgroup/memory/memory.usage_in_bytes")):
+        lim, use = _read_int(limit), _read_int(usage)
+        if lim is not None and use is not None and lim < 2**60:
+            found.append(max(0, lim - use))
+    if not found:
+        try:
+            found.append(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
+        except (ValueError, OSError, AttributeError):
+            return None
+    return min(found)

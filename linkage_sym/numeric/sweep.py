@@ -28,8 +28,9 @@ import math
 
 import numpy as np
 
+from linkage_sym.errors import SceneError
 from linkage_sym.model import Scene
-from linkage_sym.numeric import accuracy, continuation
+from linkage_sym.numeric import accuracy, continuation, heap
 from linkage_sym.numeric.result import OK, SINGULAR, UNASSEMBLABLE, Analysis
 from linkage_sym.numeric.superposition import AMPLIFICATION_LIMIT
 from linkage_sym.numeric.transmission import transmission_angles
@@ -44,6 +45,10 @@ MAX_ANGLE_STEP = math.radians(2.0)
 """Largest driver increment (R drivers) between two points of the solving path."""
 MAX_SLIDE_STEP = 0.02
 """Largest driver increment (P drivers) along the path, as a fraction of the mechanism size."""
+MAX_EXTRA_PATH = 10**6
+"""Most path points a sweep may add to its steps (from the assembly configuration to the first
+step, and between steps farther apart than the increments above), or ten times its steps if
+that is more: beyond it the path would outgrow the sweep, and the scene is refused."""
 
 
 def singular_message(cond: float) -> str:
@@ -208,10 +213,26 @@ def solving_path(scene: Scene, names, q0: dict, L: float, Q: np.ndarray):
     lim = np.array(
         [MAX_ANGLE_STEP if scene.joint(n).type == "R" else MAX_SLIDE_STEP * L for n in names]
     )
-    n_pre = max(1, int(math.ceil(np.max(np.abs(Q[:, 0] - q0) / lim))))
-    pre = q0[:, None] + (Q[:, :1] - q0[:, None]) * (np.arange(n_pre) / n_pre)[None, :]
     N = Q.shape[1]
-    n_ref = max(1, int(math.ceil(np.max(np.abs(np.diff(Q, axis=1)) / lim[:, None])))) if N > 1 else 1
+    with np.errstate(over="ignore", invalid="ignore"):
+        to_first = np.abs(Q[:, 0] - q0) / lim
+        apart = np.max(np.abs(np.diff(Q, axis=1)) / lim[:, None], axis=1) if N > 1 else 0 * lim
+    extra = to_first + (N - 1) * np.maximum(apart - 1.0, 0.0)
+    if not np.all(extra <= max(MAX_EXTRA_PATH, 10 * N)):
+        k = int(np.argmax(np.where(np.isfinite(extra), extra, np.inf)))
+        i = [d.joint for d in scene.drivers].index(names[k])
+        unit = "°" if scene.joint(names[k]).type == "R" else " m"
+        scale = math.degrees(1.0) if unit == "°" else 1.0
+        raise SceneError([
+            f"drivers[{i}]: the solving path from the assembly configuration "
+            f"({q0[k] * scale:.6g}{unit}) to the first step ({Q[k, 0] * scale:.6g}{unit}) and "
+            f"on through the steps, at most {lim[k] * scale:.3g}{unit} a point, would add "
+            f"{extra[k]:.3g} points to the {N} step{'s' if N != 1 else ''} (at most "
+            f"{max(MAX_EXTRA_PATH, 10 * N)}); "
+            "start the sweep nearer the assembly configuration or give more steps"])
+    n_pre = max(1, int(math.ceil(np.max(to_first))))
+    pre = q0[:, None] + (Q[:, :1] - q0[:, None]) * (np.arange(n_pre) / n_pre)[None, :]
+    n_ref = max(1, int(math.ceil(np.max(apart)))) if N > 1 else 1
     if n_ref > 1:
         f = np.arange(n_ref) / n_ref
         seg = Q[:, :-1, None] + np.diff(Q, axis=1)[:, :, None] * f
@@ -222,7 +243,24 @@ def solving_path(scene: Scene, names, q0: dict, L: float, Q: np.ndarray):
 
 
 def scene_sweep(scene: Scene):
-    """Driver values ``(q, qd, qdd)`` of a scene's sweep: dicts of (N,) arrays."""
+    """Driver values ``(q, qd, qdd)`` of a scene's sweep: dicts of (N,) arrays.
+
+    Raises
+    ------
+    SceneError
+        If the sweep's driver values alone would not fit in the memory this process can
+        still take (:func:`heap.available_memory`), naming the drivers' ``steps``.
+    """
+    steps = scene.drivers[0].steps if scene.drivers else 0
+    need = 3 * 8 * steps * len(scene.drivers)  # q, qd, qdd: the path and results take more
+    # (the probe reads /proc: asked only where the answer could be no)
+    available = heap.available_memory() if need > 2**28 else None
+    if available is not None and need > available:
+        raise SceneError([
+            f"drivers[0].steps: {steps} steps do not fit in memory: the sweep's driver values "
+            f"alone take {need / 2**30:.3g} GiB, and this process can take "
+            f"{available / 2**30:.3g} GiB more; give fewer steps (or split the sweep into "
+            "several scenes)"])
     q, qd, qdd = {}, {}, {}
     for d in scene.drivers:
         q[d.joint] = np.linspace(d.start, d.stop, d.steps)

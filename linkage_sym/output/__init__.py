@@ -52,6 +52,7 @@ from typing import Callable
 
 import numpy as np
 
+from linkage_sym.numeric.heap import available_memory
 from linkage_sym.numeric.result import Analysis
 from linkage_sym.output.stats import Peak, SweepStats
 from linkage_sym.output.writers import (
@@ -108,44 +109,6 @@ Arrow arrays with their validity masks, and the encoded pages)."""
 FIXED_BYTES = 64 * 2**20
 """Memory a run needs besides its chunk (a JSON or CSV block of records, buffers)."""
 
-
-
-def _read_int(path: str) -> int | None:
-    try:
-        text = Path(path).read_text().strip()
-    except OSError:
-        return None
-    return int(text) if text.isdigit() else None
-
-
-def available_memory() -> int | None:
-    """Bytes this process can still take (``None`` if unknown).
-
-    Linux's estimate of memory available without swapping (``MemAvailable``
-    of ``/proc/meminfo``), lowered to what a cgroup's memory limit leaves
-    (v2 ``memory.max - memory.current``, v1 ``limit_in_bytes -
-    usage_in_bytes``); elsewhere the free physical pages.
-    """
-    found = []
-    try:
-        for line in Path("/proc/meminfo").read_text().splitlines():
-            if line.startswith("MemAvailable:"):
-                found.append(int(line.split()[1]) * 1024)
-                break
-    except (OSError, ValueError, IndexError):
-        pass
-    for limit, usage in (("/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory.current"),
-                         ("/sys/fs/cgroup/memory/memory.limit_in_bytes",
-                          "/sys/fs/cgroup/memory/memory.usage_in_bytes")):
-        lim, use = _read_int(limit), _read_int(usage)
-        if lim is not None and use is not None and lim < 2**60:
-            found.append(max(0, lim - use))
-    if not found:
-        try:
-            found.append(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
-        except (ValueError, OSError, AttributeError):
-            return None
-    return min(found)
 
 
 def bytes_per_step(n_values: int, method: str, newton: bool, fmt: str | None = None,

@@ -39,12 +39,12 @@ _MAGNITUDE_WHY = (
     "quantities (e.g. a coordinate x a mass x a speed^2 x a length) and every product must stay "
     "within the float64 range 1.8e308"
 )
-_ANGLE_WHY = (
+ANGLE_WHY = (
     f"an angle must be within +-{MAX_ANGLE_DEG:.0e} degrees (float64 resolves such an angle "
     "to 1e-10 degree; beyond, the direction it gives is lost)"
 )
 
-_ANGLE = {"limit": MAX_ANGLE_DEG, "limit_why": _ANGLE_WHY}
+_ANGLE = {"limit": MAX_ANGLE_DEG, "limit_why": ANGLE_WHY}
 """Keyword arguments of :meth:`FieldReader.number` for an angle in degrees."""
 
 _REQUIRED = object()
@@ -156,7 +156,7 @@ class FieldReader:
         if len(values) < min_length:
             self.add(where, f"must have at least {min_length} numbers, got {len(values)}")
             return None
-        limit, why = (MAX_ANGLE_DEG, _ANGLE_WHY) if angle else (MAX_MAGNITUDE, _MAGNITUDE_WHY)
+        limit, why = (MAX_ANGLE_DEG, ANGLE_WHY) if angle else (MAX_MAGNITUDE, _MAGNITUDE_WHY)
         out, ok = [], True
         for i, v in enumerate(values):
             x = _finite(v)
