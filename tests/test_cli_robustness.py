@@ -383,3 +383,59 @@ def test_malformed_sweep_options_are_refused_by_name(tmp_path, args, message):
     p = run("sweep", small_scene(tmp_path), *args, cwd=tmp_path)
     assert p.returncode == 2 and "Traceback" not in p.stderr, p.stderr
     assert p.stderr.startswith(f"linkage-sym sweep: {message}"), p.stderr
+
+
+def test_fuzzed_scenes_are_refused_or_solved_without_a_traceback(tmp_path):
+    """Scene files that ended in tracebacks: a gear mesh in a scene without ``links`` (a
+    TypeError placing the mesh), JSON nested 100,000 deep (RecursionError), a name with a
+    NUL and a slash used for plot files (ValueError of the file system), and a slider-crank
+    whose sweep ends exactly at the coupler's tangency, run at 20 digits (mpmath's complex
+    square root reached atan2)."""
+    gears = example_dict("gear_linkage")
+    del gears["links"]
+    (tmp_path / "gears.json").write_text(json.dumps(gears))
+    (tmp_path / "deep.json").write_text("[" * 100_000 + "]" * 100_000)
+    named = example_dict("crank_rocker")
+    named["name"] = "a/b\\c\n..\x00z"
+    named["drivers"][0]["steps"] = 5
+    (tmp_path / "named.json").write_text(json.dumps(named))
+    tangent = {
+        "name": "slider-crank", "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "slider"}],
+        "joints": [{"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
+                   {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": [0.02, 0.0]},
+                   {"name": "C", "type": "R", "links": ["coupler", "slider"], "at": [0.03, 0.0]},
+                   {"name": "G", "type": "P", "links": ["ground", "slider"], "at": [0.03, 0.0],
+                    "axis_deg": 0.0}],
+        "drivers": [{"joint": "A", "toward": "B", "start_deg": 150, "stop_deg": 210, "steps": 5,
+                     "speed": 1.0}],
+        "outputs": ["kinematics"]}
+    (tmp_path / "tangent.json").write_text(json.dumps(tangent))
+
+    p = run("analyze", str(tmp_path / "gears.json"))
+    assert p.returncode == 2 and "Traceback" not in p.stderr, p.stderr
+    assert "links: required key is missing" in p.stderr
+    for command in ("analyze", "structure"):
+        p = run(command, str(tmp_path / "deep.json"))
+        assert p.returncode == 2 and "Traceback" not in p.stderr, p.stderr
+        assert "invalid JSON for a scene: nested deeper than Python's JSON reader goes" in p.stderr
+    p = run("analyze", str(tmp_path / "named.json"), "--plots", str(tmp_path / "plots"))
+    assert p.returncode == 0, p.stderr
+    assert "a_b_c_.._z_positions.png" in files_under(tmp_path / "plots")
+    p = run("analyze", str(tmp_path / "tangent.json"), "--precision", "20", "-o",
+            str(tmp_path / "t.json"))
+    assert p.returncode == 0 and "Traceback" not in p.stderr, p.stderr
+    steps = json.loads((tmp_path / "t.json").read_text())["steps"]
+    # the float64 run took the ends' tangency; at 20 digits the coupler misses the slide there
+    assert [s["status"] for s in steps] == ["unassemblable", "ok", "ok", "ok", "unassemblable"]
+    assert steps[0]["message"].startswith("no real position at 20 digits")
+
+
+def test_scene_rows_beyond_the_designs_are_refused_without_listing_them(tmp_path):
+    """``--scene-rows 0:99999999999999`` listed 10^14 numbers (MemoryError) and a number over
+    2^63 overflowed numpy's int; both name the first design that does not exist."""
+    scene = small_scene(tmp_path)
+    for rows, first in (("0:99999999999999", 3), ("99999999999999999999999", 99999999999999999999999)):
+        p = run("sweep", scene, "--vary", "l_AB=0.02:0.03:3", "--write-scenes",
+                str(tmp_path / "ws"), f"--scene-rows={rows}")
+        assert p.returncode == 2 and "Traceback" not in p.stderr, p.stderr
+        assert p.stderr.startswith(f"linkage-sym sweep: --scene-rows: no design {first}: the designs are 0 to 2")

@@ -204,6 +204,7 @@ def mp_artifact(scene: Scene) -> dict:
 def _load_mp_functions(art: dict) -> dict:
     ns: dict = {}
     exec("from mpmath import *", ns)  # the names SymPy's mpmath printer uses
+    ns["sqrt"] = _real_sqrt  # a closed form's root: real, or no position at this precision
     out = {}
     for name, src in art["functions"].items():
         exec(compile(src, f"<linkage_sym mpmath:{name}>", "exec"), ns)
@@ -213,6 +214,19 @@ def _load_mp_functions(art: dict) -> dict:
 
 class _NotReal(Exception):
     """A closed form with no real value at this precision (a tangency missed by rounding)."""
+
+
+def _real_sqrt(x):
+    """``mpmath.sqrt`` of a real argument; a negative one (a tangency the float64 run took,
+    missed at this precision) raises :class:`_NotReal` instead of giving a complex root
+    that the closed form's ``atan2`` cannot take."""
+    if isinstance(x, mp.mpc):
+        if x.imag != 0:
+            raise _NotReal
+        x = x.real
+    if x < 0:
+        raise _NotReal
+    return mp.sqrt(x)
 
 
 def _real(values):

@@ -215,17 +215,26 @@ def _designs(scene, parameters, samples, monte_carlo, tolerance, random_state) -
 
 
 def _rows(rows, n: int) -> np.ndarray:
-    """The design numbers ``rows`` checked against the ``n`` designs, sorted, once each."""
-    try:
-        out = np.array([int(r) for r in rows], dtype=int)
-    except (TypeError, ValueError):
-        raise SweepError("scene_rows", f"design numbers are expected, got {rows!r}") from None
-    bad = [int(r) for r in out if not 0 <= r < n]
-    if bad:
-        raise SweepError("scene_rows", f"no design {bad[0]}: the designs are 0 to {n - 1}")
-    if not len(out):
+    """The design numbers ``rows`` (numbers, or ``range`` objects) checked against the ``n``
+    designs, sorted, once each."""
+    out = []
+    for r in rows:
+        if isinstance(r, range):  # checked by its ends before it is listed
+            if len(r) and not (0 <= r[0] < n and 0 <= r[-1] < n):
+                first = r[0] if not 0 <= r[0] < n else max(r[0], n)
+                raise SweepError("scene_rows", f"no design {first}: the designs are 0 to {n - 1}")
+            out.extend(r)
+            continue
+        try:
+            v = int(r)
+        except (TypeError, ValueError):
+            raise SweepError("scene_rows", f"design numbers are expected, got {rows!r}") from None
+        if isinstance(r, bool) or not 0 <= v < n:
+            raise SweepError("scene_rows", f"no design {r!r}: the designs are 0 to {n - 1}")
+        out.append(v)
+    if not out:
         raise SweepError("scene_rows", "no design named")
-    return np.unique(out)
+    return np.unique(np.array(out, dtype=int))
 
 
 def _write_scenes(model, designs, folder: Path, size: int, rows=None):

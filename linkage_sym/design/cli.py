@@ -190,14 +190,15 @@ def _sweep(args) -> int:
     return 0
 
 
-def parse_rows(text: str) -> list[int]:
+def parse_rows(text: str) -> list:
     """``--scene-rows``: design numbers and ranges ``A:B`` (A to B - 1; ``:B`` from 0),
-    comma-separated.
+    comma-separated; a range stays a ``range`` until the designs it names are checked
+    (``0:99999999999999`` names more designs than any sweep has).
 
     Examples
     --------
     >>> parse_rows("0,5,17"), parse_rows(":3"), parse_rows("10:12,4")
-    ([0, 5, 17], [0, 1, 2], [10, 11, 4])
+    ([0, 5, 17], [range(0, 3)], [range(10, 12), 4])
     """
     out = []
     for part in text.split(","):
@@ -208,7 +209,7 @@ def parse_rows(text: str) -> list[int]:
                 lo, hi = int(a) if a.strip() else 0, int(b)
                 if hi <= lo:
                     raise OptionError(f"--scene-rows: {part!r}: an empty range (A:B is A to B - 1)")
-                out += list(range(lo, hi))
+                out.append(range(lo, hi))
             else:
                 out.append(int(part))
         except ValueError:

@@ -69,8 +69,8 @@ def _fits(n_designs: int, n_names: int, field_name: str) -> None:
     available = heap.available_memory()
     if available is not None and need > available:
         raise SweepError(field_name, f"{n_designs} designs do not fit in memory: their table "
-                                     f"alone takes {need / 2**30:.3g} GiB, and this process can "
-                                     f"take {available / 2**30:.3g} GiB more")
+                                     f"alone takes {heap.gib(need)}, and this process can "
+                                     f"take {heap.gib(available)} more")
 
 
 def _finite(where: str, v) -> float:

@@ -12,18 +12,15 @@ that was not computed.
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import numpy as np
 
-from linkage_sym.plotting.style import new_figure, save
+from linkage_sym.plotting.style import new_figure, safe_stem as _stem, save
 
 __all__ = ["sweep_plots"]
 
 
-def _stem(text: str) -> str:
-    return re.sub(r"[\\/:*?\"<>|\s]+", "_", str(text)).strip("_") or "scene"
 
 
 def _numeric(res) -> list:

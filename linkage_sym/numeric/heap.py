@@ -24,6 +24,7 @@ sweep too large for it is refused before its arrays are made).
 from __future__ import annotations
 
 import os
+from decimal import Decimal
 from pathlib import Path
 
 import numpy as np
@@ -116,3 +117,14 @@ def available_memory() -> int | None:
         except (ValueError, OSError, AttributeError):
             return None
     return min(found)
+
+
+def gib(nbytes: int) -> str:
+    """``nbytes`` in GiB for a message, any integer however large (a float would overflow).
+
+    Examples
+    --------
+    >>> gib(3 * 2**30), gib(10**400)
+    ('3 GiB', '9.31e+390 GiB')
+    """
+    return f"{Decimal(int(nbytes)) / 2**30:.3g} GiB"

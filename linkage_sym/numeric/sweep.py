@@ -258,9 +258,8 @@ def scene_sweep(scene: Scene):
     if available is not None and need > available:
         raise SceneError([
             f"drivers[0].steps: {steps} steps do not fit in memory: the sweep's driver values "
-            f"alone take {need / 2**30:.3g} GiB, and this process can take "
-            f"{available / 2**30:.3g} GiB more; give fewer steps (or split the sweep into "
-            "several scenes)"])
+            f"alone take {heap.gib(need)}, and this process can take {heap.gib(available)} "
+            "more; give fewer steps (or split the sweep into several scenes)"])
     q, qd, qdd = {}, {}, {}
     for d in scene.drivers:
         q[d.joint] = np.linspace(d.start, d.stop, d.steps)

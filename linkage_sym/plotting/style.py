@@ -107,11 +107,22 @@ def length_unit(scene: Scene) -> tuple[str, float]:
     return ("mm", 1000.0) if scene.characteristic_length() < 1.0 else ("m", 1.0)
 
 
-def file_stem(scene: Scene, prefix: str | None) -> str:
-    """File-name stem: ``prefix`` or the scene name, made safe for a path."""
-    stem = prefix if prefix is not None else scene.name
-    stem = re.sub(r"[\\/:*?\"<>|\s]+", "_", str(stem)).strip("_")
+def safe_stem(text) -> str:
+    r"""``text`` made safe as part of a file name on any system: path separators, characters
+    Windows refuses, white space and control characters (a NUL ends a path) become ``_``.
+
+    Examples
+    --------
+    >>> safe_stem("a/b\\c\n..\x00z"), safe_stem(" "), safe_stem("crank-rocker")
+    ('a_b_c_.._z', 'scene', 'crank-rocker')
+    """
+    stem = re.sub(r"[\\/:*?\"<>|\s\x00-\x1f\x7f]+", "_", str(text)).strip("_")
     return stem or "scene"
+
+
+def file_stem(scene: Scene, prefix: str | None) -> str:
+    """File-name stem: ``prefix`` or the scene name, made safe for a path (:func:`safe_stem`)."""
+    return safe_stem(prefix if prefix is not None else scene.name)
 
 
 def ensure_dir(path) -> Path:

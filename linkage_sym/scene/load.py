@@ -82,9 +82,12 @@ def _read_json(path: str) -> Any:
         raise SceneError([f"{path}: not UTF-8 text (byte {err.start})"]) from err
     try:
         value = json.loads(text, object_pairs_hook=_JSONObject.from_pairs)
+        repeated = list(_repeated_keys(value, ""))
     except json.JSONDecodeError as err:
         raise SceneError([f"{path}: line {err.lineno}, column {err.colno}: invalid JSON: {err.msg}"]) from err
-    repeated = list(_repeated_keys(value, ""))
+    except RecursionError as err:  # arrays or objects nested some thousand levels deep
+        raise SceneError([f"{path}: invalid JSON for a scene: nested deeper than Python's JSON "
+                          "reader goes (a scene nests a few levels)"]) from err
     if repeated:
         # json.loads keeps the last of repeated keys silently; a scene must not
         raise SceneError([f"{path}: {field}: given more than once" for field in repeated])

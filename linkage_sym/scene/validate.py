@@ -279,7 +279,9 @@ class _SceneReader(FieldReader):
                 self.joints[name] = _JointInfo(i, jtype, pair, at)
             structure_ok = structure_ok and None not in (name, jtype, pair)
             if gear is not None and None not in gear:
-                if len(self.problems) == before:
+                # a mesh is placed between its two gears: not without them (a scene whose
+                # links are missing has no pair, and that problem is reported already)
+                if len(self.problems) == before and pair is not None:
                     meshes.append(MeshFields(i, name, pair, at, *gear))
                     joints.append(None)
             elif len(self.problems) == before and cam is not None:
