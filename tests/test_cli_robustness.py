@@ -439,3 +439,16 @@ def test_scene_rows_beyond_the_designs_are_refused_without_listing_them(tmp_path
                 str(tmp_path / "ws"), f"--scene-rows={rows}")
         assert p.returncode == 2 and "Traceback" not in p.stderr, p.stderr
         assert p.stderr.startswith(f"linkage-sym sweep: --scene-rows: no design {first}: the designs are 0 to 2")
+
+
+def test_a_load_schedule_with_an_invalid_period_names_it(tmp_path):
+    """A table schedule whose ``period_deg`` is NaN: the period was reported, then the table
+    was held to a period of None (TypeError)."""
+    d = example_dict("engine_four_stroke")
+    [load] = [ld for ld in d["loads"] if "table" in ld]
+    load["period_deg"] = float("nan")
+    (tmp_path / "s.json").write_text(json.dumps(d))  # Python's json writes NaN, and reads it
+    i = d["loads"].index(load)
+    p = run("analyze", str(tmp_path / "s.json"))
+    assert p.returncode == 2 and "Traceback" not in p.stderr, p.stderr
+    assert f"loads[{i}].period_deg: must be a finite number >= 0, got NaN" in p.stderr

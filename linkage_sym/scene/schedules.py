@@ -124,7 +124,9 @@ def _read_table(r: FieldReader, entry, path, d: Driver, period) -> LoadTable | N
     if R:
         q = [math.radians(v) for v in q]
         span = q[-1] - q[0]
-        if abs(span - period) <= SAME_ANGLE * period:
+        if period is None:  # an invalid period_deg, reported already: nothing to hold it to
+            pass
+        elif abs(span - period) <= SAME_ANGLE * period:
             if scale[0] != scale[-1]:
                 r.add(f"{tp}.scale", f"the first and last {qkey} are one angle (a period apart) with "
                       f"different factors {scale[0]:g} and {scale[-1]:g}")
