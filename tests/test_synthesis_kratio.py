@@ -261,6 +261,19 @@ def test_slider_crank_offset_beyond_H_cot_theta_is_refused(K, factor):
     assert err.value.field == "offset" and "too large for the stroke" in err.value.reason
 
 
+@pytest.mark.parametrize("K, e", [(1 + 1e-6, 1e-10), (1 + 1e-4, 1e-12), (1 + 1e-9, 1e-10)])
+def test_slider_crank_with_small_theta_and_offset_meets_K(K, e):
+    """The pivot's angle alpha from cos(2 alpha + theta) = cos(theta) - e/R: taken as
+    acos(cos(theta) - e/R) it lost every digit of a small theta or e/R (K = 1 + 1e-6 with
+    e = 1e-10 gave K - 1 = 1.017e-6; K = 1 + 1e-9 a negative alpha, refused as a connecting
+    rod of 0 m)."""
+    d = kratio.slider_crank(K, 0.1, offset=e)
+    assert d.lengths["offset"] == e and d.extra["alpha"] > 0
+    got_H, got_K = slider_stroke_and_K(d.scene)
+    assert got_H == pytest.approx(0.1, rel=TOL)
+    assert got_K == pytest.approx(K, rel=TOL)
+
+
 def test_slider_crank_best_transmission_angle():
     """Without a condition: no offset on a fine grid gives a larger minimum transmission angle
     (acos((a + e)/b), lengths from the stroke's extremes written here) than the chosen design."""

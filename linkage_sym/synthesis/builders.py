@@ -39,10 +39,14 @@ import math
 
 from linkage_sym.structure.grashof import classify
 from linkage_sym.synthesis.common import (
+    MAX_ANGLE_DEG,
+    MAX_SPREAD,
     TANGENCY,
     Design,
     SynthesisError,
     acute,
+    coordinate,
+    crank_apart,
     cross,
     fmt_deg,
     fmt_len,
@@ -52,10 +56,19 @@ from linkage_sym.synthesis.common import (
     scene_name,
     sweep_options,
     triangle_angle,
+    within_reach,
 )
 
 BRANCHES = ("open", "crossed")
 SLIDER_BRANCHES = ("right", "left")
+
+GUIDE_CLEARANCE = 1e-12
+"""A guide-bar's crank and frame distance must differ by more than this fraction
+of the frame distance: equal, the block would pass through the guide's pivot ``D``."""
+
+MAX_CRANK_DEG = MAX_ANGLE_DEG - 360.0
+"""Largest magnitude of the assembly's crank angle (degrees): the driver turns a
+full turn from it, and both ends must be angles the scene format holds."""
 
 
 def _driver(crank_deg: float, steps: int, speed: float) -> dict:
@@ -71,6 +84,22 @@ def _choice(name: str, value, allowed) -> str:
     if value not in allowed:
         raise SynthesisError(name, f"one of {', '.join(allowed)} is expected, got {value!r}")
     return value
+
+
+def _crank_deg(value) -> float:
+    """The assembly's crank angle (degrees), checked against :data:`MAX_CRANK_DEG`."""
+    x = number("crank_deg", value)
+    if not abs(x) <= MAX_CRANK_DEG:
+        raise SynthesisError("crank_deg", f"must be within +-{MAX_CRANK_DEG:g} degrees, got {x:g}: "
+                             "the driver turns a full turn from it, and the scene format holds "
+                             f"angles within +-{MAX_ANGLE_DEG:.0e} degrees (float64 resolves such "
+                             "an angle to 1e-10 degree; beyond, the direction it gives is lost)")
+    return x
+
+
+def _size(points) -> float:
+    """The largest distance between two of the points (the mechanism's size)."""
+    return max(math.dist(p, q) for p in points for q in points)
 
 
 def _crank_pin(a: float, crank_deg: float) -> tuple[float, float]:
@@ -169,10 +198,15 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
     """
     a, b, c, d = (positive(n, v) for n, v in
                   (("crank", crank), ("coupler", coupler), ("rocker", rocker), ("ground", ground)))
-    phi_deg = number("crank_deg", crank_deg)
+    phi_deg = _crank_deg(crank_deg)
     branch = _choice("branch", branch, BRANCHES)
+    point = None if coupler_point is None else _pair("coupler_point", coupler_point)
     steps, speed = sweep_options(steps, speed)
     name = scene_name(name)
+    # C stays within the rocker of D, the point P within |P - B| of B, as the crank turns
+    within_reach("ground" if d >= c else "rocker", d + c, "ground + rocker")
+    if point is not None:
+        within_reach("coupler_point", a + math.hypot(*point), "crank + |P - B|")
     longest = max(a, b, c, d)
     if 2 * longest >= a + b + c + d:
         raise SynthesisError("crank", f"no four-bar has these lengths: the longest, "
@@ -202,6 +236,8 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
     x = (b * b - c * c + r * r) / (2.0 * r)
     sign = 1.0 if branch == "open" else -1.0
     cx, cy = bx + x * ux - sign * h * uy, by + x * uy + sign * h * ux
+    size = _size([(0.0, 0.0), (bx, by), (cx, cy), (d, 0.0)])
+    crank_apart("crank", a, size, "the crank")
     joints = [
         {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
         {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": _xy((bx, by))},
@@ -212,11 +248,17 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
              "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "rocker"}],
              "joints": joints, "drivers": [_driver(phi_deg, steps, speed)],
              "outputs": ["kinematics"]}
-    if coupler_point is not None:
-        u, v = _pair("coupler_point", coupler_point)
+    if point is not None:
+        u, v = point
         ex, ey = (cx - bx) / b, (cy - by) / b
-        scene["points"] = [{"name": "P", "link": "coupler",
-                            "at": _xy((bx + u * ex - v * ey, by + u * ey + v * ex))}]
+        at = _xy((bx + u * ex - v * ey, by + u * ey + v * ex))
+        if math.hypot(*at) > MAX_SPREAD * size:
+            raise SynthesisError("coupler_point", f"P is {fmt_len(math.hypot(*at))} from the crank "
+                                 f"pivot A, more than {MAX_SPREAD:.0e} times the linkage's size "
+                                 f"({fmt_len(size)}, the largest distance between two joints): "
+                                 "float64 keeps 16 digits of a coordinate, so fewer than 7 of the "
+                                 "linkage's geometry would be left")
+        scene["points"] = [{"name": "P", "link": "coupler", "at": at}]
     notes = [f"Grashof class: {g.name} ({g.detail})"]
     extra = {}
     K = theta = gmin = where_min = None
@@ -243,7 +285,7 @@ def _pair(name: str, value) -> tuple[float, float]:
         u, v = value
     except (TypeError, ValueError):
         raise SynthesisError(name, f"two numbers U,V are expected, got {value!r}") from None
-    return number(name, u), number(name, v)
+    return coordinate(name, u), coordinate(name, v)
 
 
 def fourbar_extreme_angle(a: float, b: float, c: float, d: float) -> float:
@@ -320,11 +362,12 @@ def slider_crank(crank, coupler, offset=0.0, *, crank_deg=0.0, branch="right", n
     linkage_sym.synthesis.common.SynthesisError: crank_deg: at -90° the connecting rod (0.1 m) cannot reach the slider's line: it is 0.25 m from the crank pin (the crank turns over part of a turn only: crank + |offset| = 0.25 m > rod = 0.1 m)
     """
     a, b = positive("crank", crank), positive("coupler", coupler)
-    e = number("offset", offset)
-    phi_deg = number("crank_deg", crank_deg)
+    e = coordinate("offset", offset)
+    phi_deg = _crank_deg(crank_deg)
     branch = _choice("branch", branch, SLIDER_BRANCHES)
     steps, speed = sweep_options(steps, speed)
     name = scene_name(name)
+    within_reach("coupler" if b >= a else "crank", a + b, "crank + connecting rod")
     bx, by = _crank_pin(a, phi_deg)
     dy = abs(e - by)
     full = b > a + abs(e)
@@ -340,6 +383,7 @@ def slider_crank(crank, coupler, offset=0.0, *, crank_deg=0.0, branch="right", n
                                           "the slider's line (a dead-centre position): the assembly "
                                           "mode is not defined there; choose another crank angle")
     cx = bx + (h if branch == "right" else -h)
+    crank_apart("crank", a, _size([(0.0, 0.0), (bx, by), (cx, e)]), "the crank")
     joints = [
         {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
         {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": _xy((bx, by))},
@@ -441,13 +485,14 @@ def guide_bar(crank, ground, *, crank_deg=0.0, name="guide-bar", steps=361, spee
     linkage_sym.synthesis.common.SynthesisError: crank: equals ground (0.05 m): the block would pass through the guide's pivot D, where the guide's direction is undefined
     """
     a, d = positive("crank", crank), positive("ground", ground)
-    phi_deg = number("crank_deg", crank_deg)
+    phi_deg = _crank_deg(crank_deg)
     steps, speed = sweep_options(steps, speed)
     name = scene_name(name)
-    if abs(a - d) <= 1e-12 * d:
+    if abs(a - d) <= GUIDE_CLEARANCE * d:
         raise SynthesisError("crank", f"equals ground ({fmt_len(d)}): the block would pass through "
                                       "the guide's pivot D, where the guide's direction is undefined")
     bx, by = _crank_pin(a, phi_deg)
+    crank_apart("crank", a, _size([(0.0, 0.0), (bx, by), (d, 0.0)]), "the crank")
     axis = math.degrees(math.atan2(by, bx - d))
     joints = [
         {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},

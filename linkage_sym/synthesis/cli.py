@@ -161,15 +161,28 @@ def _add_note(design, note):
 
 
 def _read_positions(path):
+    """The parsed JSON of the ``--positions`` file; every failure names the option.
+
+    Integers are read as floats (``parse_int``), as the positions are: an
+    integer of more than 4300 digits would otherwise stop ``json`` itself
+    (Python's limit on converting such strings), and one beyond float64's range
+    becomes ``inf``, refused with the position that holds it.
+    """
     from linkage_sym.cli_common import OptionError
 
     try:
         with open(path, encoding="utf-8") as fh:
-            return json.load(fh)
+            return json.load(fh, parse_int=float)
     except OSError as err:
         raise OptionError(f"--positions: cannot read {path!r}: {err.strerror}") from err
+    except UnicodeDecodeError as err:
+        raise SynthesisError("positions", f"{path!r} is not a text (UTF-8) JSON file: byte "
+                                          f"{err.object[err.start]:#04x} at position {err.start}") from None
     except json.JSONDecodeError as err:
         raise OptionError(f"--positions: {path!r} is not valid JSON: {err}") from err
+    except RecursionError:
+        raise SynthesisError("positions", f"{path!r} nests its arrays too deeply to be read (positions "
+                                          "are a list of 2 or 3 lists of 4 numbers)") from None
 
 
 def _equations(args) -> int:

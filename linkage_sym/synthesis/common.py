@@ -27,6 +27,45 @@ TANGENCY = 1e-9
 assembly configuration: below it the configuration is a dead-centre position
 whose assembly mode the solver cannot tell (the plan would refuse it)."""
 
+# The scene format's limits (linkage_sym.scene.fields and linkage_sym.scene.validate), which
+# every written scene must meet.  Repeated here, not imported: importing linkage_sym.scene loads
+# SciPy, and the synthesis is NumPy only; tests/test_synthesis_cli.py checks they are equal.
+
+MAX_LENGTH = 1e30
+"""Largest length or coordinate (m) of a request or a design: the scene format's
+largest magnitude of a number (``linkage_sym.scene.fields.MAX_MAGNITUDE``).  The
+synthesis squares lengths and divides them by sines; with every length within
+1e30 no product leaves the float64 range (1.8e308), and the written scene's
+coordinates are checked against the same limit."""
+
+MIN_LENGTH = 1e-30
+"""Smallest length (m) of a request or a design: the scene format's smallest
+mechanism (``linkage_sym.scene.validate.MIN_SIZE``); products of up to ten such
+lengths stay above float64's smallest normal number (2.2e-308)."""
+
+MAX_ANGLE_DEG = 1e6
+"""Largest magnitude of an angle in degrees (``linkage_sym.scene.fields.MAX_ANGLE_DEG``)."""
+
+COINCIDENCE = 1e-9
+"""Two joints closer than this fraction of the mechanism's size are one point to
+the scene format (``linkage_sym.scene.validate.COINCIDENCE_TOLERANCE``): the
+crank pin ``B`` must be farther from the crank's pivot ``A``."""
+
+MAX_SPREAD = 1e9
+"""Farthest a joint may lie from the origin, in sizes of the mechanism
+(``linkage_sym.scene.validate.MAX_SPREAD``)."""
+
+LENGTH_WHY = (f"a length must lie within {MIN_LENGTH:.0e} m to {MAX_LENGTH:.0e} m (the scene "
+              f"format's limits: coordinates within +-{MAX_LENGTH:.0e} m, a mechanism no smaller "
+              f"than {MIN_LENGTH:.0e} m): the solver multiplies up to ten lengths, and every product "
+              "must stay within the float64 range 2.2e-308 to 1.8e308")
+"""Why a length outside ``[MIN_LENGTH, MAX_LENGTH]`` is refused."""
+
+MAGNITUDE_WHY = (f"must be within +-{MAX_LENGTH:.0e} (SI units): the solver multiplies up to ten "
+                 "such quantities (e.g. a coordinate x a speed^2 x a length) and every product "
+                 "must stay within the float64 range 1.8e308")
+"""Why a coordinate, an offset or a speed beyond ``MAX_LENGTH`` is refused (the scene format's words)."""
+
 
 class SynthesisError(ValueError):
     """A request that no linkage meets, or that is malformed.
@@ -122,18 +161,85 @@ def positive(name: str, value) -> float:
     Traceback (most recent call last):
     ...
     linkage_sym.synthesis.common.SynthesisError: crank: a length > 0 is expected, got 0
+    >>> positive("stroke", 1e308)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    linkage_sym.synthesis.common.SynthesisError: stroke: a length must lie within 1e-30 m to 1e+30 m (the scene format's limits: ..., got 1e+308
     """
     x = number(name, value)
     if not x > 0:
         raise SynthesisError(name, f"a length > 0 is expected, got {value!r}")
+    if not MIN_LENGTH <= x <= MAX_LENGTH:
+        raise SynthesisError(name, f"{LENGTH_WHY}, got {x:g}")
+    return x
+
+
+def coordinate(name: str, value) -> float:
+    """``value`` as a finite float within ``+-MAX_LENGTH``, or :class:`SynthesisError`.
+
+    For a coordinate or an offset (m), of either sign and possibly 0.
+
+    Examples
+    --------
+    >>> coordinate("offset", -0.02)
+    -0.02
+    >>> coordinate("offset", -1e31)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    linkage_sym.synthesis.common.SynthesisError: offset: must be within +-1e+30 (SI units): ..., got -1e+31
+    """
+    x = number(name, value)
+    if not abs(x) <= MAX_LENGTH:
+        raise SynthesisError(name, f"{MAGNITUDE_WHY}, got {x:g}")
     return x
 
 
 def sweep_options(steps, speed) -> tuple[int, float]:
-    """The driver's ``steps`` (an integer >= 2) and ``speed`` (finite), checked."""
+    """The driver's ``steps`` (an integer >= 2) and ``speed`` (finite, within ``+-MAX_LENGTH``), checked."""
     if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 2:
         raise SynthesisError("steps", f"an integer >= 2 is expected, got {steps!r}")
-    return int(steps), number("speed", speed)
+    return int(steps), coordinate("speed", speed)
+
+
+def crank_apart(name: str, crank: float, size: float, why: str, hint: str = "") -> None:
+    """Refuse a crank within :data:`COINCIDENCE` of the mechanism's ``size``, naming ``name``.
+
+    ``size`` is the largest distance between two joints (or a bound above it);
+    ``why`` says what made the crank so short, ``hint`` what to change.
+
+    Examples
+    --------
+    >>> crank_apart("crank", 1e-12, 1.0, "the crank")
+    Traceback (most recent call last):
+    ...
+    linkage_sym.synthesis.common.SynthesisError: crank: the crank is 1e-12 m, within 1e-09 of the linkage's size (1 m), where the scene format takes the crank pin B and its pivot A for one point (the driver would have no direction)
+    """
+    if not crank > COINCIDENCE * size:
+        raise SynthesisError(name, f"{why} is {fmt_len(crank)}, within {COINCIDENCE:.0e} of the "
+                                   f"linkage's size ({fmt_len(size)}), where the scene format takes "
+                                   "the crank pin B and its pivot A for one point (the driver would "
+                                   f"have no direction){hint}")
+
+
+def within_reach(name: str, reach: float, what: str) -> None:
+    """Refuse a linkage whose joints come more than :data:`MAX_LENGTH` from the origin.
+
+    ``reach`` is the largest distance from the origin a joint reaches as the
+    crank turns (or a bound above it); ``what`` names that distance.
+
+    Examples
+    --------
+    >>> within_reach("rocker", 2e30, "ground + rocker")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    linkage_sym.synthesis.common.SynthesisError: rocker: the joints come up to ground + rocker = 2e+30 m from the crank pivot A as the crank turns, beyond the scene format's +-1e+30 m on coordinates ...
+    """
+    if not reach <= MAX_LENGTH:
+        raise SynthesisError(name, f"the joints come up to {what} = {fmt_len(reach)} from the crank "
+                                   f"pivot A as the crank turns, beyond the scene format's "
+                                   f"+-{MAX_LENGTH:.0e} m on coordinates (the solver multiplies up "
+                                   "to ten such lengths, and every product must stay within the "
+                                   "float64 range 1.8e308)")
 
 
 def scene_name(name) -> str:

@@ -74,9 +74,14 @@ import numpy as np
 
 from linkage_sym.synthesis import builders
 from linkage_sym.synthesis.common import (
+    COINCIDENCE,
+    MAX_LENGTH,
+    MIN_LENGTH,
     PI,
     Design,
     SynthesisError,
+    coordinate,
+    crank_apart,
     cross,
     fmt_deg,
     fmt_len,
@@ -99,7 +104,8 @@ def extreme_position_angle(K) -> float:
     Raises
     ------
     SynthesisError
-        ``K <= 1`` or not a finite number.
+        ``K <= 1`` or not a finite number; ``K`` so large that ``theta``
+        rounds to ``pi`` (180 degrees) in float64 (from about ``K = 1e16``).
 
     Examples
     --------
@@ -109,6 +115,10 @@ def extreme_position_angle(K) -> float:
     Traceback (most recent call last):
     ...
     linkage_sym.synthesis.common.SynthesisError: K: the stroke-time ratio is the slower stroke's time over the faster's, so K >= 1; got 0.8
+    >>> extreme_position_angle(1e308)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    linkage_sym.synthesis.common.SynthesisError: K: K = 1e+308 is too large: θ = 180°·(K - 1)/(K + 1) rounds to 180° in float64 ...
     """
     K = number("K", K)
     if K < 1:
@@ -119,7 +129,52 @@ def extreme_position_angle(K) -> float:
                                   "degenerates into the line C1C2 and fixes no crank pivot; build "
                                   "a linkage without quick return from its dimensions "
                                   "('linkage-sym new')")
-    return PI * (K - 1.0) / (K + 1.0)
+    theta = PI * ((K - 1.0) / (K + 1.0))  # the ratio first: PI * (K - 1) overflows for K near 1e308
+    if not theta < PI:
+        raise SynthesisError("K", f"K = {K:g} is too large: θ = 180°·(K - 1)/(K + 1) rounds to 180° "
+                                  "in float64 (it does from about K = 1e16 on), and the faster stroke "
+                                  "would take no crank angle (π - θ = 0): no linkage has such extreme "
+                                  "positions; each design has a smaller bound (a slider-crank K < 3, "
+                                  "a crank-rocker θ < 90° + ψ/2, a guide-bar K < "
+                                  f"{_GUIDE_K_MAX:.3g})")
+    return theta
+
+
+def _check_design(K, theta, lengths: dict, reach: float, size: float, scale: str, value: float,
+                  proportional: bool, short: tuple | None = None) -> None:
+    """Refuse a design the scene format cannot hold, before the builders are asked for it.
+
+    ``lengths``: the design's link lengths by name (the crank's is ``"crank"``);
+    ``reach``: the farthest a joint comes from the crank pivot as the crank
+    turns (the builders' bound); ``size``: a bound above the largest distance
+    between two joints; ``scale``: the requested length (``value``) that sets
+    the design's size, named in the refusals of a design too large or too
+    small; ``proportional``: the design is ``value`` times a shape fixed by
+    ``K`` (and the swing), so the bound on ``value`` can be given; ``short``:
+    ``(field, why, hint)`` of the refusal of a crank too short against the
+    size (by default ``K`` too close to 1).
+    """
+    field, why, hint = short or ("K", f"K = {K:.17g} (θ = {fmt_deg(theta)}) is too close to 1 for "
+                                 "this request: the crank", "; ask for a larger K (the crank "
+                                 "shrinks against the other links as K goes to 1)")
+    crank_apart(field, lengths["crank"], size, why, hint)
+    big = max(reach, *lengths.values())
+    if not big <= MAX_LENGTH:
+        bound = (f"; with this K the {scale} must be below {fmt_len(value * MAX_LENGTH / big)}"
+                 if proportional else f"; ask for a smaller {scale}")
+        raise SynthesisError(scale, f"with K = {K:g} (θ = {fmt_deg(theta)}) the linkage's joints "
+                                    f"come up to {fmt_len(big)} from the crank pivot A, beyond the "
+                                    f"scene format's +-{MAX_LENGTH:.0e} m on coordinates (the solver "
+                                    "multiplies up to ten such lengths, and every product must stay "
+                                    f"within the float64 range 1.8e308){bound}")
+    which, small = min(lengths.items(), key=lambda item: item[1])
+    if not small >= MIN_LENGTH:
+        bound = (f"; with this K the {scale} must be at least {fmt_len(value * MIN_LENGTH / small)}"
+                 if proportional else f"; ask for a larger {scale}")
+        raise SynthesisError(scale, f"with K = {K:g} (θ = {fmt_deg(theta)}) the {which} would be "
+                                    f"{fmt_len(small)}, below the scene format's smallest length "
+                                    f"{MIN_LENGTH:.0e} m (products of up to ten lengths must stay "
+                                    f"above float64's smallest normal number 2.2e-308){bound}")
 
 
 def _golden_max(f, lo: float, hi: float, tol: float = ALPHA_TOL) -> float:
@@ -359,6 +414,18 @@ def crank_rocker(K, rocker, swing_deg, *, ground=None, crank=None, name="crank-r
         notes.append(f"two crank pivots meet {how} (one on each auxiliary arc): chosen the one with "
                      f"the larger minimum transmission angle, {fmt_deg(gmin)} on the "
                      f"{arc_name[side]} (the other: {fmt_deg(other[0])} on the {arc_name[other[1]]})")
+    a, b, _, d = (float(v) for v in fr.design_lengths(alpha, side))
+    a, d = exact.get("crank", a), exact.get("ground", d)
+    # at C1 the crank and coupler are in line: |AC1| = a + b; |BD| <= min(a + d, b + c)
+    scale, value = ("ground", d) if ground is not None and d >= c else ("rocker", c)
+    short = None  # K too close to 1: the linkage grows as 1/sin(theta) about a crank <= the chord
+    if crank is not None:
+        short = ("crank", "the crank asked for", "; ask for a longer crank")
+    elif math.sin(psi / 2) < math.sin(theta):  # the chord, and the crank, shrink with the swing
+        short = ("swing_deg", f"the swing {psi_deg:g}° is too small for this request: the crank",
+                 "; ask for a larger swing")
+    _check_design(K, theta, {"crank": a, "coupler": b, "rocker": c, "ground": d}, d + c,
+                  max(a + b, c, d, min(a + d, b + c)), scale, value, how is None, short)
     design = _rocker_design(fr, alpha, side, name, steps, speed, exact)
     extra = {**design.extra, "arc": "far" if side == 1 else "near", "alpha": alpha,
              "pivot_design_frame": fr.pivot(alpha, side).tolist()}
@@ -479,7 +546,7 @@ def slider_crank(K, stroke, *, offset=None, crank=None, name="slider-crank", ste
     sign = 1.0
     notes = []
     if offset is not None:
-        e = number("offset", offset)
+        e = coordinate("offset", offset)
         if e == 0:
             raise SynthesisError("offset", "0 gives no quick return (θ = 0); K > 1 needs an offset")
         sign = math.copysign(1.0, e)
@@ -490,7 +557,9 @@ def slider_crank(K, stroke, *, offset=None, crank=None, name="slider-crank", ste
                                  f"be below H·cot θ = {fmt_len(e_max)} (the foot of the crank pivot "
                                  f"on the slider's line must lie outside the stroke); got "
                                  f"{fmt_len(abs(e))}")
-        alpha = 0.5 * (math.acos(math.cos(theta) - abs(e) / R) - theta)
+        # cos(2 alpha + theta) = cos(theta) - |e|/R, solved through 1 - cos x = 2 sin^2(x/2):
+        # acos(cos(theta) - |e|/R) loses every digit of a small theta or |e|/R (K near 1)
+        alpha = math.asin(math.sqrt(math.sin(theta / 2) ** 2 + abs(e) / (2 * R))) - theta / 2
     elif crank is not None:
         a = positive("crank", crank)
         lo, hi = H * math.tan(theta / 2) / 2, H / 2
@@ -513,6 +582,9 @@ def slider_crank(K, stroke, *, offset=None, crank=None, name="slider-crank", ste
         e = abs(float(offset))
     elif crank is not None:
         a = float(crank)
+    # at the far extreme A, B and C are in line: |AC1| = a + b is the size and the reach
+    _check_design(K, theta, {"crank": a, "connecting rod": b}, a + b, a + b, "stroke", H,
+                  offset is None and crank is None)
     C1 = np.array([-H / 2, 0.0])
     l1 = a + b
     A = C1 + l1 * np.array([math.cos(alpha), math.sin(alpha)])
@@ -541,18 +613,44 @@ def guide_bar(K, ground, *, name="guide-bar", steps=361, speed=1.0) -> Design:
     at the extremes the guide is tangent to the crank circle.  The scene is
     assembled at one extreme (crank angle ``90 - theta/2`` degrees).
 
+    ``K`` must leave a crank longer than 1e-9 of the frame distance (the scene
+    format's coincidence tolerance: ``K`` above about ``1 + 1.3e-9``) and
+    shorter than it by more than
+    :data:`~linkage_sym.synthesis.builders.GUIDE_CLEARANCE` (``K`` below about 2.2e6).
+
     Examples
     --------
     >>> d = guide_bar(2.0, 0.4)
     >>> round(d.lengths["crank"], 15), round(math.degrees(d.extra["swing"]), 9)
     (0.2, 60.0)
+    >>> guide_bar(1e7, 0.4)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    linkage_sym.synthesis.common.SynthesisError: K: K = 1e+07 is too large for a guide-bar: ... the guide-bar needs K < 2.22144e+06
     """
     theta = extreme_position_angle(K)
+    K = float(K)
     d = positive("ground", ground)
     a = d * math.sin(theta / 2)
+    if not d - a > builders.GUIDE_CLEARANCE * d:
+        raise SynthesisError("K", f"K = {K:g} is too large for a guide-bar: its crank d·sin(θ/2) "
+                                  f"(θ = {fmt_deg(theta)}) would equal the frame distance to "
+                                  f"{builders.GUIDE_CLEARANCE:g} of it, and the block would pass "
+                                  "through the guide's pivot D, where the guide's direction is "
+                                  f"undefined; the guide-bar needs K < {_GUIDE_K_MAX:.6g}")
+    # the joints A, B (the block's too) and D: the size is d (|AB| = a < d, |BD| = sqrt(d² - a²))
+    t_min = 2.0 * math.asin(COINCIDENCE)
+    _check_design(K, theta, {"crank": a, "ground": d}, d, d, "ground", d, True,
+                  ("K", f"K = {K:.17g} (θ = {fmt_deg(theta)}) is too close to 1 for a guide-bar: "
+                   "its crank d·sin(θ/2)", "; the guide-bar needs K > "
+                   f"{(PI + t_min) / (PI - t_min):.12g}"))
     design = builders.guide_bar(a, d, crank_deg=90.0 - math.degrees(theta) / 2, name=name,
                                 steps=steps, speed=speed)
-    return dataclasses.replace(design, K=float(K), theta=theta)
+    return dataclasses.replace(design, K=K, theta=theta)
 
+
+_GUIDE_K_MAX = PI / (2.0 * math.asin(math.sqrt(builders.GUIDE_CLEARANCE / 2.0))) - 1.0
+"""Largest ``K`` of a guide-bar: ``a = d sin(theta/2) = d cos(pi/(K + 1))`` is within
+``GUIDE_CLEARANCE d`` of ``d`` from there on (about 2.2e6)."""
 
 __all__ = ["crank_rocker", "extreme_position_angle", "guide_bar", "slider_crank"]

@@ -33,15 +33,19 @@ import math
 import numpy as np
 
 from linkage_sym.synthesis.common import (
+    MAX_LENGTH,
+    MAX_SPREAD,
+    MIN_LENGTH,
     PI,
     TANGENCY,
     Design,
     SynthesisError,
     acute,
+    coordinate,
+    crank_apart,
     cross,
     fmt_deg,
     fmt_len,
-    number,
     scene_name,
     sweep_options,
     triangle_angle,
@@ -69,7 +73,8 @@ def read_positions(positions) -> list[np.ndarray]:
     Raises
     ------
     SynthesisError
-        Not 2 or 3 rows of 4 finite numbers; a zero coupler; a coupler whose
+        Not 2 or 3 rows of 4 finite numbers within +-1e30 (m); a coupler
+        shorter than 1e-30 m (the scene format's smallest mechanism); a coupler whose
         length changes between positions by more than :data:`RIGID_TOL`; a
         moving pivot that does not move.
 
@@ -88,10 +93,14 @@ def read_positions(positions) -> list[np.ndarray]:
         if not isinstance(row, (list, tuple)) or len(row) != 4:
             raise SynthesisError(f"positions[{i}]", f"four numbers [Bx, By, Cx, Cy] are expected, "
                                                     f"got {row!r}")
-        rows.append(np.array([number(f"positions[{i}][{k}]", v) for k, v in enumerate(row)]))
+        rows.append(np.array([coordinate(f"positions[{i}][{k}]", v) for k, v in enumerate(row)]))
     L = math.hypot(rows[0][2] - rows[0][0], rows[0][3] - rows[0][1])
     if L == 0:
         raise SynthesisError("positions[0]", "B and C coincide: the coupler has no length")
+    if L < MIN_LENGTH:
+        raise SynthesisError("positions[0]", f"the coupler BC is {fmt_len(L)} long, below the scene "
+                             f"format's smallest length {MIN_LENGTH:.0e} m (products of up to ten "
+                             "lengths must stay above float64's smallest normal number 2.2e-308)")
     for i, r in enumerate(rows[1:], 1):
         Li = math.hypot(r[2] - r[0], r[3] - r[1])
         if abs(Li - L) > RIGID_TOL * L:
@@ -286,6 +295,7 @@ def coupler_positions(positions, *, pivots=None, name="coupler-positions", steps
         if problem:
             raise SynthesisError("positions", f"{problem}; three positions fix the pivots, so no "
                                               "four-bar driven by the crank AB meets them")
+        field = "positions"
         notes.append("three positions: the fixed pivots are the circumcentres of B1 B2 B3 and "
                      "C1 C2 C3 (a unique design)")
     elif pivots is not None:
@@ -293,20 +303,46 @@ def coupler_positions(positions, *, pivots=None, name="coupler-positions", steps
         problem, g, phis, where = _evaluate(rows, A, D)
         if problem:
             raise SynthesisError("pivots", f"{problem}; choose other pivots on the bisectors")
+        field = "pivots"
     else:
         A, D, g, phis, where = _search(rows, L)
+        field = "positions"
         notes.append(f"two positions and no pivots given: A and D chosen on the perpendicular "
                      f"bisectors of B1B2 and C1C2, within {SEARCH_SPAN:g} coupler lengths of the "
                      f"chords' midpoints ({SEARCH_POINTS} x {SEARCH_POINTS} grid), as the pair "
                      "without branch or order defect with the largest minimum transmission angle "
                      f"between the positions ({fmt_deg(g)}); give pivots to choose them")
+    _check_limits(rows, A, D, field)
     return _scene(rows, A, D, g, phis, where, notes, name, steps, speed)
+
+
+def _check_limits(rows, A, D, field):
+    """Refuse a four-bar the scene format cannot hold (its limits on coordinates, spread and crank)."""
+    B, C = rows[0][:2], rows[0][2:]
+    a, c = math.dist(A, B), math.dist(D, C)
+    reach = max(math.hypot(*A) + a, math.hypot(*D) + c)  # B and C turn about A and D
+    if not reach <= MAX_LENGTH:
+        raise SynthesisError(field, f"the four-bar's joints come up to {fmt_len(reach)} from the "
+                             f"origin as the crank turns, beyond the scene format's "
+                             f"+-{MAX_LENGTH:.0e} m on coordinates (the solver multiplies up to ten "
+                             "such lengths, and every product must stay within the float64 range "
+                             "1.8e308)")
+    points = (A, B, C, D)
+    size = max(math.dist(p, q) for p in points for q in points)
+    far = max(math.hypot(*p) for p in points)
+    if far > MAX_SPREAD * size:
+        raise SynthesisError(field, f"the four-bar's joints lie up to {fmt_len(far)} from the "
+                             f"origin, more than {MAX_SPREAD:.0e} times its size ({fmt_len(size)}, "
+                             "the largest distance between two joints): float64 keeps 16 digits of "
+                             "a coordinate, so fewer than 7 of the geometry would be left; move the "
+                             "origin nearer the positions")
+    crank_apart(field, a, size, "the crank AB")
 
 
 def _given_pivots(rows, pivots, L):
     if pivots is None or not isinstance(pivots, (list, tuple)) or len(pivots) != 4:
         raise SynthesisError("pivots", f"four numbers Ax, Ay, Dx, Dy are expected, got {pivots!r}")
-    p = np.array([number("pivots", v) for v in pivots])
+    p = np.array([coordinate("pivots", v) for v in pivots])
     A, D = p[:2], p[2:]
     for P, k, name in ((A, 0, "A"), (D, 2, "D")):
         r1, r2 = math.dist(P, rows[0][k:k + 2]), math.dist(P, rows[1][k:k + 2])
