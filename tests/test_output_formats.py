@@ -848,3 +848,24 @@ def test_the_numeric_core_loads_neither_tqdm_nor_pyarrow():
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     assert p.stdout.strip() == ""
+
+
+def test_force_groups_when_the_first_step_fails(tmp_path):
+    """A class-III six-bar whose first steps cannot be assembled (its crank pivot moved 1 m
+    down, found by fuzzing): the one-step template of the sweep had no force groups at all,
+    and the chunks' disconnection counts indexed past them (IndexError). Every run now
+    records its groups whatever its steps' statuses; the file's ``groups`` equal a whole run's."""
+    d = example_dict("sixbar_class3")
+    [A] = [j for j in d["joints"] if j["name"] == "A"]
+    A["at"] = [A["at"][0], -1.0]
+    whole = compile_plan(linkage_sym.load_scene(d)).run()
+    assert whole.status[0] != "ok" and (whole.status == "ok").any()
+    first = [{n: np.asarray(dv[k])[:1] for n, dv in whole.drivers.items()}
+             for k in ("q", "qd", "qdd")]
+    empty = compile_plan(linkage_sym.load_scene(d)).run(*first)  # its one step fails
+    assert [g.choices for g in empty.forces.groups] == [g.choices for g in whole.forces.groups]
+    scene = _write(tmp_path, d)
+    assert main(["analyze", str(scene), "-o", str(tmp_path / "r.json")]) == 0
+    got = json.loads((tmp_path / "r.json").read_text())["groups"]
+    assert got == whole.group_records()
+    assert any("steps_per_choice" in g for g in got)

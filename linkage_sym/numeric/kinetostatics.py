@@ -252,6 +252,15 @@ class ForcePlan:
             reactions = {j.name: (np.zeros(0),) * 3 for j in scene.joints}
             efforts = {d.joint: np.zeros(0) for d in scene.drivers}
             frame = (np.zeros(0), np.zeros(0), np.zeros(0))
+            # the group records as a run with solved steps has them (a chunk of a sweep
+            # whose steps all fail has the same groups and choices as the others)
+            for g, routine in zip(self.decomposition.groups, self.routines):
+                info = GroupForces(g.links, "global" if method == "global" else routine.method)
+                if method != "global" and routine.choices:
+                    info.choices = routine.choices
+                    info.used = np.full(N, -1, int)
+                    info.amplification = np.full(N, np.nan)
+                groups.append(info)
         elif method == "global":
             reactions, efforts = solve_global(scene, geo, W, self.L, K)
             frame = frame_wrench(scene, geo, reactions, efforts)
