@@ -152,7 +152,8 @@ def cmd_analyze(args) -> int:
     from linkage_sym import output
     from linkage_sym.numeric.plan import compile_plan
 
-    _check_outputs(files=[("-o/--output", args.output)], folders=[("--plots", args.plots)])
+    _check_outputs(files=[("-o/--output", args.output)], folders=[("--plots", args.plots)],
+                   replaced=True)
     try:
         fmt = output.output_format(args.output, args.format)
         problems = []
@@ -460,9 +461,13 @@ def _stdout_to_devnull() -> None:
 
 def main(argv=None) -> int:
     """Run the command line; returns the exit status (see ``EXIT_STATUS``)."""
+    for stream in (sys.stdout, sys.stderr):  # an ASCII-only terminal: ° and · escaped, not fatal
+        if stream is not None and hasattr(stream, "reconfigure"):
+            stream.reconfigure(errors="backslashreplace")
     try:
         code = _run(argv)
-        sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
+        if sys.stdout is not None:  # None: started with standard output closed (>&-)
+            sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
         return code
     except BrokenPipeError:  # `| head`: the reader has all it wants; stop as Unix tools do
         _stdout_to_devnull()

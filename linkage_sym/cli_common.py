@@ -49,11 +49,14 @@ def _creatable(option: str, given: str, folder: Path) -> str | None:
     return None
 
 
-def check_outputs(files=(), folders=()) -> None:
+def check_outputs(files=(), folders=(), replaced: bool = False) -> None:
     """Refuse, before anything is computed or written, output paths that cannot be written.
 
     ``files``: ``(option, path)`` of files (``None`` = not asked; ``"-"`` = standard
-    output); ``folders``: ``(option, path)`` of folders, created if needed.
+    output); ``folders``: ``(option, path)`` of folders, created if needed;
+    ``replaced``: the files are written under a temporary name that then replaces the
+    one named (``analyze``), so a device or a named pipe there is refused rather than
+    replaced (the other commands write through the path).
     Raises :class:`OptionError` naming each option.
     """
     problems, seen = [], {}
@@ -63,6 +66,11 @@ def check_outputs(files=(), folders=()) -> None:
         p = Path(given)
         if p.is_dir():
             problems.append(f"{option}: {given!r} is a folder; a file name is expected")
+            continue
+        if replaced and p.exists() and not p.is_file():  # a device, a named pipe, a socket
+            problems.append(f"{option}: {given!r} is not a regular file (a device, pipe or "
+                            "socket): results are written to a new file that replaces the "
+                            "one named; give a file name, or -o - and redirect standard output")
             continue
         if p.exists() and not os.access(p, os.W_OK):
             problems.append(f"{option}: {given!r} is not writable")

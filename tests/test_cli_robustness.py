@@ -452,3 +452,37 @@ def test_a_load_schedule_with_an_invalid_period_names_it(tmp_path):
     p = run("analyze", str(tmp_path / "s.json"))
     assert p.returncode == 2 and "Traceback" not in p.stderr, p.stderr
     assert f"loads[{i}].period_deg: must be a finite number >= 0, got NaN" in p.stderr
+
+
+def test_closed_or_ascii_standard_output_ends_without_a_traceback():
+    """Started with standard output closed (``>&-``: ``sys.stdout`` is None) the final flush
+    raised AttributeError; an ASCII-only standard output could not take '°' or '·'."""
+    import os
+
+    p = subprocess.run([sys.executable, "-m", "linkage_sym", "analyze", CRANK_ROCKER],
+                       capture_output=False, stderr=subprocess.PIPE, text=True,
+                       preexec_fn=lambda: os.close(1))
+    assert p.returncode == 0 and "Traceback" not in p.stderr, p.stderr
+    env = dict(os.environ, PYTHONIOENCODING="ascii", LC_ALL="C")
+    p = subprocess.run([sys.executable, "-m", "linkage_sym", "analyze", CRANK_ROCKER],
+                       capture_output=True, text=True, env=env)
+    assert p.returncode == 0 and "Traceback" not in p.stderr, p.stderr
+    assert "N\\xb7m" in p.stdout  # escaped, not fatal
+
+
+def test_analyze_replaces_files_not_devices_pipes_or_links(tmp_path):
+    """``analyze`` writes a temporary file and renames it over ``-o``: a named pipe (or a
+    device, /dev/full as root) was replaced by a regular file, and a symbolic link by the
+    result while the file it named kept its old text."""
+    import os
+
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    p = run("analyze", small_scene(tmp_path), "-o", str(fifo))
+    assert p.returncode == 2 and "is not a regular file (a device, pipe or socket)" in p.stderr
+    assert not fifo.is_file() and fifo.exists()
+    real, link = tmp_path / "real.json", tmp_path / "link.json"
+    real.write_text("old")
+    link.symlink_to(real)
+    assert run("analyze", small_scene(tmp_path), "-o", str(link)).returncode == 0
+    assert link.is_symlink() and json.loads(real.read_text())["scene"] == "crank-rocker"

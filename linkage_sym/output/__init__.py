@@ -381,7 +381,11 @@ def write_sweep(sweep: Sweep, path=None, fmt: str = "json", *, indent: int | Non
     target = tmp = None
     fh = None
     if path is not None:
-        target = Path(path)
+        # a symbolic link: the file it names is replaced, not the link
+        target = Path(os.path.realpath(path)) if os.path.islink(path) else Path(path)
+        if target.exists() and not target.is_file():  # checked by the command line before
+            raise OutputError([f"{path!r} is not a regular file (a device, pipe or socket): "
+                               "the result is written to a new file that replaces it"])
         target.parent.mkdir(parents=True, exist_ok=True)
         tmp = target.with_name(f".{target.name}.{os.getpid()}.partial")
     writer: _Writer
