@@ -486,3 +486,16 @@ def test_analyze_replaces_files_not_devices_pipes_or_links(tmp_path):
     link.symlink_to(real)
     assert run("analyze", small_scene(tmp_path), "-o", str(link)).returncode == 0
     assert link.is_symlink() and json.loads(real.read_text())["scene"] == "crank-rocker"
+
+
+def test_samples_header_problems_name_samples_and_a_bom_is_no_name(tmp_path):
+    """An unknown column of ``--samples`` was reported as ``--vary``; a spreadsheet's UTF-8
+    byte-order mark became part of the first name ('\\ufeffl_AB')."""
+    (tmp_path / "bom.csv").write_bytes(b"\xef\xbb\xbfl_AB\n0.024\n0.025\n")
+    (tmp_path / "unknown.csv").write_text("l_XY\n0.024\n")
+    scene = small_scene(tmp_path)
+    p = run("sweep", scene, "--samples", str(tmp_path / "bom.csv"))
+    assert p.returncode == 0, p.stderr
+    p = run("sweep", scene, "--samples", str(tmp_path / "unknown.csv"))
+    assert p.returncode == 2 and "Traceback" not in p.stderr, p.stderr
+    assert p.stderr.startswith("linkage-sym sweep: --samples: unknown parameter 'l_XY'")

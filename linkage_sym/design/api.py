@@ -149,7 +149,8 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
         # a mass, inertia or load is a parameter of the force blocks only
         spec = dataclasses.replace(spec, forces=True)
         model, _ = _state(spec)
-    check_names(designs, model.names, "parameters" if monte_carlo is None else "--tolerance")
+    check_names(designs, model.names, "--tolerance" if monte_carlo is not None
+                else "--samples" if samples is not None else "parameters")
     if workers is not None:
         if not isinstance(workers, int) or isinstance(workers, bool) or workers < 1:
             raise SweepError("--workers", f"a number of processes >= 1 is expected, got {workers!r}")

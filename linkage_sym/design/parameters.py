@@ -200,7 +200,7 @@ def read_samples(path) -> Designs:
     """
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
+        text = p.read_text(encoding="utf-8-sig")  # a spreadsheet's byte-order mark is no name
     except OSError as err:
         raise SweepError("--samples", f"{str(path)!r}: {err.strerror or err}") from None
     except UnicodeDecodeError as err:
