@@ -242,7 +242,6 @@ def cmd_centres(args) -> int:
     """
     from linkage_sym.centres import centrodes, floating_links, instant_centres, polygon_quantities
     from linkage_sym.cli_common import OptionError, check_outputs as _check_outputs, load as _load, write as _write
-    from linkage_sym.errors import SceneError
     from linkage_sym.numeric.plan import compile_plan
 
     _check_outputs(files=[("-o/--output", args.output)], folders=[("--plots", args.plots)])
@@ -254,12 +253,7 @@ def cmd_centres(args) -> int:
     if args.deg is not None:
         d = scene.drivers[0]
         one = lambda v: {d.joint: np.array([float(v)])}  # noqa: E731
-        try:
-            analysis = plan.run(q=one(math.radians(args.deg)), qd=one(d.speed),
-                                qdd=one(d.acceleration))
-        except SceneError as err:  # the path to that angle: name the option that asked for it
-            raise OptionError([f"--deg {args.deg:g}: {p.split(': ', 1)[1]}"
-                               for p in err.problems]) from err
+        analysis = plan.run(q=one(math.radians(args.deg)), qd=one(d.speed), qdd=one(d.acceleration))
         i = 0
         where = f"--deg {args.deg:g}"
     else:

@@ -327,7 +327,7 @@ class CompiledMechanism:
         self._choose_branches()
         self._pose_constraints = None
         self._calibration = Calibration()  # accuracy: the indicator-to-condition ratio
-        self._layout = None  # the result block's layout, made on the first run
+        self._layout = ResultLayout(scene, tuple(art["stages"]))  # where a run writes its results
         self._own = None  # the scene's own sweep: driver arrays and solving path, made once
         self._decomposition = None
         # the scene's own sweep and solving path, the accuracy calibration and the memory of
@@ -335,7 +335,6 @@ class CompiledMechanism:
         # only solves (as the numeric plan does)
         n_steps = self._drivers(None, None, None)[3].shape[1]
         self._calibration.ratio(self.sweep, self.run)
-        self._layout = ResultLayout(scene, tuple(art["stages"]))
         self._layout.warm(n_steps, "symbolic")
 
     # -- positions -----------------------------------------------------------------
@@ -795,8 +794,6 @@ class CompiledMechanism:
         N = len(status)
         stages = tuple(art["stages"])
         has_v, has_a = "velocity" in stages, "acceleration" in stages
-        if self._layout is None:
-            self._layout = ResultLayout(scene, stages)
         lay = self._layout
         block = np.empty((lay.n_rows, N))
         if len(idx) < N:
