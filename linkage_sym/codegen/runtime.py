@@ -48,7 +48,10 @@ from linkage_sym.numeric.sweep import (
     _unwrap,
     Calibration,
     finish,
+    ground_driven,
+    interrupted,
     mark_singular,
+    nearest_across_gaps,
     new_analysis,
     scene_sweep,
     solving_path,
@@ -321,6 +324,10 @@ class CompiledMechanism:
         for n, c in self.angle_of.items():
             self.x0[c] = frames[n].theta0
         self.is_angle = np.array([n.startswith("theta_") for n in self.x_names])
+        # the angles unwrapped along the path: all but those of links turned by a driver on
+        # the ground, whose closed form is the driver's value itself (never wrapped)
+        self._driven = [self.angle_of[n] for n in ground_driven(scene)]
+        self._wrapped = [c for c in np.flatnonzero(self.is_angle) if c not in self._driven]
         self.blocks = [
             (g["rows"][0], g["rows"][1], g["cols"][0], g["cols"][-1] + 1) for g in art["groups"]
         ]
@@ -575,7 +582,7 @@ class CompiledMechanism:
         Xp, failed_p = self.positions(Qpath)
         valid = failed_p < 0
         every = bool(valid.all())
-        for c in np.flatnonzero(self.is_angle):
+        for c in self._wrapped:
             th = _unwrap(Xp[c] if every else Xp[c, valid])
             # continuous from the assembly configuration (path point 0)
             th = th - 2 * np.pi * np.round((th[0] - self.x0[c]) / (2 * np.pi))
@@ -583,7 +590,17 @@ class CompiledMechanism:
                 Xp[c] = th
             else:
                 Xp[c, valid] = th
-        return Qs, QDs, QDDs, Xp[:, sel], failed_p[sel], out
+        for c in self._driven:  # the driver's value, counted from the assembly configuration
+            Xp[c] -= 2 * np.pi * np.round((Xp[c, 0] - self.x0[c]) / (2 * np.pi))
+        X, failed = Xp[:, sel], failed_p[sel]
+        if not every:  # the scene format's rule for rotations across a gap
+            solved = failed < 0
+            broken = interrupted(valid, sel, solved)
+            if broken.any():
+                X = np.array(X)
+                for c in self._wrapped:
+                    X[c] = nearest_across_gaps(X[c], solved, broken)
+        return Qs, QDs, QDDs, X, failed, out
 
     def run(self, q=None, qd=None, qdd=None, exact_condition=False) -> Analysis:
         """Evaluate the compiled mechanism over a sweep (the scene's by default)."""

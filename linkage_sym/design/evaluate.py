@@ -48,7 +48,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkage_sym.model import OUTPUTS
-from linkage_sym.numeric.sweep import SCREEN, SINGULAR_COND, scene_sweep, solving_path
+from linkage_sym.numeric.sweep import (
+    SCREEN,
+    SINGULAR_COND,
+    ground_driven,
+    interrupted,
+    nearest_across_gaps,
+    scene_sweep,
+    solving_path,
+)
 from linkage_sym.structure.parameters import driver_q0, ident
 
 __all__ = ["Model", "Solution", "compiled"]
@@ -175,6 +183,9 @@ class Model:
         self.theta0 = [(i, cm.angle_of[r[1]]) for r, i in self.recipes.items() if r[0] == "theta0"]
         self.angle_cols = np.flatnonzero(cm.is_angle)
         self.angle_of = dict(cm.angle_of)
+        # the angles of links turned by a driver on the ground: the driver's value at every
+        # step, never moved by the rule for rotations across a gap
+        self.driven_angles = {cm.angle_of[n] for n in ground_driven(scene)}
         self.blocks = list(cm.blocks)
         self.layout = art["layout"]
         self.stages = tuple(art["stages"])
@@ -405,11 +416,19 @@ class Model:
         for c in unwrap:
             X[c] = _unwrap_fast(X[c], valid, X0[c] if simple else None, every)
             raw[c] = None
+        path_valid = valid
+        out = slice(None) if simple else self.out
         if not simple:
-            out = self.out
             X = np.ascontiguousarray(X[:, :, out])
             valid = valid[:, out]
             raw = [r[out] if r is not None and np.ndim(r) == 1 else None for r in raw]
+        if unwrap and not every:  # the scene format's rule for rotations across a gap
+            broken = interrupted(path_valid, out, valid)
+            if broken.any():
+                for c in unwrap:
+                    if c not in self.driven_angles:
+                        X[c] = nearest_across_gaps(X[c], valid, broken)
+        if not simple:
             every = bool(valid.all())
         return X, valid, raw, every
 

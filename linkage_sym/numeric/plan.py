@@ -43,6 +43,9 @@ from linkage_sym.numeric.sweep import (
     SCREEN,
     Calibration,
     _unwrap,
+    ground_driven,
+    interrupted,
+    nearest_across_gaps,
     finish,
     mark_singular,
     needed_stages,
@@ -89,11 +92,17 @@ class Plan:
         self._own_sweep = None
         self._calibration = Calibration()  # accuracy: the indicator-to-condition ratio
         # links whose rotation may come wrapped to one turn (atan2 in a dyad, or
-        # copied or offset from such a link) and is unwrapped along the path;
-        # Newton groups move continuously from the assembly configuration, and an
-        # input link on the ground takes the (never wrapped) driver value itself
+        # copied or offset from such a link): unwrapped as soon as they are solved when
+        # a mesh reads them (below); Newton groups move continuously from the assembly
+        # configuration, and an input link on the ground takes the driver value itself
         self.wrapped = [n for g, sv in zip(decomposition.groups, self.solvers) if sv.wraps
                         for n in g.links]
+        # every link's rotation is made continuous along the path, its jumps of more than
+        # half a turn between consecutive solved points taken as whole turns: an atan2's
+        # wrap, or a Newton group that re-entered past a limit nearest its stop; a link
+        # turned by a driver on the ground has the driver's value and is left as it is
+        driven = ground_driven(scene)
+        self.unwrapped = [n for n in scene.link_names if n not in driven]
         # a mesh's row is linear in rotations from the assembly configuration, so the
         # rotations it reads must be unwrapped before a later group uses them
         self.unwrap_early = bool(scene.meshes)
@@ -181,8 +190,10 @@ class Plan:
             failed_at[bad] = gi
         valid = failed_at < 0
         all_valid = bool(valid.all())
-        for n in self.wrapped:
+        for n in self.unwrapped:
             st = S[n]
+            if np.ndim(st.th) == 0:
+                continue  # a link that never turns
             if all_valid and np.shape(st.th) == (npath,):
                 st.th = _unwrap(st.th)  # a new array only where it changes
                 continue
@@ -198,6 +209,8 @@ class Plan:
         status, messages = step_status(
             failed, lambda i: self.solvers[failed[i]].failure(S, int(path_index[i])))
         S = {n: (st.take(out) if n != GROUND else st) for n, st in S.items()}
+        if not all_valid:  # the scene format's rule for rotations across a gap
+            self._across_gaps(S, valid, out, failed < 0)
         # --- singularity: exact condition number where an indicator is small
         ind_min = np.full(N, np.inf)
         for ind in inds:
@@ -249,6 +262,19 @@ class Plan:
 
     def _sweep_values(self):
         return self._scene_sweep()[:3]
+
+    def _across_gaps(self, S, valid, out, solved) -> None:
+        """Each link's rotation after an interruption of the path: the value nearest the
+        last solved step (:func:`~linkage_sym.numeric.sweep.nearest_across_gaps`), except
+        a link turned by a driver on the ground, whose rotation is the driver's value."""
+        broken = interrupted(valid, out, solved)
+        if not broken.any():
+            return
+        driven = ground_driven(self.scene)
+        for n in self.scene.link_names:
+            st = S[n]
+            if n not in driven and np.shape(st.th) == solved.shape:
+                st.th = nearest_across_gaps(st.th, solved, broken)
 
     def condition_numbers(self, S, idx) -> np.ndarray:
         """Exact dimensionless condition number of the full constraint Jacobian at steps ``idx``."""

@@ -29,7 +29,7 @@ import math
 import numpy as np
 
 from linkage_sym.errors import SceneError
-from linkage_sym.model import Scene
+from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric import accuracy, continuation, heap
 from linkage_sym.numeric.result import OK, SINGULAR, UNASSEMBLABLE, Analysis
 from linkage_sym.numeric.superposition import AMPLIFICATION_LIMIT
@@ -183,6 +183,81 @@ def _unwrap(th: np.ndarray) -> np.ndarray:
     k = np.zeros_like(th)
     k[1:] = np.cumsum(np.where(jump, np.round(d / (2 * math.pi)), 0.0))
     return th - 2 * math.pi * k
+
+
+def ground_driven(scene: Scene) -> dict:
+    """Links whose rotation is a driver's value: ``{link: (joint, sign)}``.
+
+    A link turned by an ``R`` driver mounted on the ground reports that driver's value,
+    ``sign (q - q0)`` (``sign`` +1 when the link is the joint's ``links[1]``), at every
+    step, across gaps too: it is never shifted by the gap rule of
+    :func:`nearest_across_gaps`, and every method gives the same number.  A link driven
+    relative to another moving link follows the gap rule like any other link (its
+    driver's value is in ``drivers``; the relation between the two rotations then holds
+    modulo a whole turn).
+    """
+    out = {}
+    for d in scene.drivers:
+        j = scene.joint(d.joint)
+        if j.type != "R" or GROUND not in j.links or j.links[0] == j.links[1]:
+            continue
+        link = j.links[1] if j.links[0] == GROUND else j.links[0]
+        out[link] = (d.joint, 1.0 if j.links[1] == link else -1.0)
+    return out
+
+
+def interrupted(valid_path: np.ndarray, out, solved: np.ndarray) -> np.ndarray:
+    """Where the solving path was interrupted since the last solved step.
+
+    ``valid_path`` (..., K): path points where every group is solved; ``out``: the path
+    index of each step (an index array or a slice); ``solved`` (..., N): steps with a
+    position (``ok`` or ``singular``).  True at a solved step when some point of the path
+    between the previous solved step and it (itself included) has no position: a gap of
+    unassemblable steps, or one the path crosses between two steps.  False at the first
+    solved step (the path from the assembly configuration is unwrapped as it goes).
+    """
+    bad = np.cumsum(~np.asarray(valid_path, bool), axis=-1)
+    at = np.asarray(bad[..., out])  # invalid path points up to each step
+    N = at.shape[-1]
+    idx = np.where(solved, np.arange(N), -1)
+    last = np.maximum.accumulate(idx, axis=-1)
+    prev = np.full_like(last, -1)
+    prev[..., 1:] = last[..., :-1]
+    before = np.take_along_axis(at, np.maximum(prev, 0), axis=-1)
+    return solved & (prev >= 0) & (at > before)
+
+
+def nearest_across_gaps(th: np.ndarray, solved: np.ndarray, broken: np.ndarray) -> np.ndarray:
+    """Rotations at the steps with the scene format's rule across gaps applied.
+
+    Each stretch of steps that starts where the path was interrupted (``broken``, see
+    :func:`interrupted`) is shifted by whole turns so that its first rotation is the value
+    nearest to the last solved step before the gap; the shift carries on to the later
+    steps, so each stretch stays continuous.  ``th`` (..., N), NaN where not ``solved``.
+    Returns ``th`` itself when nothing moves.
+
+    Examples
+    --------
+    >>> th = np.array([2.613, np.nan, 5.995, 6.1])
+    >>> solved = np.isfinite(th)
+    >>> out = nearest_across_gaps(th, solved, np.array([False, False, True, False]))
+    >>> [round(float(v), 3) for v in out[[0, 2, 3]]]
+    [2.613, -0.288, -0.183]
+    """
+    if not np.any(broken):
+        return th
+    N = th.shape[-1]
+    idx = np.where(solved, np.arange(N), -1)
+    last = np.maximum.accumulate(idx, axis=-1)
+    prev = np.zeros_like(last)
+    prev[..., 1:] = np.maximum(last[..., :-1], 0)
+    with np.errstate(invalid="ignore"):
+        d = th - np.take_along_axis(th, prev, axis=-1)
+        turns = np.where(broken, np.round(d / (2 * math.pi)), 0.0)
+    turns = np.cumsum(turns, axis=-1)
+    if not turns.any():
+        return th
+    return th - 2 * math.pi * turns
 
 
 def solving_path(scene: Scene, names, q0: dict, L: float, Q: np.ndarray):
