@@ -6,7 +6,13 @@ with mpmath at the given number of significant decimal digits, one step at a tim
 
 1. **parameters** (lengths, angles, coordinates, masses, loads) from the scene's numbers
    by the same recipes as :func:`linkage_sym.structure.parameters.evaluate`, in mpmath:
-   the binary64 numbers of the scene are the mechanism, converted exactly;
+   the binary64 numbers of the scene are the mechanism, converted exactly; and each
+   step's **driver values** from the scene's numbers too: step ``i`` is
+   ``start + i (stop - start) / (steps - 1)`` (an ``R`` driver's ``start_deg`` and
+   ``stop_deg`` in degrees, converted with ``mpmath.pi``) at the working precision
+   (:func:`driver_step_mp`), not the float64 sweep's rounding of it (180 degrees is
+   ``float(pi)`` there: near a dead centre, where the output's rate against the driver is
+   unbounded, that rounding alone moves positions by ~1e-8);
 2. **positions**: the nested closed forms of input links and dyads (the assembly-mode
    signs chosen as the compiled mechanism chooses them); a group without a closed form
    by Newton's method on its loop equations in mpmath, from the float64 solution of the
@@ -16,6 +22,14 @@ with mpmath at the given number of significant decimal digits, one step at a tim
    group block; joints, links' origins, centres of mass by the derived point equations;
 4. **forces**: each group's equilibrium block ``A_g F_g = b_g - C_g F_later`` by mpmath
    LU solves from the last group back, then the frame force and moment.
+
+Driver values a caller gives (``run_precise(scene, digits, q, qd, qdd)``) are taken as
+the binary64 numbers they are, except values of the scene's own sweep, which stand for
+their steps (:meth:`PreciseMechanism.driver_values`: so the command line's chunks of the
+sweep get the exact steps).  The accuracy estimate is the float64 run's condition numbers
+with ``10^-digits`` for eps, plus the rounding to float64, plus, at a step whose driver
+value still carries a rounding (steps of the sweep closer than an ulp), that rounding
+amplified alike.
 
 The statuses (unassemblable, singular), messages and warnings come from the float64
 run of the same compiled mechanism; at its ``ok`` steps every value is then the
@@ -32,7 +46,8 @@ float64 solver per position (see ``benchmarks/bench_accuracy.py``).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import math
+from dataclasses import dataclass, field, replace
 
 import mpmath as mp
 import numpy as np
@@ -42,6 +57,7 @@ from linkage_sym.codegen.compile import build_artifact, compile_mechanism
 from linkage_sym.codegen.runtime import CompiledMechanism
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric import accuracy
+from linkage_sym.numeric.loads import load_factor
 from linkage_sym.numeric.result import OK, SINGULAR, UNASSEMBLABLE, GroupForces
 from linkage_sym.structure.parameters import ident
 
@@ -161,9 +177,19 @@ def parameter_mp(scene: Scene, recipe: tuple, mframes):
     raise ValueError(f"unknown parameter recipe {recipe!r}")
 
 
-def _factor_mp(load, x):
+def _factor_mp(load, x, x_float: float | None = None):
     """A load's factor at the driver value ``x`` (mpf), as
-    :func:`linkage_sym.numeric.loads.load_factor` defines it, in mpmath."""
+    :func:`linkage_sym.numeric.loads.load_factor` defines it, in mpmath.
+
+    ``x_float`` is the step's float64 driver value (``x`` rounded unless given): whether
+    the step lies in the table and in the ``active`` range is decided on it, as the
+    float64 run decides it (a step at an end of the range, in the scene's degrees, is at
+    the end in both: the range's radians are rounded, the step's exact value is not); the
+    table is interpolated at ``x`` (continuous, so a step an ulp beyond a table's end
+    extrapolates by an ulp).
+    """
+    if x_float is None:
+        x_float = float(x)
     f = mp.mpf(1)
     period = None if load.period is None else mp.mpf(float(load.period))
     if load.table is not None:
@@ -172,20 +198,55 @@ def _factor_mp(load, x):
         if period is not None:  # periodic: the table's first point again a period on
             x = tq[0] + mp.fmod(mp.fmod(x - tq[0], period) + period, period)
             tq, ts = tq + [tq[0] + period], ts + [ts[0]]
-        if not tq[0] <= x <= tq[-1]:
-            raise ValueError(f"load on {load.link}: driver {load.driver} at {float(x):g} is outside "
-                             "its table, where the factor is not defined")
-        k = max(i for i in range(len(tq) - 1) if tq[i] <= x) if x < tq[-1] else len(tq) - 2
+        elif not load.table.q[0] <= x_float <= load.table.q[-1]:
+            raise ValueError(f"load on {load.link}: driver {load.driver} at {x_float:g} is "
+                             "outside its table, where the factor is not defined")
+        k = max([0] + [i for i in range(len(tq) - 1) if tq[i] <= x]) if x < tq[-1] else len(tq) - 2
         f = ts[k] + (ts[k + 1] - ts[k]) * (x - tq[k]) / (tq[k + 1] - tq[k])
     if load.active is not None:
-        lo, hi = (mp.mpf(float(v)) for v in load.active)
-        if period is not None:
-            inside = mp.fmod(mp.fmod(x - lo, period) + period, period) <= hi - lo
-        else:
-            inside = lo <= x <= hi
-        if not inside:
+        span = replace(load, table=None)  # the factor of the range alone: 1 inside, 0 outside
+        if not load_factor(span, {load.driver: np.array([x_float])})[0] > 0:
             f = mp.mpf(0)
     return f
+
+
+# ------------------------------------------------------------------ driver values in mpmath
+
+
+def _driver_numbers(driver):
+    """``(start, stop, degrees)``: the scene's numbers of a driver's sweep, and whether they
+    are degrees (an ``R`` driver read from a scene, whose radians are their rounding)."""
+    if (driver.kind == "R" and driver.start_deg is not None and driver.stop_deg is not None
+            and math.radians(driver.start_deg) == driver.start
+            and math.radians(driver.stop_deg) == driver.stop):
+        return driver.start_deg, driver.stop_deg, True
+    return driver.start, driver.stop, False
+
+
+def driver_step_mp(driver, i: int):
+    """Step ``i`` of a driver's sweep in mpmath, at the working precision (``mp.dps``).
+
+    ``start + i (stop - start) / (steps - 1)`` from the scene's numbers, each taken as the
+    binary64 number it is: for an ``R`` driver read from a scene its ``start_deg`` and
+    ``stop_deg``, converted to radians with ``mpmath.pi`` (the float64 sweep's radians
+    are their rounding: 180 degrees is ``float(pi)`` there, 1.2e-16 short of pi); else
+    ``start`` and ``stop`` (radians or metres) themselves.
+
+    Examples
+    --------
+    >>> import mpmath as mp
+    >>> from linkage_sym.model import Driver
+    >>> d = Driver("A", "R", math.radians(90.0), math.radians(180.0), 3, 1.0, toward="B",
+    ...            start_deg=90.0, stop_deg=180.0)
+    >>> with mp.workdps(30):
+    ...     print(driver_step_mp(d, 2) - mp.pi, mp.nstr(mp.mpf(d.stop) - mp.pi, 5))
+    0.0 -1.2246e-16
+    """
+    start, stop, degrees = _driver_numbers(driver)
+    a, b = mp.mpf(start), mp.mpf(stop)
+    n = driver.steps
+    v = a if n == 1 else (a * (n - 1 - i) + b * i) / (n - 1)
+    return v * mp.pi / 180 if degrees else v
 
 
 # ------------------------------------------------------------------ the generated functions
@@ -292,13 +353,67 @@ class PreciseMechanism:
         self.m = cm.m
         self.pattern = [tuple(p) for p in self.art["pattern"]]
         self.scaled = [(i, ld) for i, ld in enumerate(cm.scene.loads) if ld.driver is not None]
+        self._steps_of: dict = {}  # a driver's float64 step values -> step (driver_values)
+
+    # -- driver values --------------------------------------------------------------
+    def _step_index(self, name: str) -> dict:
+        """``{float64 value: step}`` of the scene's sweep of driver ``name`` (-1 where two
+        steps round to one value and their exact values differ)."""
+        got = self._steps_of.get(name)
+        if got is None:
+            driver = next(d for d in self.scene.drivers if d.joint == name)
+            start, stop, _ = _driver_numbers(driver)
+            values = np.asarray(self.cm.sweep()[0][name], float)
+            got = {}
+            for i, v in enumerate(values.tolist()):
+                if got.setdefault(v, i) != i and start != stop:
+                    got[v] = -1
+            self._steps_of[name] = got
+        return got
+
+    def driver_values(self, Q) -> tuple[list, np.ndarray]:
+        """The driver values of each step in mpmath, and the rounding they still carry.
+
+        ``Q`` (D, N): float64 driver values, rows in the order of ``artifact["q"]``.  A
+        value that is the float64 value of a step of the scene's own sweep of that driver
+        (every value of that sweep, and of any part of it: the command line solves it in
+        chunks) stands for that step, and gets the step's exact value from the scene's
+        numbers (:func:`driver_step_mp`); any other value is taken as the exact binary64
+        number it is.  Call it at the working precision.
+
+        Returns
+        -------
+        values : list of (list of mpf)
+            Per column of ``Q``, the drivers' values.
+        rounding : ndarray (N,)
+            Per column, the largest relative error a value still carries: 0, unless two
+            steps of the scene's sweep round to one float64 value (steps less than an ulp
+            apart) whose exact values differ; there ``eps |q|`` (rad for an ``R`` driver,
+            over the mechanism's size for a ``P`` driver), which the accuracy estimate
+            amplifies as it does the arithmetic's rounding.
+        """
+        drivers = {d.joint: d for d in self.scene.drivers}
+        index = [self._step_index(n) for n in self.art["q"]]
+        scale = [1.0 if drivers[n].kind == "R" else self.cm.L for n in self.art["q"]]
+        Q = np.asarray(Q, float)
+        out, rounding = [], np.zeros(Q.shape[1])
+        for k, col in enumerate(Q.T):
+            vals = []
+            for n, idx, sc, v in zip(self.art["q"], index, scale, col.tolist()):
+                i = idx.get(v)
+                vals.append(mp.mpf(v) if i is None or i < 0 else driver_step_mp(drivers[n], i))
+                if i is not None and i < 0:
+                    rounding[k] = max(rounding[k], accuracy.EPS * abs(v) / sc)
+            out.append(vals)
+        return out, rounding
 
     # -- one step -------------------------------------------------------------------
-    def _scaled_params(self, q) -> list:
-        """The parameters with each load over the cycle scaled by its factor at ``q`` (mpf)."""
+    def _scaled_params(self, q, q_float) -> list:
+        """The parameters with each load over the cycle scaled by its factor at ``q`` (mpf;
+        ``q_float``: the step's float64 values, see :func:`_factor_mp`)."""
         P = list(self.P)
         for i, ld in self.scaled:
-            k = _factor_mp(ld, q[ld.driver])
+            k = _factor_mp(ld, q[ld.driver], float(q_float[ld.driver]))
             for j, (_, recipe) in enumerate(self.art["params"]):
                 if recipe[0] in ("Fx", "Fy", "T") and recipe[1] == i:
                     P[j] = P[j] * k
@@ -355,9 +470,13 @@ class PreciseMechanism:
                 x[c0 + j] = sol[j]
         return x
 
-    def step(self, q, qd, qdd, x_float, rates: bool, stages) -> dict:
-        """Every value at one step (mpf), from driver values (floats, exact in mpmath)."""
-        Q = [mp.mpf(float(v)) for v in q]
+    def step(self, q, qd, qdd, x_float, rates: bool, stages, q_float=None) -> dict:
+        """Every value at one step (mpf), from driver values ``q`` (mpf, or floats taken as
+        the exact binary64 numbers they are; ``q_float`` their float64 values, ``q`` itself
+        unless given: see :meth:`driver_values`)."""
+        Q = [v if isinstance(v, mp.mpf) else mp.mpf(float(v)) for v in q]
+        if q_float is None:
+            q_float = [float(v) for v in q]
         QD = [mp.mpf(float(v)) for v in qd]
         QDD = [mp.mpf(float(v)) for v in qdd]
         X = self.positions(Q, x_float)
@@ -374,7 +493,8 @@ class PreciseMechanism:
                 XDD = self._solve_blocks(A, r)
         P = self.P
         if self.scaled and "forces" in stages:  # loads over the cycle: scaled at this step
-            self.P = self._scaled_params(dict(zip(self.art["q"], Q)))
+            self.P = self._scaled_params(dict(zip(self.art["q"], Q)),
+                                         dict(zip(self.art["q"], q_float)))
         try:
             pts = self._call("points", X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
             rec = {"x": X, "xd": XD, "xdd": XDD, "pts": pts}
@@ -423,7 +543,8 @@ class PreciseMechanism:
 
     # -- the sweep ------------------------------------------------------------------
     def run(self, q=None, qd=None, qdd=None) -> PreciseResult:
-        """Every step of a sweep (the scene's unless given) in mpmath; see the module docstring."""
+        """Every step of a sweep (the scene's unless given) in mpmath; see the module docstring
+        and :func:`run_precise` (the driver values)."""
         cm, art = self.cm, self.art
         if q is None:
             q, qd, qdd = cm.sweep()
@@ -435,12 +556,13 @@ class PreciseMechanism:
         stages = tuple(art["stages"])
         steps: list = [None] * len(status)
         with mp.workdps(self.digits):
+            Qmp, rounding = self.driver_values(Qs)
             for i in range(len(status)):
                 if status[i] == UNASSEMBLABLE:
                     continue
                 try:
-                    steps[i] = self.step(Qs[:, i], QDs[:, i], QDDs[:, i], Xf[:, i],
-                                         status[i] == OK, stages)
+                    steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i],
+                                         status[i] == OK, stages, Qs[:, i])
                 except _NotReal:
                     status[i] = UNASSEMBLABLE
                     messages[i] = (f"no real position at {self.digits} digits (a closed form's "
@@ -450,23 +572,30 @@ class PreciseMechanism:
                     messages[i] = (f"singular position: a group block is exactly singular at "
                                    f"{self.digits} digits; velocities and accelerations have no "
                                    "unique solution")
-                    steps[i] = self.step(Qs[:, i], QDs[:, i], QDDs[:, i], Xf[:, i], False, stages)
+                    steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i], False, stages,
+                                         Qs[:, i])
             records = [None if s is None else self._record(s, stages) for s in steps]
         base.status = status
         base.messages = messages
         analysis = self._round_into(base, records, stages)
-        analysis.accuracy = self._accuracy(analysis, base_accuracy, stages)
+        analysis.accuracy = self._accuracy(analysis, base_accuracy, stages, rounding)
         return PreciseResult(analysis, self.digits, records, list(art["x"]))
 
-    def _accuracy(self, res, base_accuracy, stages) -> dict:
+    def _accuracy(self, res, base_accuracy, stages, rounding) -> dict:
         """The float64 run's ``K`` with ``10^-digits`` for eps, plus the rounding to float64
         (positions: an ulp of the largest coordinate over the mechanism's size or of the
-        largest rotation, :func:`accuracy.magnitude_floor`)."""
+        largest rotation, :func:`accuracy.magnitude_floor`).
+
+        The driver values are exact (:meth:`driver_values`): a scene's steps from its
+        numbers, values a caller gives as the binary64 numbers they are.  Where a value
+        still carries a rounding (``rounding`` (N,), relative), it is amplified as the
+        arithmetic's is: ``eps`` is ``10^-digits`` plus that rounding at that step.
+        """
         K = accuracy.condition_of(base_accuracy)
         floor = {"position": accuracy.magnitude_floor(res, self.cm.L), "velocity": accuracy.EPS,
                  "acceleration": accuracy.EPS, "forces": accuracy.EPS}
-        return accuracy.accuracy(K, res.status == OK, stages, unit=10.0 ** (-self.digits),
-                                 floor=floor)
+        return accuracy.accuracy(K, res.status == OK, stages,
+                                 unit=10.0 ** (-self.digits) + rounding, floor=floor)
 
     def _record(self, s, stages) -> dict:
         """The step's values by name (mpf), as in :attr:`PreciseResult.steps`."""
@@ -609,7 +738,20 @@ class PreciseMechanism:
 def run_precise(scene: Scene, digits, q=None, qd=None, qdd=None) -> PreciseResult:
     """Analyse ``scene`` with its derived equations in mpmath at ``digits`` digits.
 
-    See the module docstring; ``q, qd, qdd``: driver values as for ``Plan.run``.
+    See the module docstring.
+
+    Parameters
+    ----------
+    scene : Scene
+    digits : int or str
+        Significant decimal digits (:func:`parse_precision`).
+    q, qd, qdd : dict of ndarray, optional
+        Driver values as for ``Plan.run``; the scene's sweep unless given, each step at
+        its exact value from the scene's numbers (:func:`driver_step_mp`).  Given values
+        are taken as the exact binary64 numbers they are (the result is that input's, and
+        the accuracy estimate counts no rounding of them), except a ``q`` value equal to
+        the float64 value of a step of the scene's sweep of that driver, which stands for
+        that step (:meth:`PreciseMechanism.driver_values`).
     """
     d = parse_precision(digits)
     if d is None:
