@@ -525,3 +525,25 @@ def test_scene_keeps_the_driver_degrees_it_was_given():
     with mp.workdps(40):
         assert driver_step_mp(scene.drivers[0], 1) == mp.mpf(given) * mp.pi / 180
         assert mp.mpf(float(scene.drivers[0].stop)) != mp.mpf(given) * mp.pi / 180
+
+
+def test_a_step_exactly_at_a_dead_centre_is_singular():
+    """Crank l1 = 1, rod l2 = 13/8, guide y = 13/8, assembled at 90 degrees (B = (0, 1),
+    C = (3/2, 13/8)): the rod stands normal to the guide at exactly 180 degrees.  The compiled
+    float64 run, at float(pi), finds that step a tangency's width away (condition 1.4e8: ok),
+    and its rates at float(pi) are finite; at the exact value they are not.  The 50-digit run
+    says singular (its block indicator is ~1e-26 there, against float64's 1e-8), keeps the
+    position, the reference's (-1, 13/8) rounded, and gives no rates (before, the rod's omega
+    was -1.2e52 with an accuracy of 2.2e-16)."""
+    d = _dead_centre_scene(180.0, 4)
+    for j, at in zip(d["joints"][1:], ([0, 1], [1.5, 1.625], [1.5, 1.625])):
+        j["at"] = at
+    scene = load_scene(d)
+    assert linkage_sym.compile_mechanism(scene).run().status[-1] == "ok"
+    res = run_precise(scene, 50).analysis
+    assert list(res.status) == ["ok", "ok", "ok", "singular"], res.messages
+    assert "singular position at 50 digits" in res.messages[-1]
+    assert res.condition[-1] > 1e20
+    assert tuple(res.joints["C"].position[-1]) == (-1.0, 1.625)
+    assert np.isnan(res.links["rod"].omega[-1]) and np.isnan(res.accuracy["velocity"][-1])
+    assert np.all(res.accuracy["velocity"][:3] < 1e-15)  # the other steps as they were

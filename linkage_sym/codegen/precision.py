@@ -26,13 +26,19 @@ with mpmath at the given number of significant decimal digits, one step at a tim
 Driver values a caller gives (``run_precise(scene, digits, q, qd, qdd)``) are taken as
 the binary64 numbers they are, except values of the scene's own sweep, which stand for
 their steps (:meth:`PreciseMechanism.driver_values`: so the command line's chunks of the
-sweep get the exact steps).  The accuracy estimate is the float64 run's condition numbers
-with ``10^-digits`` for eps, plus the rounding to float64, plus, at a step whose driver
-value still carries a rounding (steps of the sweep closer than an ulp), that rounding
-amplified alike.
+sweep get the exact steps).  The accuracy estimate is the float64 run's condition numbers,
+times how much smaller the group blocks' indicator (their Hadamard ratios) is at the exact
+driver value than at the float64 run's rounded one (:meth:`PreciseMechanism._gain`), with
+``10^-digits`` for eps, plus the rounding to float64, plus, at a step whose driver value
+still carries a rounding (steps of the sweep closer than an ulp), that rounding amplified
+alike.
 
 The statuses (unassemblable, singular), messages and warnings come from the float64
-run of the same compiled mechanism; at its ``ok`` steps every value is then the
+run of the same compiled mechanism, but for steps where this precision tells otherwise:
+no real position (unassemblable), a group block exactly singular, or a condition number
+so estimated above the singularity threshold (a step exactly at a dead centre, which
+float64's rounded driver value kept a tangency's width away) -- singular, positions
+only.  At the ``ok`` steps every value is then the
 mpmath value rounded once to float64 (traced points and link origins are computed in
 mpmath from the link's rotation too).  The result is the same
 :class:`~linkage_sym.numeric.result.Analysis` as every other method's, with
@@ -59,6 +65,7 @@ from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric import accuracy
 from linkage_sym.numeric.loads import load_factor
 from linkage_sym.numeric.result import OK, SINGULAR, UNASSEMBLABLE, GroupForces
+from linkage_sym.numeric.sweep import SINGULAR_COND
 from linkage_sym.structure.parameters import ident
 
 DOUBLE = "double"
@@ -455,6 +462,37 @@ class PreciseMechanism:
                 raise _NotReal  # pragma: no cover - Newton from a float64 root converges
         return X
 
+    def _ratio(self, A: dict):
+        """The smallest Hadamard ratio of the group blocks of ``A`` (mpf; ``None`` with only
+        1x1 blocks): ``|det|`` over the product of its row norms, or of its column norms,
+        whichever is larger -- the float64 runtime's indicator
+        (``_RateSystem.ratios``), here at this precision."""
+        out = None
+        for r0, r1, c0, c1 in self.cm.blocks:
+            n = c1 - c0
+            if n < 2:
+                continue
+            M = mp.matrix(n, n)
+            for i in range(n):
+                for j in range(n):
+                    M[i, j] = A.get((r0 + i, c0 + j), 0)
+            rows = mp.fprod(mp.norm(M[i, :]) for i in range(n))
+            cols = mp.fprod(mp.norm(M[:, j]) for j in range(n))
+            big = max(rows, cols)
+            r = abs(mp.det(M)) / big if big else mp.mpf(0)
+            out = r if out is None else min(out, r)
+        return out
+
+    def _float_ratios(self, Xf, Qs, QDs, steps) -> np.ndarray:
+        """The float64 runtime's indicator (the smallest Hadamard ratio of a group block) at
+        ``steps``, at its own positions ``Xf`` (m, N) and driver values (inf: 1x1 blocks)."""
+        A, _ = self.cm.rate_system(Xf[:, steps], list(Qs[:, steps]), list(QDs[:, steps]))
+        out = np.full(len(steps), np.inf)
+        for r in A.ratios():
+            if r is not None:
+                out = np.fmin(out, r)
+        return out
+
     def _solve_blocks(self, A: dict, rhs):
         x = [mp.mpf(0)] * self.m
         for r0, r1, c0, c1 in self.cm.blocks:
@@ -483,10 +521,13 @@ class PreciseMechanism:
         CS = ([mp.cos(v) for v in X], [mp.sin(v) for v in X])
         zero = [mp.mpf(0)] * self.m
         XD, XDD = zero, zero
-        if rates and "velocity" in stages:
+        ratio = None
+        if rates:  # the rate system: its blocks' indicator, and the rates if asked
             out = self._call("rates", X=X, Q=Q, QD=QD, CS=CS)
             npat = len(self.pattern)
             A = dict(zip(self.pattern, out[:npat]))
+            ratio = self._ratio(A)
+        if rates and "velocity" in stages:
             XD = self._solve_blocks(A, out[npat:])
             if "acceleration" in stages:
                 r = self._call("accelerations", X=X, XD=XD, Q=Q, QD=QD, QDD=QDD, CS=CS)
@@ -497,7 +538,7 @@ class PreciseMechanism:
                                          dict(zip(self.art["q"], q_float)))
         try:
             pts = self._call("points", X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
-            rec = {"x": X, "xd": XD, "xdd": XDD, "pts": pts}
+            rec = {"x": X, "xd": XD, "xdd": XDD, "pts": pts, "ratio": ratio}
             if rates and "forces" in stages:
                 F = self._forces(pts, X, CS)
                 # a gear mesh's tooth load must press: the other flank where it pulls, as
@@ -574,15 +615,48 @@ class PreciseMechanism:
                                    "unique solution")
                     steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i], False, stages,
                                          Qs[:, i])
+            K = accuracy.condition_of(base_accuracy) * self._gain(steps, status, Xf, Qs, QDs)
+            # a step whose exact driver value is a singular position (a dead centre the
+            # float64 run, at the rounded value, found merely ill-conditioned)
+            for i in np.flatnonzero((status == OK) & ~(K <= SINGULAR_COND)):
+                status[i] = SINGULAR
+                base.condition[i] = K[i]
+                messages[i] = (f"singular position at {self.digits} digits: condition number "
+                               f"about {K[i]:.3g} at the step's exact driver value (the float64 "
+                               f"run's at its rounding, times the ratio of the group blocks' "
+                               f"Hadamard ratios there and here), above {SINGULAR_COND:.0e}; "
+                               "velocities and accelerations have no unique solution")
+                steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i], False, stages,
+                                     Qs[:, i])
             records = [None if s is None else self._record(s, stages) for s in steps]
         base.status = status
         base.messages = messages
         analysis = self._round_into(base, records, stages)
-        analysis.accuracy = self._accuracy(analysis, base_accuracy, stages, rounding)
+        analysis.accuracy = self._accuracy(analysis, K, stages, rounding)
         return PreciseResult(analysis, self.digits, records, list(art["x"]))
 
-    def _accuracy(self, res, base_accuracy, stages, rounding) -> dict:
-        """The float64 run's ``K`` with ``10^-digits`` for eps, plus the rounding to float64
+    def _gain(self, steps, status, Xf, Qs, QDs) -> np.ndarray:
+        """How much worse conditioned each ``ok`` step is at its exact driver value than the
+        float64 run found it at the rounded one: the float64 runtime's indicator (the group
+        blocks' smallest Hadamard ratio, to which the condition number is inversely
+        proportional, :mod:`linkage_sym.numeric.accuracy`) there over this run's here, at
+        least 1 (1 where there is no indicator).  Near a dead centre the two differ by the
+        driver's rounding alone, a fraction of it; at a step that is exactly a dead centre,
+        the float64 run's rounding kept it a tangency's width away (condition ~1e8, where
+        here it is ~1e25).  Call it at the working precision."""
+        gain = np.ones(len(status))
+        idx = np.array([i for i, s in enumerate(steps) if status[i] == OK and s is not None
+                        and s["ratio"] is not None], dtype=np.intp)
+        if len(idx):
+            for i, r in zip(idx, self._float_ratios(Xf, Qs, QDs, idx)):
+                here = steps[i]["ratio"]
+                if np.isfinite(r) and r > 0:
+                    gain[i] = max(1.0, float(mp.mpf(float(r)) / here)) if here > 0 else math.inf
+        return gain
+
+    def _accuracy(self, res, K, stages, rounding) -> dict:
+        """``K`` (the float64 run's, times :meth:`_gain`) with ``10^-digits`` for eps, plus
+        the rounding to float64
         (positions: an ulp of the largest coordinate over the mechanism's size or of the
         largest rotation, :func:`accuracy.magnitude_floor`).
 
@@ -591,7 +665,6 @@ class PreciseMechanism:
         still carries a rounding (``rounding`` (N,), relative), it is amplified as the
         arithmetic's is: ``eps`` is ``10^-digits`` plus that rounding at that step.
         """
-        K = accuracy.condition_of(base_accuracy)
         floor = {"position": accuracy.magnitude_floor(res, self.cm.L), "velocity": accuracy.EPS,
                  "acceleration": accuracy.EPS, "forces": accuracy.EPS}
         return accuracy.accuracy(K, res.status == OK, stages,
