@@ -72,10 +72,11 @@ def analyze(scene, method="dyad", disconnection=None, precision="double"):
     (numeric, forces as one sparse system of all links) or ``"symbolic"``
     (the SymPy-derived equations, lambdified and cached per topology).
     ``precision``: ``"double"`` (float64, the methods above) or a number of
-    significant digits (e.g. 50): the derived equations evaluated in mpmath,
-    the result rounded to float64 (:mod:`linkage_sym.codegen.precision`; about
-    10^3--10^4 times slower; ``method`` and ``disconnection`` must stay at their
-    defaults).
+    significant digits (e.g. 50): the derived equations evaluated in mpmath at
+    each step's exact driver value (from the scene's ``start_deg``/``stop_deg``,
+    not their float64 radians), the result rounded to float64
+    (:mod:`linkage_sym.codegen.precision`; about 10^3--10^4 times slower;
+    ``method`` and ``disconnection`` must stay at their defaults).
     """
     if not (precision is None or precision == "double"):  # SymPy and mpmath only then
         from linkage_sym.codegen.precision import analyze_precise, parse_precision

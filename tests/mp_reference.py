@@ -177,14 +177,16 @@ class Reference:
         return -w * w * (u[0] * Dx + u[1] * Dy) + 2 * w * (-u[1] * Vx + u[0] * Vy)
 
     # -- one step -------------------------------------------------------------------
-    def solve(self, res, i):
-        """The reference at step ``i`` of Analysis ``res`` (``None`` if Newton fails)."""
+    def solve(self, res, i, q=None):
+        """The reference at step ``i`` of Analysis ``res`` (``None`` if Newton fails), at its
+        float64 driver values, or at ``q`` (``{driver: value}``, e.g. mpf) if given."""
         with mp.workdps(self.digits + 10):
-            return self._solve(res, i)
+            return self._solve(res, i, q)
 
-    def _solve(self, res, i):
+    def _solve(self, res, i, q=None):
         scene = self.scene
-        q = {k: _f(v["q"][i]) for k, v in res.drivers.items()}
+        if q is None:
+            q = {k: _f(v["q"][i]) for k, v in res.drivers.items()}
         qd = {k: _f(v["qd"][i]) for k, v in res.drivers.items()}
         qdd = {k: _f(v["qdd"][i]) for k, v in res.drivers.items()}
         P = {GROUND: _Pose()}

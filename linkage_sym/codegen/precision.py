@@ -6,7 +6,13 @@ with mpmath at the given number of significant decimal digits, one step at a tim
 
 1. **parameters** (lengths, angles, coordinates, masses, loads) from the scene's numbers
    by the same recipes as :func:`linkage_sym.structure.parameters.evaluate`, in mpmath:
-   the binary64 numbers of the scene are the mechanism, converted exactly;
+   the binary64 numbers of the scene are the mechanism, converted exactly; and each
+   step's **driver values** from the scene's numbers too: step ``i`` is
+   ``start + i (stop - start) / (steps - 1)`` (an ``R`` driver's ``start_deg`` and
+   ``stop_deg`` in degrees, converted with ``mpmath.pi``) at the working precision
+   (:func:`driver_step_mp`), not the float64 sweep's rounding of it (180 degrees is
+   ``float(pi)`` there: near a dead centre, where the output's rate against the driver is
+   unbounded, that rounding alone moves positions by ~1e-8);
 2. **positions**: the nested closed forms of input links and dyads (the assembly-mode
    signs chosen as the compiled mechanism chooses them); a group without a closed form
    by Newton's method on its loop equations in mpmath, from the float64 solution of the
@@ -17,8 +23,22 @@ with mpmath at the given number of significant decimal digits, one step at a tim
 4. **forces**: each group's equilibrium block ``A_g F_g = b_g - C_g F_later`` by mpmath
    LU solves from the last group back, then the frame force and moment.
 
+Driver values a caller gives (``run_precise(scene, digits, q, qd, qdd)``) are taken as
+the binary64 numbers they are, except values of the scene's own sweep, which stand for
+their steps (:meth:`PreciseMechanism.driver_values`: so the command line's chunks of the
+sweep get the exact steps).  The accuracy estimate is the float64 run's condition numbers,
+times how much smaller the group blocks' indicator (their Hadamard ratios) is at the exact
+driver value than at the float64 run's rounded one (:meth:`PreciseMechanism._gain`), with
+``10^-digits`` for eps, plus the rounding to float64, plus, at a step whose driver value
+still carries a rounding (steps of the sweep closer than an ulp), that rounding amplified
+alike.
+
 The statuses (unassemblable, singular), messages and warnings come from the float64
-run of the same compiled mechanism; at its ``ok`` steps every value is then the
+run of the same compiled mechanism, but for steps where this precision tells otherwise:
+no real position (unassemblable), a group block exactly singular, or a condition number
+so estimated above the singularity threshold (a step exactly at a dead centre, which
+float64's rounded driver value kept a tangency's width away) -- singular, positions
+only.  At the ``ok`` steps every value is then the
 mpmath value rounded once to float64 (traced points and link origins are computed in
 mpmath from the link's rotation too).  The result is the same
 :class:`~linkage_sym.numeric.result.Analysis` as every other method's, with
@@ -32,7 +52,8 @@ float64 solver per position (see ``benchmarks/bench_accuracy.py``).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import math
+from dataclasses import dataclass, field, replace
 
 import mpmath as mp
 import numpy as np
@@ -42,7 +63,9 @@ from linkage_sym.codegen.compile import build_artifact, compile_mechanism
 from linkage_sym.codegen.runtime import CompiledMechanism
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric import accuracy
+from linkage_sym.numeric.loads import load_factor
 from linkage_sym.numeric.result import OK, SINGULAR, UNASSEMBLABLE, GroupForces
+from linkage_sym.numeric.sweep import SINGULAR_COND
 from linkage_sym.structure.parameters import ident
 
 DOUBLE = "double"
@@ -161,9 +184,19 @@ def parameter_mp(scene: Scene, recipe: tuple, mframes):
     raise ValueError(f"unknown parameter recipe {recipe!r}")
 
 
-def _factor_mp(load, x):
+def _factor_mp(load, x, x_float: float | None = None):
     """A load's factor at the driver value ``x`` (mpf), as
-    :func:`linkage_sym.numeric.loads.load_factor` defines it, in mpmath."""
+    :func:`linkage_sym.numeric.loads.load_factor` defines it, in mpmath.
+
+    ``x_float`` is the step's float64 driver value (``x`` rounded unless given): whether
+    the step lies in the table and in the ``active`` range is decided on it, as the
+    float64 run decides it (a step at an end of the range, in the scene's degrees, is at
+    the end in both: the range's radians are rounded, the step's exact value is not); the
+    table is interpolated at ``x`` (continuous, so a step an ulp beyond a table's end
+    extrapolates by an ulp).
+    """
+    if x_float is None:
+        x_float = float(x)
     f = mp.mpf(1)
     period = None if load.period is None else mp.mpf(float(load.period))
     if load.table is not None:
@@ -172,20 +205,55 @@ def _factor_mp(load, x):
         if period is not None:  # periodic: the table's first point again a period on
             x = tq[0] + mp.fmod(mp.fmod(x - tq[0], period) + period, period)
             tq, ts = tq + [tq[0] + period], ts + [ts[0]]
-        if not tq[0] <= x <= tq[-1]:
-            raise ValueError(f"load on {load.link}: driver {load.driver} at {float(x):g} is outside "
-                             "its table, where the factor is not defined")
-        k = max(i for i in range(len(tq) - 1) if tq[i] <= x) if x < tq[-1] else len(tq) - 2
+        elif not load.table.q[0] <= x_float <= load.table.q[-1]:
+            raise ValueError(f"load on {load.link}: driver {load.driver} at {x_float:g} is "
+                             "outside its table, where the factor is not defined")
+        k = max([0] + [i for i in range(len(tq) - 1) if tq[i] <= x]) if x < tq[-1] else len(tq) - 2
         f = ts[k] + (ts[k + 1] - ts[k]) * (x - tq[k]) / (tq[k + 1] - tq[k])
     if load.active is not None:
-        lo, hi = (mp.mpf(float(v)) for v in load.active)
-        if period is not None:
-            inside = mp.fmod(mp.fmod(x - lo, period) + period, period) <= hi - lo
-        else:
-            inside = lo <= x <= hi
-        if not inside:
+        span = replace(load, table=None)  # the factor of the range alone: 1 inside, 0 outside
+        if not load_factor(span, {load.driver: np.array([x_float])})[0] > 0:
             f = mp.mpf(0)
     return f
+
+
+# ------------------------------------------------------------------ driver values in mpmath
+
+
+def _driver_numbers(driver):
+    """``(start, stop, degrees)``: the scene's numbers of a driver's sweep, and whether they
+    are degrees (an ``R`` driver read from a scene, whose radians are their rounding)."""
+    if (driver.kind == "R" and driver.start_deg is not None and driver.stop_deg is not None
+            and math.radians(driver.start_deg) == driver.start
+            and math.radians(driver.stop_deg) == driver.stop):
+        return driver.start_deg, driver.stop_deg, True
+    return driver.start, driver.stop, False
+
+
+def driver_step_mp(driver, i: int):
+    """Step ``i`` of a driver's sweep in mpmath, at the working precision (``mp.dps``).
+
+    ``start + i (stop - start) / (steps - 1)`` from the scene's numbers, each taken as the
+    binary64 number it is: for an ``R`` driver read from a scene its ``start_deg`` and
+    ``stop_deg``, converted to radians with ``mpmath.pi`` (the float64 sweep's radians
+    are their rounding: 180 degrees is ``float(pi)`` there, 1.2e-16 short of pi); else
+    ``start`` and ``stop`` (radians or metres) themselves.
+
+    Examples
+    --------
+    >>> import mpmath as mp
+    >>> from linkage_sym.model import Driver
+    >>> d = Driver("A", "R", math.radians(90.0), math.radians(180.0), 3, 1.0, toward="B",
+    ...            start_deg=90.0, stop_deg=180.0)
+    >>> with mp.workdps(30):
+    ...     print(driver_step_mp(d, 2) - mp.pi, mp.nstr(mp.mpf(d.stop) - mp.pi, 5))
+    0.0 -1.2246e-16
+    """
+    start, stop, degrees = _driver_numbers(driver)
+    a, b = mp.mpf(start), mp.mpf(stop)
+    n = driver.steps
+    v = a if n == 1 else (a * (n - 1 - i) + b * i) / (n - 1)
+    return v * mp.pi / 180 if degrees else v
 
 
 # ------------------------------------------------------------------ the generated functions
@@ -292,13 +360,67 @@ class PreciseMechanism:
         self.m = cm.m
         self.pattern = [tuple(p) for p in self.art["pattern"]]
         self.scaled = [(i, ld) for i, ld in enumerate(cm.scene.loads) if ld.driver is not None]
+        self._steps_of: dict = {}  # a driver's float64 step values -> step (driver_values)
+
+    # -- driver values --------------------------------------------------------------
+    def _step_index(self, name: str) -> dict:
+        """``{float64 value: step}`` of the scene's sweep of driver ``name`` (-1 where two
+        steps round to one value and their exact values differ)."""
+        got = self._steps_of.get(name)
+        if got is None:
+            driver = next(d for d in self.scene.drivers if d.joint == name)
+            start, stop, _ = _driver_numbers(driver)
+            values = np.asarray(self.cm.sweep()[0][name], float)
+            got = {}
+            for i, v in enumerate(values.tolist()):
+                if got.setdefault(v, i) != i and start != stop:
+                    got[v] = -1
+            self._steps_of[name] = got
+        return got
+
+    def driver_values(self, Q) -> tuple[list, np.ndarray]:
+        """The driver values of each step in mpmath, and the rounding they still carry.
+
+        ``Q`` (D, N): float64 driver values, rows in the order of ``artifact["q"]``.  A
+        value that is the float64 value of a step of the scene's own sweep of that driver
+        (every value of that sweep, and of any part of it: the command line solves it in
+        chunks) stands for that step, and gets the step's exact value from the scene's
+        numbers (:func:`driver_step_mp`); any other value is taken as the exact binary64
+        number it is.  Call it at the working precision.
+
+        Returns
+        -------
+        values : list of (list of mpf)
+            Per column of ``Q``, the drivers' values.
+        rounding : ndarray (N,)
+            Per column, the largest relative error a value still carries: 0, unless two
+            steps of the scene's sweep round to one float64 value (steps less than an ulp
+            apart) whose exact values differ; there ``eps |q|`` (rad for an ``R`` driver,
+            over the mechanism's size for a ``P`` driver), which the accuracy estimate
+            amplifies as it does the arithmetic's rounding.
+        """
+        drivers = {d.joint: d for d in self.scene.drivers}
+        index = [self._step_index(n) for n in self.art["q"]]
+        scale = [1.0 if drivers[n].kind == "R" else self.cm.L for n in self.art["q"]]
+        Q = np.asarray(Q, float)
+        out, rounding = [], np.zeros(Q.shape[1])
+        for k, col in enumerate(Q.T):
+            vals = []
+            for n, idx, sc, v in zip(self.art["q"], index, scale, col.tolist()):
+                i = idx.get(v)
+                vals.append(mp.mpf(v) if i is None or i < 0 else driver_step_mp(drivers[n], i))
+                if i is not None and i < 0:
+                    rounding[k] = max(rounding[k], accuracy.EPS * abs(v) / sc)
+            out.append(vals)
+        return out, rounding
 
     # -- one step -------------------------------------------------------------------
-    def _scaled_params(self, q) -> list:
-        """The parameters with each load over the cycle scaled by its factor at ``q`` (mpf)."""
+    def _scaled_params(self, q, q_float) -> list:
+        """The parameters with each load over the cycle scaled by its factor at ``q`` (mpf;
+        ``q_float``: the step's float64 values, see :func:`_factor_mp`)."""
         P = list(self.P)
         for i, ld in self.scaled:
-            k = _factor_mp(ld, q[ld.driver])
+            k = _factor_mp(ld, q[ld.driver], float(q_float[ld.driver]))
             for j, (_, recipe) in enumerate(self.art["params"]):
                 if recipe[0] in ("Fx", "Fy", "T") and recipe[1] == i:
                     P[j] = P[j] * k
@@ -340,6 +462,37 @@ class PreciseMechanism:
                 raise _NotReal  # pragma: no cover - Newton from a float64 root converges
         return X
 
+    def _ratio(self, A: dict):
+        """The smallest Hadamard ratio of the group blocks of ``A`` (mpf; ``None`` with only
+        1x1 blocks): ``|det|`` over the product of its row norms, or of its column norms,
+        whichever is larger -- the float64 runtime's indicator
+        (``_RateSystem.ratios``), here at this precision."""
+        out = None
+        for r0, r1, c0, c1 in self.cm.blocks:
+            n = c1 - c0
+            if n < 2:
+                continue
+            M = mp.matrix(n, n)
+            for i in range(n):
+                for j in range(n):
+                    M[i, j] = A.get((r0 + i, c0 + j), 0)
+            rows = mp.fprod(mp.norm(M[i, :]) for i in range(n))
+            cols = mp.fprod(mp.norm(M[:, j]) for j in range(n))
+            big = max(rows, cols)
+            r = abs(mp.det(M)) / big if big else mp.mpf(0)
+            out = r if out is None else min(out, r)
+        return out
+
+    def _float_ratios(self, Xf, Qs, QDs, steps) -> np.ndarray:
+        """The float64 runtime's indicator (the smallest Hadamard ratio of a group block) at
+        ``steps``, at its own positions ``Xf`` (m, N) and driver values (inf: 1x1 blocks)."""
+        A, _ = self.cm.rate_system(Xf[:, steps], list(Qs[:, steps]), list(QDs[:, steps]))
+        out = np.full(len(steps), np.inf)
+        for r in A.ratios():
+            if r is not None:
+                out = np.fmin(out, r)
+        return out
+
     def _solve_blocks(self, A: dict, rhs):
         x = [mp.mpf(0)] * self.m
         for r0, r1, c0, c1 in self.cm.blocks:
@@ -355,29 +508,37 @@ class PreciseMechanism:
                 x[c0 + j] = sol[j]
         return x
 
-    def step(self, q, qd, qdd, x_float, rates: bool, stages) -> dict:
-        """Every value at one step (mpf), from driver values (floats, exact in mpmath)."""
-        Q = [mp.mpf(float(v)) for v in q]
+    def step(self, q, qd, qdd, x_float, rates: bool, stages, q_float=None) -> dict:
+        """Every value at one step (mpf), from driver values ``q`` (mpf, or floats taken as
+        the exact binary64 numbers they are; ``q_float`` their float64 values, ``q`` itself
+        unless given: see :meth:`driver_values`)."""
+        Q = [v if isinstance(v, mp.mpf) else mp.mpf(float(v)) for v in q]
+        if q_float is None:
+            q_float = [float(v) for v in q]
         QD = [mp.mpf(float(v)) for v in qd]
         QDD = [mp.mpf(float(v)) for v in qdd]
         X = self.positions(Q, x_float)
         CS = ([mp.cos(v) for v in X], [mp.sin(v) for v in X])
         zero = [mp.mpf(0)] * self.m
         XD, XDD = zero, zero
-        if rates and "velocity" in stages:
+        ratio = None
+        if rates:  # the rate system: its blocks' indicator, and the rates if asked
             out = self._call("rates", X=X, Q=Q, QD=QD, CS=CS)
             npat = len(self.pattern)
             A = dict(zip(self.pattern, out[:npat]))
+            ratio = self._ratio(A)
+        if rates and "velocity" in stages:
             XD = self._solve_blocks(A, out[npat:])
             if "acceleration" in stages:
                 r = self._call("accelerations", X=X, XD=XD, Q=Q, QD=QD, QDD=QDD, CS=CS)
                 XDD = self._solve_blocks(A, r)
         P = self.P
         if self.scaled and "forces" in stages:  # loads over the cycle: scaled at this step
-            self.P = self._scaled_params(dict(zip(self.art["q"], Q)))
+            self.P = self._scaled_params(dict(zip(self.art["q"], Q)),
+                                         dict(zip(self.art["q"], q_float)))
         try:
             pts = self._call("points", X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
-            rec = {"x": X, "xd": XD, "xdd": XDD, "pts": pts}
+            rec = {"x": X, "xd": XD, "xdd": XDD, "pts": pts, "ratio": ratio}
             if rates and "forces" in stages:
                 F = self._forces(pts, X, CS)
                 # a gear mesh's tooth load must press: the other flank where it pulls, as
@@ -423,7 +584,8 @@ class PreciseMechanism:
 
     # -- the sweep ------------------------------------------------------------------
     def run(self, q=None, qd=None, qdd=None) -> PreciseResult:
-        """Every step of a sweep (the scene's unless given) in mpmath; see the module docstring."""
+        """Every step of a sweep (the scene's unless given) in mpmath; see the module docstring
+        and :func:`run_precise` (the driver values)."""
         cm, art = self.cm, self.art
         if q is None:
             q, qd, qdd = cm.sweep()
@@ -435,12 +597,13 @@ class PreciseMechanism:
         stages = tuple(art["stages"])
         steps: list = [None] * len(status)
         with mp.workdps(self.digits):
+            Qmp, rounding = self.driver_values(Qs)
             for i in range(len(status)):
                 if status[i] == UNASSEMBLABLE:
                     continue
                 try:
-                    steps[i] = self.step(Qs[:, i], QDs[:, i], QDDs[:, i], Xf[:, i],
-                                         status[i] == OK, stages)
+                    steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i],
+                                         status[i] == OK, stages, Qs[:, i])
                 except _NotReal:
                     status[i] = UNASSEMBLABLE
                     messages[i] = (f"no real position at {self.digits} digits (a closed form's "
@@ -450,23 +613,62 @@ class PreciseMechanism:
                     messages[i] = (f"singular position: a group block is exactly singular at "
                                    f"{self.digits} digits; velocities and accelerations have no "
                                    "unique solution")
-                    steps[i] = self.step(Qs[:, i], QDs[:, i], QDDs[:, i], Xf[:, i], False, stages)
+                    steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i], False, stages,
+                                         Qs[:, i])
+            K = accuracy.condition_of(base_accuracy) * self._gain(steps, status, Xf, Qs, QDs)
+            # a step whose exact driver value is a singular position (a dead centre the
+            # float64 run, at the rounded value, found merely ill-conditioned)
+            for i in np.flatnonzero((status == OK) & ~(K <= SINGULAR_COND)):
+                status[i] = SINGULAR
+                base.condition[i] = K[i]
+                messages[i] = (f"singular position at {self.digits} digits: condition number "
+                               f"about {K[i]:.3g} at the step's exact driver value (the float64 "
+                               f"run's at its rounding, times the ratio of the group blocks' "
+                               f"Hadamard ratios there and here), above {SINGULAR_COND:.0e}; "
+                               "velocities and accelerations have no unique solution")
+                steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i], False, stages,
+                                     Qs[:, i])
             records = [None if s is None else self._record(s, stages) for s in steps]
         base.status = status
         base.messages = messages
         analysis = self._round_into(base, records, stages)
-        analysis.accuracy = self._accuracy(analysis, base_accuracy, stages)
+        analysis.accuracy = self._accuracy(analysis, K, stages, rounding)
         return PreciseResult(analysis, self.digits, records, list(art["x"]))
 
-    def _accuracy(self, res, base_accuracy, stages) -> dict:
-        """The float64 run's ``K`` with ``10^-digits`` for eps, plus the rounding to float64
+    def _gain(self, steps, status, Xf, Qs, QDs) -> np.ndarray:
+        """How much worse conditioned each ``ok`` step is at its exact driver value than the
+        float64 run found it at the rounded one: the float64 runtime's indicator (the group
+        blocks' smallest Hadamard ratio, to which the condition number is inversely
+        proportional, :mod:`linkage_sym.numeric.accuracy`) there over this run's here, at
+        least 1 (1 where there is no indicator).  Near a dead centre the two differ by the
+        driver's rounding alone, a fraction of it; at a step that is exactly a dead centre,
+        the float64 run's rounding kept it a tangency's width away (condition ~1e8, where
+        here it is ~1e25).  Call it at the working precision."""
+        gain = np.ones(len(status))
+        idx = np.array([i for i, s in enumerate(steps) if status[i] == OK and s is not None
+                        and s["ratio"] is not None], dtype=np.intp)
+        if len(idx):
+            for i, r in zip(idx, self._float_ratios(Xf, Qs, QDs, idx)):
+                here = steps[i]["ratio"]
+                if np.isfinite(r) and r > 0:
+                    gain[i] = max(1.0, float(mp.mpf(float(r)) / here)) if here > 0 else math.inf
+        return gain
+
+    def _accuracy(self, res, K, stages, rounding) -> dict:
+        """``K`` (the float64 run's, times :meth:`_gain`) with ``10^-digits`` for eps, plus
+        the rounding to float64
         (positions: an ulp of the largest coordinate over the mechanism's size or of the
-        largest rotation, :func:`accuracy.magnitude_floor`)."""
-        K = accuracy.condition_of(base_accuracy)
+        largest rotation, :func:`accuracy.magnitude_floor`).
+
+        The driver values are exact (:meth:`driver_values`): a scene's steps from its
+        numbers, values a caller gives as the binary64 numbers they are.  Where a value
+        still carries a rounding (``rounding`` (N,), relative), it is amplified as the
+        arithmetic's is: ``eps`` is ``10^-digits`` plus that rounding at that step.
+        """
         floor = {"position": accuracy.magnitude_floor(res, self.cm.L), "velocity": accuracy.EPS,
                  "acceleration": accuracy.EPS, "forces": accuracy.EPS}
-        return accuracy.accuracy(K, res.status == OK, stages, unit=10.0 ** (-self.digits),
-                                 floor=floor)
+        return accuracy.accuracy(K, res.status == OK, stages,
+                                 unit=10.0 ** (-self.digits) + rounding, floor=floor)
 
     def _record(self, s, stages) -> dict:
         """The step's values by name (mpf), as in :attr:`PreciseResult.steps`."""
@@ -609,7 +811,20 @@ class PreciseMechanism:
 def run_precise(scene: Scene, digits, q=None, qd=None, qdd=None) -> PreciseResult:
     """Analyse ``scene`` with its derived equations in mpmath at ``digits`` digits.
 
-    See the module docstring; ``q, qd, qdd``: driver values as for ``Plan.run``.
+    See the module docstring.
+
+    Parameters
+    ----------
+    scene : Scene
+    digits : int or str
+        Significant decimal digits (:func:`parse_precision`).
+    q, qd, qdd : dict of ndarray, optional
+        Driver values as for ``Plan.run``; the scene's sweep unless given, each step at
+        its exact value from the scene's numbers (:func:`driver_step_mp`).  Given values
+        are taken as the exact binary64 numbers they are (the result is that input's, and
+        the accuracy estimate counts no rounding of them), except a ``q`` value equal to
+        the float64 value of a step of the scene's sweep of that driver, which stands for
+        that step (:meth:`PreciseMechanism.driver_values`).
     """
     d = parse_precision(digits)
     if d is None:

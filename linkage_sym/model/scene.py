@@ -124,6 +124,13 @@ class Driver:
     ``links[0]``) and in metres for a ``P`` joint (displacement along the axis,
     zero in the assembly configuration).  ``speed`` and ``acceleration`` hold
     at every step of the sweep.
+
+    ``start_deg`` and ``stop_deg`` keep an ``R`` driver's numbers as the scene
+    gave them (degrees; ``None`` for a driver built in radians): the radians are
+    their rounding, and an arbitrary-precision run converts the degrees itself
+    (:mod:`linkage_sym.codegen.precision`).  They count only while
+    ``math.radians(start_deg) == start`` (likewise ``stop``); they take no part in
+    comparisons.
     """
 
     joint: str
@@ -134,6 +141,8 @@ class Driver:
     speed: float
     acceleration: float = 0.0
     toward: str | None = None
+    start_deg: float | None = field(default=None, repr=False, compare=False)
+    stop_deg: float | None = field(default=None, repr=False, compare=False)
 
 
 @dataclass(frozen=True)

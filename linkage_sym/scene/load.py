@@ -220,8 +220,8 @@ def _dump_driver(driver: Driver) -> dict[str, Any]:
     out: dict[str, Any] = {"joint": driver.joint}
     if driver.kind == "R":
         out["toward"] = driver.toward
-        out["start_deg"] = _degrees(driver.start)
-        out["stop_deg"] = _degrees(driver.stop)
+        out["start_deg"] = _given_degrees(driver.start_deg, driver.start)
+        out["stop_deg"] = _given_degrees(driver.stop_deg, driver.stop)
     else:
         out["start"] = driver.start
         out["stop"] = driver.stop
@@ -259,6 +259,14 @@ def _dump_effects(effects: Effects) -> dict[str, Any]:
         out["gravity"] = list(effects.gravity)
     out["loads"] = effects.loads
     return out
+
+
+def _given_degrees(degrees: float | None, angle: float) -> float:
+    """The degrees a scene gave for ``angle`` (kept on its driver) while they still convert to
+    it, else :func:`_degrees`: a scene written and read back has the same driver numbers."""
+    if degrees is not None and math.radians(degrees) == angle:
+        return degrees
+    return _degrees(angle)
 
 
 def _degrees(angle: float) -> float:

@@ -350,16 +350,18 @@ class _SceneReader(FieldReader):
             speed = self.number(entry, "speed", path)
             acceleration = self.number(entry, "acceleration", path, default=0.0)
             kind = None if info is None else info.type
-            start, stop, toward = self.driver_range(entry, path, info)
+            start, stop, toward, degrees = self.driver_range(entry, path, info)
             if kind is not None and len(self.problems) == before:
-                drivers.append(Driver(joint, kind, start, stop, steps, speed, acceleration, toward))
+                drivers.append(Driver(joint, kind, start, stop, steps, speed, acceleration, toward,
+                                      *degrees))
         self.drivers_ok = refs_ok
         return tuple(drivers)
 
     def driver_range(
         self, entry: Mapping[str, Any], path: str, info: _JointInfo | None
-    ) -> tuple[float | None, float | None, str | None]:
-        """``start``, ``stop`` (radians or metres) and ``toward`` of a driver on joint ``info``."""
+    ) -> tuple[float | None, float | None, str | None, tuple]:
+        """``start``, ``stop`` (radians or metres) and ``toward`` of a driver on joint ``info``,
+        and an ``R`` driver's ``(start_deg, stop_deg)`` as given (``()`` for the others)."""
         kind = None if info is None else info.type
         joint = entry.get("joint")
         if kind == "R":
@@ -378,7 +380,7 @@ class _SceneReader(FieldReader):
                     f"({MAX_SWEEP_DEG:.0f} degrees) are allowed: the solver follows the mechanism "
                     "in increments of at most 2 degrees",
                 )
-            return _radians(start), _radians(stop), toward
+            return _radians(start), _radians(stop), toward, (start, stop)
         if kind == "P":
             where = f"on a driver of P joint '{joint}'"
             self.forbid(entry, path, ("toward",), where)
@@ -389,13 +391,13 @@ class _SceneReader(FieldReader):
             for key, value in (("start", start), ("stop", stop)):
                 if value is not None:
                     self.slides.append((f"{path}.{key}", value))
-            return start, stop, None
+            return start, stop, None, ()
         # The kind is unknown (a problem already reported): check only what is given.
         if "toward" in entry:
             self.name(entry, "toward", path)
         for key in (*R_DRIVER_KEYS[1:], *P_DRIVER_KEYS):
             self.number(entry, key, path, default=None)
-        return None, None, None
+        return None, None, None, ()
 
     def read_loads(self, data: Mapping[str, Any], drivers=()) -> tuple[Load, ...]:
         if "loads" not in data:
