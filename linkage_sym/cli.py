@@ -73,7 +73,7 @@ import numpy as np
 from linkage_sym import cli_accuracy, cli_balance, cli_centres
 from linkage_sym._version import __version__
 from linkage_sym.cli_common import OptionError, check_outputs as _check_outputs, load as _load
-from linkage_sym.cli_common import emit, stem as _stem
+from linkage_sym.cli_common import closed_streams_to_devnull, emit, stem as _stem
 from linkage_sym.errors import BalanceError, SceneError
 from linkage_sym.synthesis import cli as synthesis_cli
 from linkage_sym.design import cli as design_cli  # linkage-sym sweep
@@ -461,13 +461,13 @@ def _stdout_to_devnull() -> None:
 
 def main(argv=None) -> int:
     """Run the command line; returns the exit status (see ``EXIT_STATUS``)."""
+    closed_streams_to_devnull()  # started with >&- (sys.stdout None): output discarded
     for stream in (sys.stdout, sys.stderr):  # an ASCII-only terminal: ° and · escaped, not fatal
-        if stream is not None and hasattr(stream, "reconfigure"):
+        if hasattr(stream, "reconfigure"):
             stream.reconfigure(errors="backslashreplace")
     try:
         code = _run(argv)
-        if sys.stdout is not None:  # None: started with standard output closed (>&-)
-            sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
+        sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
         return code
     except BrokenPipeError:  # `| head`: the reader has all it wants; stop as Unix tools do
         _stdout_to_devnull()

@@ -14,7 +14,7 @@ import os
 import sys
 from pathlib import Path
 
-__all__ = ["OptionError", "load", "check_outputs", "write", "emit", "stem"]
+__all__ = ["OptionError", "load", "check_outputs", "write", "emit", "stem", "closed_streams_to_devnull"]
 
 
 class OptionError(Exception):
@@ -23,6 +23,31 @@ class OptionError(Exception):
     def __init__(self, problems):
         self.problems = [problems] if isinstance(problems, str) else list(problems)
         super().__init__("; ".join(self.problems))
+
+
+def closed_streams_to_devnull() -> None:
+    """Give a command started with standard output or error closed (``>&-``, ``2>&-``) a
+    stream that discards what it writes, so that every command runs as with ``>/dev/null``.
+
+    Python sets ``sys.stdout`` (``sys.stderr``) to None then, and the first write of any
+    command raised AttributeError.  The closed descriptor is pointed at the null device too,
+    so that no file a command opens can take its number (and a child process's output).
+    Called once, by :func:`linkage_sym.cli.main`, before any command runs.
+    """
+    for fd, name in ((1, "stdout"), (2, "stderr")):
+        if getattr(sys, name) is not None:
+            continue
+        try:
+            os.fstat(fd)
+        except OSError:  # closed: the null device takes its number
+            null = os.open(os.devnull, os.O_WRONLY)
+            if null != fd:
+                os.dup2(null, fd)
+                os.close(null)
+            stream = open(fd, "w", closefd=False, errors="backslashreplace")
+        else:  # open but not given to Python (a windowed interpreter): leave it alone
+            stream = open(os.devnull, "w", errors="backslashreplace")
+        setattr(sys, name, stream)
 
 
 def load(path):
