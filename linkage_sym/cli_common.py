@@ -82,11 +82,16 @@ def check_outputs(files=(), folders=(), replaced: bool = False) -> None:
     ``replaced``: the files are written under a temporary name that then replaces the
     one named (``analyze``), so a device or a named pipe there is refused rather than
     replaced (the other commands write through the path).
+    An empty path is refused for files and folders alike (``Path("")`` is the current
+    folder, where plots and scenes would have been written unasked).
     Raises :class:`OptionError` naming each option.
     """
     problems, seen = [], {}
     for option, given in files:
         if given is None or given == "-":
+            continue
+        if given == "":
+            problems.append(f"{option}: an empty path; a file name is expected")
             continue
         p = Path(given)
         if p.is_dir():
@@ -110,6 +115,9 @@ def check_outputs(files=(), folders=(), replaced: bool = False) -> None:
         seen.setdefault(key, option)
     for option, given in folders:
         if given is None:
+            continue
+        if given == "":
+            problems.append(f"{option}: an empty path; a folder name is expected")
             continue
         p = Path(given)
         if p.exists() and not p.is_dir():

@@ -614,3 +614,39 @@ def test_a_cache_path_under_a_file_warns_and_the_run_goes_on(tmp_path):
     assert p.returncode == 0, p.stderr
     assert p.stderr.count("cannot be used") == 1 and "running without it" in p.stderr
     assert "13 steps: 13 ok" in p.stdout
+
+
+_CR = ["--K", "1.5", "--rocker", "0.075", "--swing-deg", "45", "--ground", "0.1"]
+
+
+@pytest.mark.parametrize("args, option", [
+    (["analyze", "SCENE", "-o", ""], "-o/--output"),
+    (["analyze", "SCENE", "--plots", ""], "--plots"),
+    (["derive", "SCENE", "-o", ""], "-o/--output"),
+    (["demo", "--example", "crank_rocker", "-o", ""], "-o/--output"),
+    (["new", "guide-bar", "--crank", "0.03", "--ground", "0.06", "-o", ""], "-o/--output"),
+    (["synthesize", "crank-rocker", *_CR, "-o", ""], "-o/--output"),
+    (["synthesize", "equations", "-o", ""], "-o/--output"),
+    (["balance", "SCENE", "-o", ""], "-o/--output"),
+    (["balance", "SCENE", "--plots", ""], "--plots"),
+    (["balance", "SCENE", "--balanced-scene", ""], "--balanced-scene"),
+    (["balance", "SCENE", "--optimize", ""], "--optimize"),
+    (["centres", "SCENE", "--step", "1", "-o", ""], "-o/--output"),
+    (["centres", "SCENE", "--step", "1", "--plots", ""], "--plots"),
+    (["sweep", "SCENE", "--vary", "l_AB=0.02:0.03:2", "-o", ""], "-o/--output"),
+    (["sweep", "SCENE", "--vary", "l_AB=0.02:0.03:2", "--plots", ""], "--plots"),
+    (["sweep", "SCENE", "--vary", "l_AB=0.02:0.03:2", "--write-scenes", ""], "--write-scenes"),
+])
+def test_an_empty_path_is_refused_by_every_path_option(tmp_path, monkeypatch, capsys, args,
+                                                        option):
+    """``--plots ""``, ``demo -o ""`` and ``sweep --write-scenes ""`` wrote into the current
+    folder while ``-o ""`` was refused as 'a folder': one check now refuses an empty path
+    for every output option, naming it, before anything is written."""
+    scene = small_scene(tmp_path)
+    work = tmp_path / "cwd"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    assert main([scene if a == "SCENE" else a for a in args]) == 2
+    err = capsys.readouterr().err
+    assert f"{option}: an empty path" in err, err
+    assert files_under(work) == []
