@@ -25,15 +25,22 @@ derive SCENE.json [--latex] [--numeric] [-o FILE]
     "Kinematic analysis of planar mechanisms" (for ``\\input``
     in a document that loads amsmath).  ``--numeric`` puts the scene's
     numbers in place of the parameter symbols.
-balance SCENE.json -o BALANCE.json [--latex] [--plots DIR] [--balanced-scene FILE]
-        [--optimize FILE [--weights F,M,T] [--max-mass KG] [--links L1,L2]]
+balance SCENE.json [-o BALANCE.json | -o -] [--latex [FILE.tex]] [--plots DIR]
+        [--balanced-scene FILE] [--optimize FILE [--weights F,M,T] [--max-mass KG]
+        [--links L1,L2]]
     Derive a hinged linkage's shaking moment in Song and Wang's (1992) mass and
     acceleration parameters, its shaking force and moment balance
     conditions, counterweights that balance the force, and the shaking
-    force and moment over the sweep (from the lambdified modules);
+    force and moment over the sweep (from the lambdified modules).  The
+    console gets a summary (the conditions, the counterweights, RMS shaking
+    force and moment before and after); the JSON only with ``-o``.
+    ``--latex`` writes the expressions as a LaTeX fragment (to FILE.tex, or
+    beside ``-o`` with the suffix .tex);
     ``--plots`` writes the polar plot and the moment curve before and after
     balancing; ``--optimize`` writes the scene with counterweights that
-    minimise a weighted sum of RMS shaking force, moment and driving effort.
+    minimise a weighted sum of RMS shaking force, moment and driving effort
+    (each counterweight at most its link's mass unless ``--max-mass``; a
+    solver that did not converge is reported as a warning).
     The derived conditions cover hinged (R-joint only) linkages: for a scene
     with prismatic joints only ``--optimize`` (and ``--plots``) run, with
     series from the force solver.
