@@ -25,15 +25,22 @@ derive SCENE.json [--latex] [--numeric] [-o FILE]
     "Kinematic analysis of planar mechanisms" (for ``\\input``
     in a document that loads amsmath).  ``--numeric`` puts the scene's
     numbers in place of the parameter symbols.
-balance SCENE.json -o BALANCE.json [--latex] [--plots DIR] [--balanced-scene FILE]
-        [--optimize FILE [--weights F,M,T] [--max-mass KG] [--links L1,L2]]
+balance SCENE.json [-o BALANCE.json | -o -] [--latex [FILE.tex]] [--plots DIR]
+        [--balanced-scene FILE] [--optimize FILE [--weights F,M,T] [--max-mass KG]
+        [--links L1,L2]]
     Derive a hinged linkage's shaking moment in Song and Wang's (1992) mass and
     acceleration parameters, its shaking force and moment balance
     conditions, counterweights that balance the force, and the shaking
-    force and moment over the sweep (from the lambdified modules);
+    force and moment over the sweep (from the lambdified modules).  The
+    console gets a summary (the conditions, the counterweights, RMS shaking
+    force and moment before and after); the JSON only with ``-o``.
+    ``--latex`` writes the expressions as a LaTeX fragment (to FILE.tex, or
+    beside ``-o`` with the suffix .tex);
     ``--plots`` writes the polar plot and the moment curve before and after
     balancing; ``--optimize`` writes the scene with counterweights that
-    minimise a weighted sum of RMS shaking force, moment and driving effort.
+    minimise a weighted sum of RMS shaking force, moment and driving effort
+    (each counterweight at most its link's mass unless ``--max-mass``; a
+    solver that did not converge is reported as a warning).
     The derived conditions cover hinged (R-joint only) linkages: for a scene
     with prismatic joints only ``--optimize`` (and ``--plots``) run, with
     series from the force solver.
@@ -73,7 +80,7 @@ import numpy as np
 from linkage_sym import cli_accuracy, cli_balance, cli_centres
 from linkage_sym._version import __version__
 from linkage_sym.cli_common import OptionError, check_outputs as _check_outputs, load as _load
-from linkage_sym.cli_common import emit, stem as _stem
+from linkage_sym.cli_common import closed_streams_to_devnull, emit, stem as _stem
 from linkage_sym.errors import BalanceError, SceneError
 from linkage_sym.synthesis import cli as synthesis_cli
 from linkage_sym.design import cli as design_cli  # linkage-sym sweep
@@ -461,13 +468,13 @@ def _stdout_to_devnull() -> None:
 
 def main(argv=None) -> int:
     """Run the command line; returns the exit status (see ``EXIT_STATUS``)."""
+    closed_streams_to_devnull()  # started with >&- (sys.stdout None): output discarded
     for stream in (sys.stdout, sys.stderr):  # an ASCII-only terminal: ° and · escaped, not fatal
-        if stream is not None and hasattr(stream, "reconfigure"):
+        if hasattr(stream, "reconfigure"):
             stream.reconfigure(errors="backslashreplace")
     try:
         code = _run(argv)
-        if sys.stdout is not None:  # None: started with standard output closed (>&-)
-            sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
+        sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
         return code
     except BrokenPipeError:  # `| head`: the reader has all it wants; stop as Unix tools do
         _stdout_to_devnull()

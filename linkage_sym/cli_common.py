@@ -14,7 +14,7 @@ import os
 import sys
 from pathlib import Path
 
-__all__ = ["OptionError", "load", "check_outputs", "write", "emit", "stem"]
+__all__ = ["OptionError", "load", "check_outputs", "write", "emit", "stem", "closed_streams_to_devnull"]
 
 
 class OptionError(Exception):
@@ -23,6 +23,31 @@ class OptionError(Exception):
     def __init__(self, problems):
         self.problems = [problems] if isinstance(problems, str) else list(problems)
         super().__init__("; ".join(self.problems))
+
+
+def closed_streams_to_devnull() -> None:
+    """Give a command started with standard output or error closed (``>&-``, ``2>&-``) a
+    stream that discards what it writes, so that every command runs as with ``>/dev/null``.
+
+    Python sets ``sys.stdout`` (``sys.stderr``) to None then, and the first write of any
+    command raised AttributeError.  The closed descriptor is pointed at the null device too,
+    so that no file a command opens can take its number (and a child process's output).
+    Called once, by :func:`linkage_sym.cli.main`, before any command runs.
+    """
+    for fd, name in ((1, "stdout"), (2, "stderr")):
+        if getattr(sys, name) is not None:
+            continue
+        try:
+            os.fstat(fd)
+        except OSError:  # closed: the null device takes its number
+            null = os.open(os.devnull, os.O_WRONLY)
+            if null != fd:
+                os.dup2(null, fd)
+                os.close(null)
+            stream = open(fd, "w", closefd=False, errors="backslashreplace")
+        else:  # open but not given to Python (a windowed interpreter): leave it alone
+            stream = open(os.devnull, "w", errors="backslashreplace")
+        setattr(sys, name, stream)
 
 
 def load(path):
@@ -57,11 +82,16 @@ def check_outputs(files=(), folders=(), replaced: bool = False) -> None:
     ``replaced``: the files are written under a temporary name that then replaces the
     one named (``analyze``), so a device or a named pipe there is refused rather than
     replaced (the other commands write through the path).
+    An empty path is refused for files and folders alike (``Path("")`` is the current
+    folder, where plots and scenes would have been written unasked).
     Raises :class:`OptionError` naming each option.
     """
     problems, seen = [], {}
     for option, given in files:
         if given is None or given == "-":
+            continue
+        if given == "":
+            problems.append(f"{option}: an empty path; a file name is expected")
             continue
         p = Path(given)
         if p.is_dir():
@@ -85,6 +115,9 @@ def check_outputs(files=(), folders=(), replaced: bool = False) -> None:
         seen.setdefault(key, option)
     for option, given in folders:
         if given is None:
+            continue
+        if given == "":
+            problems.append(f"{option}: an empty path; a folder name is expected")
             continue
         p = Path(given)
         if p.exists() and not p.is_dir():

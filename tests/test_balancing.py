@@ -295,7 +295,9 @@ def test_optimiser_matches_exact_counterweights():
     first moments about the pivots (1e-6 relative: the optimiser's tolerance)."""
     scene = load_example("crank_rocker")
     exact = force_balancing_counterweights(scene)
-    res = optimize_counterweights(scene, links=["crank", "rocker"], weights=(1.0, 0.0, 0.0))
+    # 0.37 kg on the 0.2 kg crank: the mechanism's mass as the bound (default: the link's own)
+    res = optimize_counterweights(scene, links=["crank", "rocker"], weights=(1.0, 0.0, 0.0),
+                                  max_mass=1.0)
     frames = {"crank": (0.0, 0.0)}
     a_r = derive_balance(scene).model.values()["a_rocker"]
     frames["rocker"] = (a_r, 0.0)  # the rocker turns about D, its frame's v
@@ -373,7 +375,7 @@ def test_cli_balance_optimises_a_slider_crank(tmp_path):
     src = linkage_sym.examples.example_path("slider_crank_offset")
     r = subprocess.run([sys.executable, "-m", "linkage_sym", "balance", str(src), "-o", str(out),
                         "--optimize", str(opt), "--weights", "1,0,0", "--plots", str(pics),
-                        "--links", "crank,connecting_rod"],
+                        "--links", "crank,connecting_rod", "--max-mass", "3"],  # the mechanism's mass
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     d = json.loads(out.read_text())

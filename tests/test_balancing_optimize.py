@@ -19,6 +19,7 @@ tested:
 from __future__ import annotations
 
 import copy
+import json
 import math
 import subprocess
 import sys
@@ -302,8 +303,10 @@ def test_a_start_value_of_zero_is_normalised_by_the_gross_scale():
     normalised by the gross scale instead (else it would dominate by 1e16)."""
     scene = example_dict("crank_rocker")
     links = ["crank", "rocker"]
-    balanced = optimize_counterweights(scene, links=links, weights=(1, 0, 0))
-    res = optimize_counterweights(scene, links=links, weights=(1, 1, 0), start=list(balanced.counterweights))
+    # full force balance needs 0.37 kg on the 0.2 kg crank: the mechanism's mass as the bound
+    balanced = optimize_counterweights(scene, links=links, weights=(1, 0, 0), max_mass=1.0)
+    res = optimize_counterweights(scene, links=links, weights=(1, 1, 0), max_mass=1.0,
+                                  start=list(balanced.counterweights))
     assert res.rms_start["force"] < 1e-12 * res.scales["force"]
     assert res.scales["force"] == pytest.approx(CycleModel(linkage_sym.load_scene(scene)).gross["force"])
     assert np.isfinite(res.objective_start) and res.objective <= res.objective_start
@@ -395,7 +398,8 @@ def test_full_force_balance_of_the_crank_rocker_is_berkof_lowen():
     assert abs(rocker_ls - rocker_bl) <= 1e-9 * abs(rocker_bl)
     assert resid <= 1e-12
 
-    res = optimize_counterweights(scene, links=["crank", "rocker"], weights=(1, 0, 0))
+    # full balance needs 0.37 kg on the 0.2 kg crank: the mechanism's mass as the bound
+    res = optimize_counterweights(scene, links=["crank", "rocker"], weights=(1, 0, 0), max_mass=1.0)
     assert res.success
     assert res.rms_final["force"] <= 1e-6 * res.rms_start["force"]
     # the force solver agrees on the scene returned
@@ -467,3 +471,53 @@ def test_options_are_checked_in_one_place_with_every_problem_at_once():
     ok = search_options(scene, links=["rocker"], weights=("1", "0", "0.5"), max_mass={"rocker": 0.2})
     assert ok.links == ("rocker",) and ok.weights == (1.0, 0.0, 0.5) and ok.max_mass == {"rocker": 0.2}
     assert ok.max_radius == {"rocker": default_bounds(linkage_sym.load_scene(scene))[1]["rocker"]}
+
+
+# -- default bounds relative to the links' own masses ---------------------------------
+def test_default_mass_bounds_are_the_links_own_masses_and_scale_with_them():
+    """The default bound of every counterweight was the mechanism's total moving mass, so
+    the optimiser put up to three times the mechanism's mass on a guide-bar quick-return
+    (0.516, 0.57 and 0.57 kg on its 0.57 kg).  Now each link's own mass, read here from
+    the scene dict; a massless link gets the mean moving-link mass; ten times every mass
+    gives ten times every bound (1e-15 relative: one product)."""
+    d = example_dict("guide_bar_quick_return")
+    mm, _ = default_bounds(linkage_sym.load_scene(copy.deepcopy(d)))
+    assert mm == {link["name"]: link["mass"] for link in d["links"]}
+    heavy = copy.deepcopy(d)
+    for link in heavy["links"]:
+        link["mass"] *= 10
+        link["inertia"] = link.get("inertia", 0.0) * 10
+    mm10, _ = default_bounds(linkage_sym.load_scene(heavy))
+    for n in mm:
+        assert mm10[n] == pytest.approx(10 * mm[n], rel=1e-15)
+    massless = copy.deepcopy(d)
+    massless["links"][1]["mass"] = 0.0
+    massless["links"][1]["inertia"] = 0.0
+    mm0, _ = default_bounds(linkage_sym.load_scene(massless))
+    rest = [link["mass"] for link in massless["links"]]
+    assert mm0[d["links"][1]["name"]] == pytest.approx(sum(rest) / len(rest), rel=1e-15)
+    res = search_options(linkage_sym.load_scene(copy.deepcopy(d)))
+    assert res.max_mass == mm
+
+
+def test_an_optimisation_that_did_not_converge_is_reported(tmp_path, capsys):
+    """'the convex relaxation did not converge' appeared only inside the JSON's message:
+    it is now in the result's notes and printed as a warning line (in the summary, or on
+    standard error when the JSON goes to standard output).  A massless guide-bar has
+    nothing to balance (J = 0 everywhere): the relaxation's solver stops without
+    converging."""
+    from linkage_sym.cli import main
+
+    scene, opt = tmp_path / "g.json", tmp_path / "opt.json"
+    assert main(["new", "guide-bar", "--crank", "0.03", "--ground", "0.06", "--steps", "13",
+                 "-o", str(scene)]) == 0
+    res = optimize_counterweights(linkage_sym.load_scene(scene))
+    assert res.notes == ("the convex relaxation did not converge",) and res.objective_bound is None
+    capsys.readouterr()
+    assert main(["balance", str(scene), "--optimize", str(opt)]) == 0
+    out = capsys.readouterr().out
+    assert "warning: optimisation: the convex relaxation did not converge" in out.splitlines()
+    assert main(["balance", str(scene), "--optimize", str(opt), "-o", "-"]) == 0
+    got = capsys.readouterr()
+    assert "warning: optimisation: the convex relaxation did not converge" in got.err.splitlines()
+    assert json.loads(got.out)["optimized"]["notes"] == ["the convex relaxation did not converge"]

@@ -67,3 +67,29 @@ def test_the_cache_folder_follows_the_platform(monkeypatch, tmp_path):
     monkeypatch.setattr(cache.sys, "platform", "win32")
     monkeypatch.setenv("LOCALAPPDATA", str(tmp_path / "L"))
     assert cache.cache_dir() == tmp_path / "L" / "linkage_sym" / "Cache"
+
+
+@pytest.mark.parametrize("where", ["a file", "under a file", "read-only folder"])
+def test_an_unusable_cache_folder_warns_once_and_is_not_used(fresh_cache, monkeypatch, where):
+    """``$LINKAGE_SYM_CACHE`` naming a file (or a path under one) ended the run with
+    'Not a directory' (exit 1 on the command line) where a read-only folder only warned:
+    one rule now, a single warning and the run goes on without the disk cache.  The
+    read-only folder is simulated (writing refused), as root may write in any folder."""
+    blocker = fresh_cache / "blocker"
+    blocker.write_text("not a folder")
+    if where == "a file":
+        monkeypatch.setenv("LINKAGE_SYM_CACHE", str(blocker))
+    elif where == "under a file":
+        monkeypatch.setenv("LINKAGE_SYM_CACHE", str(blocker / "cache"))
+    else:
+        def refuse(self, *args, **kwargs):
+            raise PermissionError(13, "Permission denied", str(self))
+        monkeypatch.setattr(cache.Path, "write_text", refuse)
+    monkeypatch.setattr(cache, "_WARNED", set())
+    key = "0" * 24
+    with pytest.warns(UserWarning, match="cannot be used .*running without it") as got:
+        assert cache.load(key) is None
+        cache.store(key, {"key": key})
+    assert len(got) == 1  # once, however often the disk cache is tried
+    assert cache.load(key) == {"key": key}  # the in-memory cache still serves the process
+    assert blocker.read_text() == "not a folder"

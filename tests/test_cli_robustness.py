@@ -4,6 +4,7 @@ quietly, a sweep that never assembles says so (exit 3, no plots), and plot files
 named after the scene in every command."""
 
 import json
+from pathlib import Path
 import subprocess
 import sys
 
@@ -499,3 +500,153 @@ def test_samples_header_problems_name_samples_and_a_bom_is_no_name(tmp_path):
     p = run("sweep", scene, "--samples", str(tmp_path / "unknown.csv"))
     assert p.returncode == 2 and "Traceback" not in p.stderr, p.stderr
     assert p.stderr.startswith("linkage-sym sweep: --samples: unknown parameter 'l_XY'")
+
+
+# -- standard output closed (>&-) for every command ----------------------------------------
+
+_CLOSED_DRIVER = r"""
+import json, os, sys, traceback
+from linkage_sym.cli import main
+results = []
+for argv in json.loads(sys.argv[1]):
+    try:
+        os.close(1)  # as a shell's >&- leaves it: descriptor 1 closed ...
+    except OSError:
+        pass
+    sys.stdout = None  # ... and no sys.stdout
+    try:
+        code = main(argv)
+    except BaseException:  # what the test reports, by command
+        traceback.print_exc()
+        code = "traceback"
+    results.append([argv, code])
+sys.stderr.write("RESULTS " + json.dumps(results) + "\n")
+"""
+
+
+def _closed_stdout_commands(tmp_path):
+    from linkage_sym.synthesis import builders
+
+    scene = small_scene(tmp_path)
+    rows = []
+    for phi in (60, 100, 140):
+        j = builders.fourbar(1.0, 3.0, 3.0, 3.5, crank_deg=phi).scene["joints"]
+        rows.append([*j[1]["at"], *j[2]["at"]])
+    (tmp_path / "positions.json").write_text(json.dumps(rows))
+    out = str(tmp_path / "out")
+    cr = ["--K", "1.5", "--rocker", "0.075", "--swing-deg", "45", "--ground", "0.1"]
+    return [
+        ["analyze", scene], ["analyze", scene, "-o", "-"],
+        ["analyze", scene, "-o", f"{out}/r.json"],
+        ["derive", scene], ["derive", scene, "--latex", "-o", "-"],
+        ["derive", scene, "-o", f"{out}/d.txt"],
+        ["structure", scene], ["examples"],
+        ["demo", "-o", f"{out}/demo", "--example", "crank_rocker"],
+        ["new", "fourbar", "--crank", "1", "--coupler", "3", "--rocker", "3", "--ground", "4",
+         "-o", "-"],
+        ["new", "slider-crank", "--crank", "1", "--coupler", "3", "-o", "-"],
+        ["new", "guide-bar", "--crank", "0.03", "--ground", "0.06", "-o", "-"],
+        ["synthesize", "crank-rocker", *cr, "-o", "-"], ["synthesize", "crank-rocker", *cr],
+        ["synthesize", "slider-crank", "--K", "1.4", "--stroke", "0.1", "--offset", "0.02",
+         "-o", "-"],
+        ["synthesize", "guide-bar", "--K", "2", "--ground", "0.4", "-o", "-"],
+        ["synthesize", "coupler-positions", "--positions", str(tmp_path / "positions.json"),
+         "-o", "-"],
+        ["synthesize", "equations"], ["synthesize", "equations", "--latex", "-o", "-"],
+        ["balance", scene], ["balance", scene, "-o", "-"],
+        ["balance", scene, "--balanced-scene", f"{out}/b.json"],
+        ["centres", scene, "--step", "3"], ["centres", scene, "--step", "3", "-o", "-"],
+        ["sweep", scene, "--list"], ["sweep", scene, "--vary", "l_AB=0.02:0.03:3"],
+        ["sweep", scene, "--vary", "l_AB=0.02:0.03:3", "-o", "-"],
+    ]
+
+
+def test_every_command_runs_with_standard_output_closed(tmp_path):
+    """Started with standard output closed (``>&-``), derive, synthesize, new, balance,
+    centres -o - and sweep -o - ended in AttributeError ('NoneType' object has no attribute
+    'write'): ``main`` now gives every command a standard output that discards, the way a
+    redirection to /dev/null would.  Each command runs as a shell's ``>&-`` leaves it
+    (descriptor 1 closed, ``sys.stdout`` None), the first in a process started so."""
+    import os
+    from linkage_sym.cli import build_parser
+
+    commands = _closed_stdout_commands(tmp_path)
+    parser = build_parser()
+    sub = next(a for a in parser._actions if a.dest == "command")
+    covered = {argv[0] for argv in commands}
+    assert covered == set(sub.choices)  # every command of the command line
+    for kind in ("new", "synthesize"):
+        kinds = next(a for a in sub.choices[kind]._actions if a.choices and a.dest != "help")
+        assert {argv[1] for argv in commands if argv[0] == kind} == set(kinds.choices)
+    env = dict(os.environ, PYTHONPATH=str(Path(linkage_sym.__file__).parent.parent))
+    p = subprocess.run([sys.executable, "-c", _CLOSED_DRIVER, json.dumps(commands)],
+                       stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                       cwd=tmp_path, env=env, preexec_fn=lambda: os.close(1))
+    assert "RESULTS " in p.stderr, p.stderr[-3000:]
+    results = json.loads(p.stderr.split("RESULTS ", 1)[1])
+    failed = [(argv, code) for argv, code in results if code != 0]
+    assert not failed and "Traceback" not in p.stderr, (failed, p.stderr[-3000:])
+    assert len(results) == len(commands)
+    for name in ("r.json", "d.txt", "b.json"):  # files asked for are still written
+        assert (tmp_path / "out" / name).stat().st_size > 0
+
+
+def test_a_shell_closing_standard_output_gets_no_traceback(tmp_path):
+    """The same through a shell's own ``>&-`` (not a descriptor closed by the test)."""
+    import os
+
+    env = dict(os.environ, PYTHONPATH=str(Path(linkage_sym.__file__).parent.parent))
+    p = subprocess.run(["sh", "-c", 'exec "$@" >&-', "sh", sys.executable, "-m", "linkage_sym",
+                        "derive", small_scene(tmp_path)],
+                       stdin=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
+    assert p.returncode == 0 and p.stderr == "", p.stderr
+
+
+def test_a_cache_path_under_a_file_warns_and_the_run_goes_on(tmp_path):
+    """``LINKAGE_SYM_CACHE`` under a file ended ``analyze --method symbolic`` with exit 1
+    ('Not a directory'); it now warns once and runs without the disk cache."""
+    import os
+
+    (tmp_path / "blocker").write_text("x")
+    env = dict(os.environ, LINKAGE_SYM_CACHE=str(tmp_path / "blocker" / "cache"))
+    p = subprocess.run([sys.executable, "-m", "linkage_sym", "analyze", small_scene(tmp_path),
+                        "--method", "symbolic"], capture_output=True, text=True, env=env)
+    assert p.returncode == 0, p.stderr
+    assert p.stderr.count("cannot be used") == 1 and "running without it" in p.stderr
+    assert "13 steps: 13 ok" in p.stdout
+
+
+_CR = ["--K", "1.5", "--rocker", "0.075", "--swing-deg", "45", "--ground", "0.1"]
+
+
+@pytest.mark.parametrize("args, option", [
+    (["analyze", "SCENE", "-o", ""], "-o/--output"),
+    (["analyze", "SCENE", "--plots", ""], "--plots"),
+    (["derive", "SCENE", "-o", ""], "-o/--output"),
+    (["demo", "--example", "crank_rocker", "-o", ""], "-o/--output"),
+    (["new", "guide-bar", "--crank", "0.03", "--ground", "0.06", "-o", ""], "-o/--output"),
+    (["synthesize", "crank-rocker", *_CR, "-o", ""], "-o/--output"),
+    (["synthesize", "equations", "-o", ""], "-o/--output"),
+    (["balance", "SCENE", "-o", ""], "-o/--output"),
+    (["balance", "SCENE", "--plots", ""], "--plots"),
+    (["balance", "SCENE", "--balanced-scene", ""], "--balanced-scene"),
+    (["balance", "SCENE", "--optimize", ""], "--optimize"),
+    (["centres", "SCENE", "--step", "1", "-o", ""], "-o/--output"),
+    (["centres", "SCENE", "--step", "1", "--plots", ""], "--plots"),
+    (["sweep", "SCENE", "--vary", "l_AB=0.02:0.03:2", "-o", ""], "-o/--output"),
+    (["sweep", "SCENE", "--vary", "l_AB=0.02:0.03:2", "--plots", ""], "--plots"),
+    (["sweep", "SCENE", "--vary", "l_AB=0.02:0.03:2", "--write-scenes", ""], "--write-scenes"),
+])
+def test_an_empty_path_is_refused_by_every_path_option(tmp_path, monkeypatch, capsys, args,
+                                                        option):
+    """``--plots ""``, ``demo -o ""`` and ``sweep --write-scenes ""`` wrote into the current
+    folder while ``-o ""`` was refused as 'a folder': one check now refuses an empty path
+    for every output option, naming it, before anything is written."""
+    scene = small_scene(tmp_path)
+    work = tmp_path / "cwd"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    assert main([scene if a == "SCENE" else a for a in args]) == 2
+    err = capsys.readouterr().err
+    assert f"{option}: an empty path" in err, err
+    assert files_under(work) == []

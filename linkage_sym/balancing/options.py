@@ -130,27 +130,32 @@ def search_options(scene, links=None, weights=(1.0, 1.0, 1.0), max_mass=None, ma
 def default_bounds(scene) -> tuple[dict, dict]:
     """Default bounds of :func:`~.search.optimize_counterweights`, per moving link.
 
-    ``max_mass``: the mechanism's total moving mass (1 kg if every link is
-    massless).  ``max_radius``: twice the link's length ``|uv|`` (its frame's
-    x-axis), or twice the mechanism's characteristic length (the largest
-    distance between two joints) for a link whose joints all coincide.
+    ``max_mass``: the link's own mass, so that a counterweight at most
+    doubles its link's mass and the bounds scale with the masses (ten times
+    every mass, ten times every bound); a massless link gets the mean mass
+    of the moving links, and 1 kg if every moving link is massless.
+    ``max_radius``: twice the link's length ``|uv|`` (its frame's x-axis),
+    or twice the mechanism's characteristic length (the largest distance
+    between two joints) for a link whose joints all coincide.
 
     Examples
     --------
     >>> from linkage_sym.examples import load_example
     >>> mm, mr = default_bounds(load_example("crank_rocker"))
-    >>> round(mm["crank"], 12), round(mr["crank"], 12)
-    (1.0, 0.048)
+    >>> round(mm["crank"], 12), round(mm["rocker"], 12), round(mr["crank"], 12)
+    (0.2, 0.3, 0.048)
     """
     scene = as_scene(scene)
     frames = link_frames(scene)
-    total = sum(link.mass for link in scene.links)
-    mass = total if total > 0 else 1.0
+    masses = [link.mass for link in scene.links]
+    mean = sum(masses) / len(masses) if masses else 0.0
+    fallback = mean if mean > 0 else 1.0
     L = scene.characteristic_length() or 1.0
     mm, mr = {}, {}
-    for n in scene.link_names:
+    for link in scene.links:
+        n = link.name
         fr = frames[n]
         length = 0.0 if fr.v is None else math.dist(fr.origin, scene.joint(fr.v).at)
-        mm[n] = mass
+        mm[n] = link.mass if link.mass > 0 else fallback
         mr[n] = 2.0 * (length if length > 0 else L)
     return mm, mr

@@ -157,6 +157,52 @@ def balance_report(scene: Scene, balance: Balance | None = None, latex: bool = F
     return out, series
 
 
+def latex_fragment(report: dict) -> str:
+    """The LaTeX of a balance report (built with ``latex=True``) as a fragment for a document
+    that loads amsmath: mass and acceleration parameters, the shaking moment, and the force
+    and moment balance conditions, one ``align*`` each.
+
+    Examples
+    --------
+    >>> tex = latex_fragment({"scene": "demo", "latex": {
+    ...     "mass_parameters": {"M_AB_1": "m"}, "acceleration_parameters": {},
+    ...     "shaking_moment": {"assembled": "x", "regrouped": "x", "force_balanced": "y"},
+    ...     "force_balance_conditions": ["m = 0"], "moment_balance_conditions": []}})
+    >>> print(tex.splitlines()[4])
+    M_{AB1} &= m
+    """
+    tex = report["latex"]
+
+    def name(n: str) -> str:
+        sym = sp.Symbol(n)
+        return latex_names([sym]).get(sym) or sp.latex(sym)
+
+    def condition(c: str) -> str:
+        lhs, _, rhs = c.rpartition(" = ")
+        return f"{lhs} &= {rhs}"
+
+    scene = " ".join(str(report["scene"]).split())
+    out = [f"% Shaking force and moment balance of the mechanism {scene} "
+           "(Song and Wang 1992): a fragment for a document that loads amsmath", ""]
+    blocks = [
+        ("Mass parameters (Song and Wang 1992, eq.~6)",
+         [f"{name(n)} &= {e}" for n, e in tex["mass_parameters"].items()]),
+        ("Acceleration parameters (Song and Wang 1992, eq.~7)",
+         [f"{name(n)} &= {e}" for n, e in tex["acceleration_parameters"].items()]),
+        ("Shaking moment: assembled, regrouped, and what force balance leaves",
+         [f"M_{{\\mathrm{{sh}}}} &= {tex['shaking_moment'][k]}"
+          for k in ("assembled", "regrouped", "force_balanced")]),
+        ("Force balance conditions", [condition(c) for c in tex["force_balance_conditions"]]),
+        ("Moment balance conditions", [condition(c) for c in tex["moment_balance_conditions"]]),
+    ]
+    for title, rows in blocks:
+        if not rows:
+            continue
+        out += [f"\\paragraph{{{title}}}", "\\begin{align*}", " \\\\\n".join(rows),
+                "\\end{align*}", ""]
+    return "\n".join(out)
+
+
 @dataclass
 class BalanceDocument:
     """What ``linkage-sym balance`` writes (see :func:`balance_document`).
@@ -247,6 +293,7 @@ def _optimized(scene: Scene, options: SearchOptions) -> tuple:
         "weights": list(options.weights), "links": list(options.links),
         "objective_start": res.objective_start, "objective": res.objective,
         "rms_start": res.rms_start, "rms_final": res.rms_final, "message": res.message,
+        "notes": list(res.notes), "max_mass": dict(res.max_mass),
         "counterweights": [{"link": c.link, "mass": c.mass, "at": list(c.at)} for c in res.counterweights],
     }
     return section, after, res.scene

@@ -69,6 +69,10 @@ class OptimizationResult:
         ``J`` over all counterweights within the bounds, to the tolerance of
         the solver; ``None`` when that solver did not converge.  When
         ``objective`` is close to it, the design is globally optimal.
+    notes : tuple of str
+        What did not go as planned, also at the end of ``message``: the
+        convex relaxation did not converge (no bound then), a run failed,
+        the relaxation ended above the design found.
     """
 
     counterweights: tuple
@@ -85,6 +89,7 @@ class OptimizationResult:
     max_radius: dict
     n_excluded: int
     objective_bound: float | None = None
+    notes: tuple = ()
 
 
 # -- the search --------------------------------------------------------------------
@@ -313,8 +318,9 @@ def optimize_counterweights(
     weights : (float, float, float)
         ``(wF, wM, wT)``, each ``>= 0``, not all zero.
     max_mass : float or dict, optional
-        Upper bound of each counterweight's mass (kg).  Default: the
-        mechanism's total moving mass (see :func:`~.options.default_bounds`).
+        Upper bound of each counterweight's mass (kg).  Default: its link's
+        own mass (a massless link: the mean moving-link mass), see
+        :func:`~.options.default_bounds`.
     max_radius : float or dict, optional
         Bound on each coordinate of a counterweight's position in its link
         frame, ``|x|, |y| <= max_radius`` (m).  Default: twice the link's
@@ -365,9 +371,9 @@ def optimize_counterweights(
     start.  The relaxation is tight on every link whose second moment
     matters (all but cranks turning at constant speed, whose ``alpha`` is
     0), so in practice the result attains the bound.  ``J`` does not count
-    the added mass: with the default bounds, the optimum often puts the
-    largest allowed mass on several links; give ``max_mass`` for a
-    realistic design.
+    the added mass: the optimum often puts the largest allowed mass on
+    several links, which is why the default bound is each link's own mass;
+    give ``max_mass`` for the design's own limit.
 
     Examples
     --------
@@ -502,6 +508,7 @@ def optimize_counterweights(
         message=msg,
         n_evaluations=prob.n_eval + n_relax,
         objective_bound=bound,
+        notes=tuple(notes),
         scales=scales,
         max_mass=Mmax,
         max_radius=Rmax,

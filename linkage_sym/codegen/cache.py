@@ -16,7 +16,10 @@ The cache lives in memory (per process) and on disk in
 ``$LINKAGE_SYM_CACHE``, else the platform's per-user cache folder
 (``$XDG_CACHE_HOME/linkage_sym`` or ``~/.cache/linkage_sym`` on Linux,
 ``~/Library/Caches/linkage_sym`` on macOS, ``%LOCALAPPDATA%\\linkage_sym\\Cache``
-on Windows).
+on Windows).  A disk cache that cannot be used -- ``$LINKAGE_SYM_CACHE`` naming a
+file or a path under one, a folder that cannot be read or written -- gives one
+warning and the run goes on without it (the in-memory cache still serves the
+process): the cache only saves time, it never ends a run.
 """
 
 from __future__ import annotations
@@ -36,6 +39,7 @@ GENERATOR_PACKAGES = ("symbolic", "codegen", "structure", "model")
 """Subpackages of linkage_sym whose sources shape or run the generated code."""
 
 _MEMORY: dict[str, dict] = {}
+_WARNED: set[str] = set()
 _SOURCE_HASH: list[str] = []
 
 
@@ -121,6 +125,9 @@ def load(key: str) -> dict | None:
         text = path.read_text()
     except FileNotFoundError:
         return None
+    except OSError as err:  # not a folder, not readable: run without the disk cache
+        _unusable(path.parent, err)
+        return None
     art = json.loads(text)
     if art.get("key") != key:  # pragma: no cover - a foreign file under our name
         return None
@@ -138,7 +145,16 @@ def store(key: str, artifact: dict) -> None:
         tmp.write_text(json.dumps(artifact))
         os.replace(tmp, d / f"{key}.json")
     except OSError as err:
-        warnings.warn(f"compiled-mechanism cache not written to {d}: {err}", stacklevel=2)
+        _unusable(d, err)
+
+
+def _unusable(folder: Path, err: OSError) -> None:
+    """The one rule for a disk cache that cannot be used: warn (once per folder) and go on."""
+    if str(folder) in _WARNED:
+        return
+    _WARNED.add(str(folder))
+    warnings.warn(f"compiled-mechanism cache {str(folder)!r} cannot be used "
+                  f"({err.strerror or err}); running without it", stacklevel=3)
 
 
 def clear_memory() -> None:

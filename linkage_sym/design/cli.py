@@ -128,14 +128,14 @@ def _sweep(args) -> int:
                           + (f" (got {', '.join(given)})" if given else " (or --list)"))
     if args.tolerance and args.monte_carlo is None:
         raise OptionError("--tolerance: used only with --monte-carlo N")
-    if args.output not in (None, "-"):
-        table_format(args.output)
     if args.workers is not None and args.workers < 1:
         raise OptionError(f"--workers: at least 1 process, got {args.workers}")
     if args.chunk_designs is not None and args.chunk_designs < 1:
         raise OptionError(f"--chunk-designs: at least 1 design, got {args.chunk_designs}")
     check_outputs(files=[("-o/--output", args.output)],
                   folders=[("--plots", args.plots), ("--write-scenes", args.write_scenes)])
+    if args.output not in (None, "-"):
+        table_format(args.output)
     rows = None
     if args.scene_rows is not None:
         if args.write_scenes is None:
