@@ -318,8 +318,10 @@ design (14.7 s for 102,400), starting the two worker processes about 1.1 s of CP
 imports NumPy and loads the compiled mechanism), a LocalCluster of two about 7.3 s
 (scheduler, nannies, workers).  Halving the work pays for the start from about 15,000
 designs (5.4e6 design-steps) with --workers 2 and 70,000 (2.5e7) with --dask local when both
-cores are free; on that machine, shared with other jobs, one process was faster in wall time
-at every size tried (25 to 102,400 designs)."""
+cores are free: below, the processes cannot pay whatever the load.  Measured in wall time on
+that machine while other jobs kept it busy (load 8 to 9), one process was faster up to
+102,400 designs (65 s against 83 s with --workers 2, 150 s with --dask local) and --workers 2
+faster at 409,600 (328 s against 395 s): busy cores move the crossover up, never down."""
 
 
 def parallel_note(n_designs: int, steps: int, workers, dask) -> str:
