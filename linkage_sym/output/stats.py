@@ -40,9 +40,14 @@ class _Flagged:
 @dataclass
 class StepRuns:
     """Runs of consecutive steps of one status over the chunks of a sweep: each run's first and
-    last step with the drivers' values there (``runs``: ``[first, last, q_first, q_last]``)."""
+    last step with the drivers' values there (``runs``: ``[first, last, q_first, q_last]``).
+
+    ``count`` steps in ``n_runs`` runs; ``runs`` keeps the first :data:`MAX_RANGES` and the
+    latest (to join the next chunk's), so memory stays bounded on any sweep.
+    """
 
     count: int = 0
+    n_runs: int = 0
     runs: list = field(default_factory=list)
 
     def add(self, mask, offset: int, q: dict) -> None:
@@ -58,8 +63,11 @@ class StepRuns:
             qb = {k: float(v[b]) for k, v in q.items()}
             if self.runs and self.runs[-1][1] == offset + a - 1:  # continues the last chunk's
                 self.runs[-1][1], self.runs[-1][3] = offset + b, qb
-            else:
-                self.runs.append([offset + a, offset + b, qa, qb])
+                continue
+            self.n_runs += 1
+            if len(self.runs) > MAX_RANGES:  # only the latest is needed beyond the first
+                self.runs.pop()
+            self.runs.append([offset + a, offset + b, qa, qb])
 
 
 def step_ranges(mask, drivers: dict) -> StepRuns:
@@ -104,6 +112,9 @@ def ranges_text(what: str, runs: StepRuns, kinds: dict) -> str:
     >>> r = step_ranges([1, 0], {"A": [0.0, 1.0], "s": [0.25, 0.5]})
     >>> ranges_text("unassemblable", r, {"A": "R", "s": "P"})
     'unassemblable: 1 step, A 0° with s 0.25 m'
+    >>> r = step_ranges([k % 2 for k in range(21)], {"A": [math.radians(x) for x in range(21)]})
+    >>> ranges_text("unassemblable", r, {"A": "R"})
+    'unassemblable: 10 steps, A 1°, 3°, 5°, 7°, 9°, 11°, 13°, 15° and 2 more ranges'
     """
     def value(name, v):
         text = f"{math.degrees(v) if kinds[name] == 'R' else v:.6g}"
@@ -123,7 +134,7 @@ def ranges_text(what: str, runs: StepRuns, kinds: dict) -> str:
             parts.append(span(names[0], qa, qb, k == 0))
         else:
             parts.append(" with ".join(span(n, qa, qb, True) for n in names))
-    more = len(runs.runs) - MAX_RANGES
+    more = runs.n_runs - MAX_RANGES
     tail = f" and {more} more range{'s' if more != 1 else ''}" if more > 0 else ""
     sep = ", " if len(names) <= 1 else "; "
     steps = f"{runs.count} step{'s' if runs.count != 1 else ''}"
