@@ -336,7 +336,8 @@ def parallel_note(n_designs: int, steps: int, workers, dask) -> str:
     ('', '')
     """
     if dask == "local":
-        what, key = f"a dask LocalCluster ({workers or 'one per core'} processes)", "dask"
+        size = f"of {workers} processes" if workers else "of a process per core"
+        what, key = f"a dask LocalCluster {size}", "dask"
         option = "--dask local"
     elif dask is None and workers is not None and workers > 1:
         what, key, option = f"{workers} worker processes", "workers", f"--workers {workers}"
