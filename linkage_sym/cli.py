@@ -115,19 +115,28 @@ def _at(scene, peak) -> str:
     return f"step {peak.step} ({', '.join(vals)})" if vals else f"step {peak.step}"
 
 
+def _kinds(scene) -> dict:
+    """Each driver's joint type, for :func:`~linkage_sym.output.stats.ranges_text`."""
+    return {d.joint: scene.joint(d.joint).type for d in scene.drivers}
+
+
 def summary(scene, analysis) -> list[str]:
     """The console summary of a sweep: statuses counted, peak efforts and loads, warnings.
 
     ``analysis``: an ``Analysis``, or the ``SweepStats`` of a sweep solved in
     chunks (``linkage_sym.output``).
     """
+    from linkage_sym.numeric.result import UNASSEMBLABLE
     from linkage_sym.output import SweepStats
+    from linkage_sym.output.stats import ranges_text
 
     stats = analysis if isinstance(analysis, SweepStats) else SweepStats.of(analysis)
     counts = {"ok": stats.counts.get("ok", 0), **stats.counts}
     lines = [f"{scene.name}: {stats.n_steps} steps: "
              + ", ".join(f"{n} {s}" for s, n in counts.items())
              + f" (stages {', '.join(stats.stages)})"]
+    if stats.unassemblable.count:
+        lines.append(ranges_text(UNASSEMBLABLE, stats.unassemblable, _kinds(scene)))
     if stats.has_forces:
         if "driving" in stats.outputs:
             for name, peak in stats.driving.items():
@@ -318,6 +327,8 @@ def cmd_demo(args) -> int:
     _check_outputs(folders=[("-o/--output", args.output)])
     from linkage_sym.model import Effects
     from linkage_sym.numeric.plan import compile_plan
+    from linkage_sym.numeric.result import UNASSEMBLABLE
+    from linkage_sym.output.stats import ranges_text, step_ranges
     from linkage_sym.plotting import frame_loads, plot_all
 
     out = Path(args.output)
@@ -338,7 +349,10 @@ def cmd_demo(args) -> int:
         shaking = compile_plan(shaking_scene).run()
         files.append(frame_loads(shaking_scene, shaking, out / f"{stem}_shaking.png"))
         n_ok = int(analysis.ok.sum())
-        print(f"{name}: {n_ok}/{analysis.n_steps} steps solved; wrote")
+        bad = step_ranges(analysis.status == UNASSEMBLABLE,
+                          {k: d["q"] for k, d in analysis.drivers.items()})
+        gaps = f" ({ranges_text(UNASSEMBLABLE, bad, _kinds(scene))})" if bad.count else ""
+        print(f"{name}: {n_ok}/{analysis.n_steps} steps solved{gaps}; wrote")
         print(f"  {result}")
         for f in files:
             print(f"  {f}")

@@ -28,7 +28,9 @@ PRECISION_HELP = (
 EXTREMES_HELP = (
     "also locate the maxima and minima of link rotations, joint coordinates, slides, "
     "driving efforts and reaction magnitudes (Brent on their rates between the steps), each "
-    "group's limit positions and the assembly limits; printed, and written as 'extremes'")
+    "group's limit positions (a link that turns fully has none: its extremes are the sweep's "
+    "ends) and the assembly limits; printed (a value within 1e-12 of its scale -- the "
+    "mechanism's size, 1 rad, the effort's largest -- as 0), and written as 'extremes'")
 
 
 def add_analyze_options(parser) -> None:

@@ -250,3 +250,61 @@ def test_balance_latex_writes_a_tex_file(tmp_path, capsys):
     assert own.read_text() == tex and f"wrote {own}" in capsys.readouterr().out
     assert main(["balance", scene, "--latex"]) == 2
     assert "--latex: give its file" in capsys.readouterr().err
+
+
+def _triple_rocker(tmp_path, turns=2):
+    """The triple-rocker of ``new fourbar`` (crank 0.05, coupler 0.06, rocker 0.05, frame
+    0.078) driven over ``turns`` turns in steps of 1°."""
+    scene = tmp_path / "tr.json"
+    assert main(["new", "fourbar", "--crank", "0.05", "--coupler", "0.06", "--rocker", "0.05",
+                 "--ground", "0.078", "--steps", str(360 * turns + 1), "-o", str(scene)]) == 0
+    d = json.loads(scene.read_text())
+    d["drivers"][0]["stop_deg"] = 360.0 * turns
+    scene.write_text(json.dumps(d))
+    return scene
+
+
+def _unreached(turns=2):
+    """The crank angles (whole degrees, 0 .. 360 turns) where |BD| exceeds coupler + rocker:
+    the law of cosines, written here."""
+    import math
+
+    a, b, c, d = 0.05, 0.06, 0.05, 0.078
+    return [k for k in range(360 * turns + 1)
+            if math.sqrt(a * a + d * d - 2 * a * d * math.cos(math.radians(k))) > b + c]
+
+
+def test_analyze_summary_names_the_unassemblable_ranges(tmp_path, capsys):
+    """The summary names the driver ranges of the unassemblable steps, not only their count;
+    the ranges are where the law of cosines says the dyad cannot reach."""
+    scene = _triple_rocker(tmp_path)
+    capsys.readouterr()
+    assert main(["analyze", str(scene)]) == 0
+    out = capsys.readouterr().out
+    bad = _unreached()
+    runs, start = [], bad[0]
+    for k, nxt in zip(bad, bad[1:] + [None]):
+        if nxt != k + 1:
+            runs.append(f"{start}°..{k}°")
+            start = nxt
+    assert len(runs) == 2  # 117..243 and 477..603
+    assert f"unassemblable: {len(bad)} steps, A {', '.join(runs)}\n" in out, out
+
+
+def test_unassemblable_ranges_do_not_depend_on_the_chunks(tmp_path):
+    """Solved in chunks of 50 steps (a range crosses chunk boundaries), the ranges are those of
+    the whole run, and the one wording gives the same line."""
+    import linkage_sym
+    from linkage_sym import output
+    from linkage_sym.output.stats import ranges_text, step_ranges
+
+    scene = linkage_sym.load_scene(_triple_rocker(tmp_path))
+    plan = linkage_sym.compile_plan(scene)
+    whole = plan.run()
+    ref = step_ranges(whole.status == "unassemblable",
+                      {k: d["q"] for k, d in whole.drivers.items()})
+    stats = output.write_sweep(output.plan_sweep(plan, "dyad"), None, "json", chunk=50)
+    assert stats.unassemblable.runs == ref.runs and stats.unassemblable.count == ref.count
+    assert [r[:2] for r in ref.runs] == [[117, 243], [477, 603]]
+    assert (ranges_text("unassemblable", stats.unassemblable, {"A": "R"})
+            == f"unassemblable: {len(_unreached())} steps, A 117°..243°, 477°..603°")

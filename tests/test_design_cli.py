@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import re
 import sys
 
 import numpy as np
@@ -125,3 +126,45 @@ def test_plots_a_map_per_metric_of_a_grid_and_histograms(tmp_path, capsys):
     names = sorted(p.name for p in (tmp_path / "h").iterdir())
     assert names == ["crank-rocker_sweep_K.png", "crank-rocker_sweep_peak_driving_A.png"]
     assert all((tmp_path / "h" / n).read_bytes()[:4] == b"\x89PNG" for n in names)
+
+
+def test_summary_gives_units_and_no_empty_K_note(capsys):
+    """Efforts in N·m (an R driver), reactions and the shaking force in N, the shaking moment
+    in N·m, angles in degrees; a K_note column without a note says K has a value everywhere
+    instead of printing an empty line."""
+    assert main(["sweep", CRANK, "--vary", "l_AB=0.02:0.03:2", "--metrics",
+                 "K,swing,peak_driving,rms_driving,peak_reaction,rms_shaking_force,"
+                 "rms_shaking_moment"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert "  K_note: none: K has a value for every design" in lines
+    assert not any(ln.rstrip().endswith(":") for ln in lines)
+    units = {"peak_driving_A": " N·m", "rms_driving_A": " N·m", "peak_reaction_D": " N",
+             "rms_shaking_force": " N", "rms_shaking_moment": " N·m", "swing_deg": "°", "K": ""}
+    for col, unit in units.items():
+        (line,) = [ln for ln in lines if ln.startswith(f"  {col}: ")]
+        num = r"[0-9.e+-]+"
+        assert re.fullmatch(rf"  {col}: {num}{unit} \(design \d\) \.\. {num}{unit} \(design \d\), "
+                            rf"mean {num}{unit}", line), line
+    from linkage_sym.design.cli import metric_unit
+
+    assert metric_unit("peak_driving_P", linkage_sym.load_example("hydraulic_boom")) == "N"
+
+
+def test_parallel_note_on_a_small_sweep(capsys):
+    """--workers 2 on two designs prints the note naming the rule; the same sweep without the
+    option does not; a sweep above the rule's size does not either (the rule only: no
+    timing here)."""
+    args = ["sweep", CRANK, "--vary", "l_AB=0.02:0.03:2", "--metrics", "assemblable"]
+    assert main(args + ["--workers", "2"]) == 0
+    out = capsys.readouterr().out
+    assert ("note: 2 designs x 361 steps = 722 design-steps, fewer than 5e6: starting 2 worker "
+            "processes costs more than it saves, and one process (without --workers 2) is "
+            "faster at this size") in out
+    assert main(args) == 0
+    assert "note:" not in capsys.readouterr().out
+    from linkage_sym.design.cli import PARALLEL_MIN_ENTRIES, parallel_note
+
+    assert "LocalCluster" in parallel_note(2, 361, 2, "local")
+    big = -(-PARALLEL_MIN_ENTRIES["dask"] // 361)
+    assert parallel_note(big, 361, 2, "local") == parallel_note(big, 361, 2, None) == ""
+    assert parallel_note(2, 361, 1, None) == parallel_note(2, 361, 2, "tcp://host:8786") == ""

@@ -163,7 +163,7 @@ def _grashof_formula(a, b, c, d):
     if abs(s + l - pq) <= 1e-9 * sum(ls.values()):
         return "change point"
     if s + l > pq:
-        return "double-rocker"
+        return "triple-rocker"
     return {"ground": "double-crank", "coupler": "double-rocker"}.get(s_name, "crank-rocker")
 
 
@@ -196,7 +196,7 @@ def test_grashof_and_K_of_random_fourbars_against_formulas():
             assert res["K_note"][i] == ""
         else:
             assert math.isnan(res["K"][i]) and res["K_note"][i] != "", i
-    assert {("crank-rocker", True), ("double-rocker", True), ("double-rocker", False)} <= kinds
+    assert {("crank-rocker", True), ("double-rocker", True), ("triple-rocker", False)} <= kinds
 
 
 def test_results_do_not_depend_on_the_chunks():

@@ -311,3 +311,66 @@ def test_analyze_extremes_option(tmp_path, capsys):
     assert result["extremes"]["slides"]["S"]["slide"]["max"]["located"] == "rate root"
     assert main(["analyze", str(path), "-o", "-", "--extremes"]) == 0
     assert json.loads(capsys.readouterr().out)["extremes"] == result["extremes"]
+
+
+def test_a_fully_turning_link_has_no_limit_position(tmp_path, capsys):
+    """A rotating guide-bar (crank 0.05 > frame 0.02: the guide turns fully): its guide's
+    extremes are the sweep's ends, printed as such, not as limit positions; the JSON item says
+    ``turns_fully``; the start's rounding noise prints as 0, never -0."""
+    import json
+
+    from linkage_sym.cli import main
+
+    scene_path = tmp_path / "gb.json"
+    assert main(["new", "guide-bar", "--crank", "0.05", "--ground", "0.02",
+                 "-o", str(scene_path)]) == 0
+    out = tmp_path / "r.json"
+    capsys.readouterr()
+    assert main(["analyze", str(scene_path), "--extremes", "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "limit position of" not in text and "-0.0" not in text
+    assert ("dyad RPR (slider, rocker): rotation of rocker about D turns fully, no limit "
+            "position: 0.000000° at A = 0.000000° and 360.000000° at A = 360.000000°, the ends "
+            "of the sweep") in text
+    (item,) = json.loads(out.read_text())["extremes"]["limits"][0]["limits"]
+    assert item["turns_fully"] is True
+    # a rocker's item says it does not turn fully
+    d, _ = scenes.fourbar(*LENGTHS, start_deg=START, stop_deg=START + 360, steps=37, speed=1.0)
+    scene = load_scene(d)
+    plan = compile_plan(scene)
+    (group,) = find_extremes(scene, plan, plan.run()).limits
+    assert group["limits"][0]["turns_fully"] is False
+
+
+def test_rounding_noise_prints_as_zero():
+    """Values within 1e-12 of the characteristic length (lengths, slides), of 1 rad (angles) or
+    of the quantity's largest magnitude (efforts) print as 0, never -0; larger ones as they
+    are."""
+    from linkage_sym.numeric.extremes import Extreme, Extremes
+
+    d, _ = scenes.slider_crank(0.05, 0.2, 0.0, start_deg=0.0, stop_deg=360.0, steps=37,
+                               speed=1.0, name="noise")
+    scene = load_scene(d)
+    L = scene.characteristic_length()
+
+    def e(value, t, a, sampled=None):
+        return {"value": value, "step": t, "drivers": {"A": a}, "located": "sample",
+                "sampled": value if sampled is None else sampled}
+
+    ext = Extremes()
+    ext.n_steps = 37
+    ext.limits = [{"group": "dyad RRP", "links": ["rod", "slider"], "limits": [
+        {"coordinate": "slide of S", "max": e(-2.77556e-17, 0.0, -1e-17),
+         "min": e(-0.1, 18.0, math.pi)},
+        {"coordinate": "slide of S", "max": e(0.9e-12 * L, 0.0, 0.9e-12),
+         "min": e(-1.1e-12 * L, 18.0, -1.1e-12)}]}]
+    ext.values[("driving", "A", "effort")] = {
+        "max": Extreme(2.0, 3.0, {"A": 0.5}, "rate root", 1.9),
+        "min": Extreme(-1e-13, 9.0, {"A": 1.0}, "rate root", -1e-13)}
+    lines = summary_lines(scene, ext)
+    assert lines[1].endswith("slide of S max 0 m at A = 0.000000°")
+    # above the noise: as it is, but an angle that rounds to 0 at six decimals shows no sign
+    assert lines[2].endswith(f"slide of S min {-1.1e-12 * L:.6g} m at A = 0.000000°")
+    assert lines[3].endswith("slide of S max 0 m at A = 0.000000°")
+    assert lines[5] == "driving effort at A min: 0 N·m at A = 57.295780° (rate root; smallest sample 0)"
+    assert not any("-0 " in ln or "-0.000000" in ln for ln in lines)

@@ -41,7 +41,13 @@ def test_class_against_the_reach_of_the_dyads(d, a, b, c):
     g = classify([d, a, b, c], fixed=0)
     crank, rocker = turns_fully(a, d, b, c), turns_fully(c, d, b, a)
     expected = {(True, False): "crank-rocker", (False, True): "crank-rocker",
-                (True, True): "double-crank", (False, False): "double-rocker"}[crank, rocker]
+                (True, True): "double-crank", (False, False): "rockers"}[crank, rocker]
+    if expected == "rockers":
+        # neither link on the frame turns: a double-rocker when the coupler turns fully
+        # relative to both (the same reach test with the crank, then the rocker, held
+        # fixed), a triple-rocker when it does not
+        coupler = turns_fully(b, a, c, d) and turns_fully(b, c, a, d)
+        expected = "double-rocker" if coupler else "triple-rocker"
     assert g.name == expected, (d, a, b, c, g.detail)
     if g.name == "crank-rocker":
         assert g.shortest == (1 if crank else 3)
@@ -105,3 +111,26 @@ def test_structure_command_names_the_class(capsys):
     out = capsys.readouterr().out
     assert "Four-bar loops (Grashof class" in out
     assert "ground D-A 0.078, crank A-B 0.024" in out and "): crank-rocker" in out
+
+
+def test_not_grashof_is_a_triple_rocker_everywhere(capsys, tmp_path):
+    """A four-bar that is not Grashof is named triple-rocker, never double-rocker: by
+    ``classify``, in ``new fourbar``'s note, in the structure report and in a sweep's column;
+    a Grashof four-bar with the coupler shortest stays a double-rocker."""
+    from linkage_sym.structure.grashof import CLASS_NAMES
+
+    lengths = [0.078, 0.05, 0.06, 0.05]  # ground, crank, coupler, rocker: 0.128 > 0.11
+    assert classify(lengths, fixed=0).name == "triple-rocker"
+    assert classify([4.0, 3.0, 1.0, 3.5], fixed=0).name == "double-rocker"
+    assert set(CLASS_NAMES) == {"crank-rocker", "double-crank", "double-rocker",
+                                "triple-rocker", "change point"}
+    path = tmp_path / "tr.json"
+    assert main(["new", "fourbar", "--crank", "0.05", "--coupler", "0.06", "--rocker", "0.05",
+                 "--ground", "0.078", "-o", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "Grashof class: triple-rocker (not Grashof" in out and "double-rocker" not in out
+    assert main(["structure", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "(m): triple-rocker" in out and "double-rocker" not in out
+    res = linkage_sym.sweep(linkage_sym.load_scene(path), {"l_AB": [0.02, 0.05]}, ["grashof"])
+    assert res["grashof"].tolist() == ["crank-rocker", "triple-rocker"]

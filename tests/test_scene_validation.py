@@ -298,7 +298,8 @@ REFUSALS = [
     pytest.param("crank_rocker", lambda s: s["joints"][3].update(name="A"),
         "joints[3].name", "duplicate joint name 'A' (first at joints[0])", id="joint-duplicate"),
     pytest.param("crank_rocker", lambda s: s["joints"][1].update(type="r"),
-        "joints[1].type", 'must be "R" or "P", got "r"', id="joint-type"),
+        "joints[1].type", 'must be "R" (revolute), "P" (prismatic), "G" (gear mesh) or "cam" '
+        '(cam contact), got "r" (did you mean "R"?)', id="joint-type"),
     pytest.param("crank_rocker", lambda s: s["joints"][1].pop("type"),
         "joints[1].type", "required key is missing", id="joint-type-missing"),
     pytest.param(
@@ -450,6 +451,21 @@ REFUSALS = [
     pytest.param("crank_rocker", lambda s: s["drivers"].append(SECOND_DRIVER),
         "drivers", "2 drivers given but the mobility is M = 3*3 - 2*4 = 1", id="mobility-too-low"),
 ]
+
+
+@pytest.mark.parametrize(("word", "meant"), [
+    ("revolute", "R"), ("Revolute", "R"), ("pin", "R"), ("hinge", "R"), ("prismatic", "P"),
+    ("slider", "P"), (" Sliding ", "P"), ("gear", "G"), ("gear-mesh", "G"), ("CAM", "cam"),
+    ("cam contact", "cam"), ("spherical", None), ("", None)])
+def test_joint_type_names_every_type_and_the_one_a_synonym_means(word, meant):
+    """A refused joint type lists every type the format and its extensions accept (R, P, G,
+    cam: validate.JOINT_TYPES) with what each is, and where the word is a synonym, the type."""
+    data = copy.deepcopy(BASES["crank_rocker"])
+    data["joints"][1]["type"] = word
+    error = refused(data)
+    assert error.problems == [
+        'joints[1].type: must be "R" (revolute), "P" (prismatic), "G" (gear mesh) or "cam" '
+        f'(cam contact), got "{word}"' + (f' (did you mean "{meant}"?)' if meant else "")]
 
 
 @pytest.mark.parametrize(("base", "mutate", "path", "reason"), REFUSALS)

@@ -73,11 +73,15 @@ def register(sub) -> None:
     p.add_argument("-o", "--output", metavar="FILE",
                    help="the table: .parquet (pyarrow) or .csv; '-' writes CSV to standard "
                    "output; default: a summary only")
-    p.add_argument("--workers", type=int, metavar="N", help="local processes (default: this one)")
+    p.add_argument("--workers", type=int, metavar="N",
+                   help="local processes (default: this one); starting them costs about a "
+                   "second, so below 5e6 designs x steps (about 14,000 four-bars of 361 steps) "
+                   "one process is faster, and the sweep prints a note saying so")
     p.add_argument("--dask", metavar="ADDRESS",
                    help="send the chunks to a dask.distributed scheduler at ADDRESS; 'local' "
-                   "starts a LocalCluster (of --workers processes); pip install "
-                   "'linkage_sym[sweep]'")
+                   "starts a LocalCluster (of --workers processes), which pays only from 2.5e7 "
+                   "designs x steps (about 70,000 four-bars of 361 steps; below, a note says "
+                   "so); pip install 'linkage_sym[sweep]'")
     p.add_argument("--plots", metavar="DIR",
                    help="a map of each metric over the first two varied parameters (a grid), "
                    "or a histogram per metric (Monte Carlo, samples)")
@@ -176,8 +180,11 @@ def _sweep(args) -> int:
         from linkage_sym.design.plots import sweep_plots
 
         written += sweep_plots(res, args.plots)
-    for line in summary(res):
+    for line in summary(res, scene):
         print(line, file=out)
+    note = parallel_note(len(res), scene.steps, args.workers, args.dask)
+    if note:
+        print(note, file=out)
     if args.write_scenes:
         print(f"wrote {len(res.files)} design scene(s) into {args.write_scenes}", file=out)
         if res.no_scene:
@@ -234,8 +241,35 @@ def _require_pyarrow():
                           "pip install 'linkage_sym[sweep]'") from None
 
 
-def summary(res) -> list[str]:
-    """What ``sweep`` prints: the designs, how many assemble, each metric's range."""
+def metric_unit(column: str, scene=None) -> str:
+    """The unit a metric column's values are in (``""`` for a ratio or a count).
+
+    Examples
+    --------
+    >>> import linkage_sym
+    >>> scene = linkage_sym.load_example("slider_crank_offset")
+    >>> [metric_unit(c, scene) for c in ("peak_driving_A", "peak_reaction_B", "K", "swing_deg")]
+    ['N·m', 'N', '', '°']
+    """
+    kinds = {j.name: j.type for j in scene.joints} if scene is not None else {}
+    for m in ("peak_driving_", "rms_driving_"):
+        if column.startswith(m):
+            joint = column[len(m):]
+            return "N" if kinds.get(joint) == "P" else ("N·m" if joint in kinds else "N or N·m")
+    if column.startswith("peak_reaction_") or column == "rms_shaking_force":
+        return "N"
+    if column == "rms_shaking_moment":
+        return "N·m"
+    if column.endswith("_deg"):
+        return "°"
+    if column.startswith("path_"):
+        return "m"
+    return ""
+
+
+def summary(res, scene=None) -> list[str]:
+    """What ``sweep`` prints: the designs, how many assemble, each metric's range (with its
+    unit: efforts in N·m or N by their driver's joint, given the ``scene``)."""
     n = len(res)
     how = {"grid": "grid " + " x ".join(f"{k} {len(v)}" for k, v in res.axes),
            "monte-carlo": "Monte Carlo", "samples": "samples"}[res.kind]
@@ -255,6 +289,10 @@ def summary(res) -> list[str]:
         v = res[c]
         if v.dtype.kind in "US":
             kinds, counts = np.unique(v[v != ""], return_counts=True)
+            if not len(kinds):
+                lines.append(f"  {c}: " + ("none: K has a value for every design" if c == "K_note"
+                                           else "empty for every design"))
+                continue
             lines.append(f"  {c}: " + ", ".join(f"{k} {m}" for k, m in zip(kinds, counts)))
             continue
         fin = v[np.isfinite(v)]
@@ -263,11 +301,56 @@ def summary(res) -> list[str]:
             continue
         i_lo, i_hi = int(np.nanargmin(np.where(np.isfinite(v), v, np.nan))), int(np.nanargmax(np.where(np.isfinite(v), v, np.nan)))
         extra = f" ({n - len(fin)} without a value)" if len(fin) < n else ""
-        lines.append(f"  {c}: {_g(fin.min())} (design {i_lo}) .. {_g(fin.max())} (design {i_hi}), "
-                     f"mean {_g(fin.mean())}{extra}")
+        u = metric_unit(c, scene)
+        u = "" if not u else (u if u == "°" else " " + u)
+        lines.append(f"  {c}: {_g(fin.min())}{u} (design {i_lo}) .. {_g(fin.max())}{u} (design "
+                     f"{i_hi}), mean {_g(fin.mean())}{u}{extra}")
     if paths:
         lines.append(f"  path: {len(paths) // 2} coordinates per point in the table")
     return lines
+
+
+PARALLEL_MIN_ENTRIES = {"workers": 5_000_000, "dask": 25_000_000}
+"""Designs x steps below which ``--workers N`` (N > 1) and ``--dask local`` cost more than
+they save, and the command says so.  Measured on the shipped crank_rocker sweep (grids of
+``l_AB`` x ``l_BC``, 361 steps) on a 2-core machine: the work is about 0.145 ms of CPU per
+design (14.7 s for 102,400), starting the two worker processes about 1.1 s of CPU (each
+imports NumPy and loads the compiled mechanism), a LocalCluster of two about 7.3 s
+(scheduler, nannies, workers).  Halving the work pays for the start from about 15,000
+designs (5.4e6 design-steps) with --workers 2 and 70,000 (2.5e7) with --dask local when both
+cores are free: below, the processes cannot pay whatever the load.  Measured in wall time on
+that machine while other jobs kept it busy (load 8 to 9), one process was faster up to
+102,400 designs (65 s against 83 s with --workers 2, 150 s with --dask local) and --workers 2
+faster at 409,600 (328 s against 395 s): busy cores move the crossover up, never down."""
+
+
+def parallel_note(n_designs: int, steps: int, workers, dask) -> str:
+    """The note ``sweep`` prints when its processes cost more than they save (see
+    :data:`PARALLEL_MIN_ENTRIES`), or ``""``.
+
+    Examples
+    --------
+    >>> parallel_note(100, 361, 2, None)[:60]
+    'note: 100 designs x 361 steps = 36100 design-steps, fewer th'
+    >>> parallel_note(100, 361, None, None), parallel_note(10**6, 361, 2, None)
+    ('', '')
+    """
+    if dask == "local":
+        size = f"of {workers} processes" if workers else "of a process per core"
+        what, key = f"a dask LocalCluster {size}", "dask"
+        option = "--dask local"
+    elif dask is None and workers is not None and workers > 1:
+        what, key, option = f"{workers} worker processes", "workers", f"--workers {workers}"
+    else:
+        return ""
+    entries = n_designs * steps
+    limit = PARALLEL_MIN_ENTRIES[key]
+    if entries >= limit:
+        return ""
+    mant, exp = f"{limit:e}".split("e")
+    return (f"note: {n_designs} designs x {steps} steps = {entries} design-steps, fewer than "
+            f"{float(mant):g}e{int(exp)}: starting {what} costs more than it saves, and one process (without "
+            f"{option}) is faster at this size")
 
 
 def _g(x: float) -> str:

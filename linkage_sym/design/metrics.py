@@ -7,7 +7,13 @@
 ``grashof``                 Grashof class of each loop of four links and four ``R`` joints
                             (:func:`linkage_sym.structure.grashof.classify` on the design's
                             lengths, from its parameters: also for a design that cannot be
-                            assembled, the class being a property of the lengths)
+                            assembled, the class being a property of the lengths): one of
+                            ``crank-rocker``, ``double-crank``, ``double-rocker`` (Grashof,
+                            the shortest link opposite the frame), ``triple-rocker`` (not
+                            Grashof: no link turns fully) or ``change point`` for a loop
+                            through the ground; ``Grashof``, ``not Grashof`` or ``change
+                            point`` for one without it (a column ``grashof_<joints>`` per
+                            loop when the scene has several)
 ``K``, ``swing``            the output's limit positions (roots of its rate along the sweep,
                             located between ``ok`` samples as ``analyze --extremes`` does):
                             ``swing_deg`` its largest minus smallest rotation (degrees) over

@@ -50,6 +50,14 @@ BISECT_TOL = 1e-10
 """Assembly limits located to this many steps."""
 MAX_ITER = 100
 EPS = float(np.finfo(float).eps)
+FULL_TURN_TOL = 1e-9
+"""A rotation whose range over the sweep is at least ``2 pi (1 - FULL_TURN_TOL)`` turns fully:
+its extremes are not limit positions."""
+NOISE = 1e-12
+"""Printed values below ``NOISE`` times their scale are rounding noise and print as 0: lengths
+and slides against the mechanism's characteristic length (the largest distance between two
+joints), angles against 1 rad, efforts and reactions against the largest magnitude of the same
+quantity over the sweep (the results keep the values as computed)."""
 
 
 def brent(a, b, fa, fb, xtol, rtol=4 * EPS, maxiter=MAX_ITER):
@@ -202,6 +210,7 @@ class Extremes:
     limits: list = field(default_factory=list)
     assembly: list = field(default_factory=list)
     evaluations: int = 0
+    n_steps: int = 0
 
     def to_dict(self) -> dict:
         out: dict = {}
@@ -389,12 +398,15 @@ def find_extremes(scene, plan, res, disconnection=None, q=None, qd=None, qdd=Non
     out.limits = _group_limits(scene, plan, out)
     out.assembly = _assembly_limits(sw, res)
     out.evaluations = sw.runs
+    out.n_steps = N
     return out
 
 
 def _group_limits(scene, plan, ext: Extremes) -> list:
     """Per group: the extremes of its links pivoted on the ground (rocker extremes) and of
-    its ``P`` joints on the ground (slider dead centres)."""
+    its ``P`` joints on the ground (slider dead centres).  A rotation item says whether the
+    link turns fully over the sweep (``turns_fully``: its range is a full turn or more, within
+    :data:`FULL_TURN_TOL`), when its extremes are not limit positions."""
     out = []
     for g in plan.decomposition.groups:
         items = []
@@ -403,8 +415,10 @@ def _group_limits(scene, plan, ext: Extremes) -> list:
                 if n in j.links and "ground" in j.links and j.type == "R" and j.name not in g.drivers:
                     mm = ext.values.get(("links", n, "rotation"))
                     if mm:
+                        span = mm["max"].value - mm["min"].value
                         items.append({"coordinate": f"rotation of {n} about {j.name}",
-                                      **{k: e.to_dict() for k, e in mm.items()}})
+                                      **{k: e.to_dict() for k, e in mm.items()},
+                                      "turns_fully": bool(span >= 2 * math.pi * (1 - FULL_TURN_TOL))})
                     break
         for jn in g.joints:
             j = scene.joint(jn)
@@ -442,39 +456,79 @@ def _assembly_limits(sw: _Sweep, res) -> list:
     return out
 
 
+def _shown(value: float, tiny: float) -> float:
+    """``value``, or 0 when it is rounding noise (``|value| <= tiny``); never -0."""
+    return 0.0 if abs(value) <= tiny else float(value) + 0.0
+
+
 def summary_lines(scene, ext: Extremes) -> list[str]:
-    """What ``analyze --extremes`` prints: limit positions, effort and reaction extremes."""
+    """What ``analyze --extremes`` prints: limit positions, effort and reaction extremes.
+
+    Values below :data:`NOISE` times their scale print as 0, and no value prints as -0.  A
+    link that turns fully has no limit position: its line names the extremes as the ends of
+    the sweep (where they are there).
+
+    Examples
+    --------
+    >>> import linkage_sym
+    >>> from linkage_sym.synthesis.builders import guide_bar
+    >>> scene = linkage_sym.load_scene(guide_bar(0.05, 0.02).scene)  # the guide turns fully
+    >>> plan = linkage_sym.compile_plan(scene)
+    >>> for line in summary_lines(scene, find_extremes(scene, plan, plan.run())):
+    ...     print(line)
+    dyad RPR (slider, rocker): rotation of rocker about D turns fully, no limit position: 0.000000° at A = 0.000000° and 360.000000° at A = 360.000000°, the ends of the sweep
+    """
+    L = scene.characteristic_length() or 1.0
+
+    def deg(v):
+        text = f"{math.degrees(_shown(v, NOISE)):.6f}"
+        return (text.lstrip("-") if float(text) == 0 else text) + "°"  # -1e-9° shows as 0
 
     def at(drivers):
         vals = []
         for n, v in drivers.items():
             kind = scene.joint(n).type
-            vals.append(f"{n} = {math.degrees(v):.6f}°" if kind == "R" else f"{n} = {v:.6g} m")
+            vals.append(f"{n} = {deg(v)}" if kind == "R" else f"{n} = {_shown(v, NOISE * L):.6g} m")
         return ", ".join(vals)
+
+    def end(e) -> bool:
+        return e["located"] == "sample" and e["step"] in (0.0, float(ext.n_steps - 1))
 
     lines = []
     for g in ext.limits:
         for it in g["limits"]:
             c = it["coordinate"]
+            rotation = c.startswith("rotation")
+
+            def value(e, rotation=rotation):
+                return deg(e["value"]) if rotation else f"{_shown(e['value'], NOISE * L):.6g} m"
+
+            if it.get("turns_fully"):
+                first, last = sorted((it["min"], it["max"]), key=lambda e: e["step"])
+                ends = ("the ends of the sweep" if end(first) and end(last)
+                        else "its smallest and largest rotation over the sweep")
+                lines.append(f"{g['group']} ({', '.join(g['links'])}): {c} turns fully, no limit "
+                             f"position: {value(first)} at {at(first['drivers'])} and "
+                             f"{value(last)} at {at(last['drivers'])}, {ends}")
+                continue
             for kind in ("min", "max"):
                 e = it[kind]
-                v = (f"{math.degrees(e['value']):.6f}°" if c.startswith("rotation")
-                     else f"{e['value']:.6g} m")
                 lines.append(f"limit position of the {g['group']} ({', '.join(g['links'])}): "
-                             f"{c} {kind} {v} at {at(e['drivers'])}")
+                             f"{c} {kind} {value(e)} at {at(e['drivers'])}")
     for (grp, name, _), mm in ext.values.items():
         if grp == "driving":
             unit = "N·m" if scene.joint(name).type == "R" else "N"
-            for kind in ("max", "min"):
+            tiny = NOISE * max(abs(mm["max"].value), abs(mm["min"].value),
+                               abs(mm["max"].sampled), abs(mm["min"].sampled))
+            for kind, which in (("max", "largest"), ("min", "smallest")):
                 e = mm[kind]
-                lines.append(f"driving effort at {name} {kind}: {e.value:.6g} {unit} at "
-                             f"{at(e.drivers)} ({e.located}; largest sample {e.sampled:.6g})"
-                             if kind == "max" else
-                             f"driving effort at {name} {kind}: {e.value:.6g} {unit} at "
-                             f"{at(e.drivers)} ({e.located}; smallest sample {e.sampled:.6g})")
+                lines.append(f"driving effort at {name} {kind}: {_shown(e.value, tiny):.6g} {unit} "
+                             f"at {at(e.drivers)} ({e.located}; {which} sample "
+                             f"{_shown(e.sampled, tiny):.6g})")
         elif grp == "reactions":
             e = mm["max"]
-            lines.append(f"largest reaction at {name}: {e.value:.6g} N at {at(e.drivers)} ({e.located})")
+            lines.append(f"largest reaction at {name}: {_shown(e.value, 0.0):.6g} N at "
+                         f"{at(e.drivers)} ({e.located})")
     for a in ext.assembly:
         what = "leaves" if a.get("leaves") else "enters"
         lines.append(f"the sweep {what} the assemblable range at {at(a['drivers'])}")

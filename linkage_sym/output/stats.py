@@ -38,6 +38,110 @@ class _Flagged:
 
 
 @dataclass
+class StepRuns:
+    """Runs of consecutive steps of one status over the chunks of a sweep: each run's first and
+    last step with the drivers' values there (``runs``: ``[first, last, q_first, q_last]``).
+
+    ``count`` steps in ``n_runs`` runs; ``runs`` keeps the first :data:`MAX_RANGES` and the
+    latest (to join the next chunk's), so memory stays bounded on any sweep.
+    """
+
+    count: int = 0
+    n_runs: int = 0
+    runs: list = field(default_factory=list)
+
+    def add(self, mask, offset: int, q: dict) -> None:
+        """Add the steps of ``mask`` (sweep steps ``offset...``; ``q[name]``: the drivers'
+        values at those steps)."""
+        mask = np.asarray(mask, bool)
+        if not mask.any():
+            return
+        self.count += int(mask.sum())
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], mask.astype(np.int8), [0]])))
+        for a, b in zip(edges[::2].tolist(), (edges[1::2] - 1).tolist()):
+            qa = {k: float(v[a]) for k, v in q.items()}
+            qb = {k: float(v[b]) for k, v in q.items()}
+            if self.runs and self.runs[-1][1] == offset + a - 1:  # continues the last chunk's
+                self.runs[-1][1], self.runs[-1][3] = offset + b, qb
+                continue
+            self.n_runs += 1
+            if len(self.runs) > MAX_RANGES:  # only the latest is needed beyond the first
+                self.runs.pop()
+            self.runs.append([offset + a, offset + b, qa, qb])
+
+
+def step_ranges(mask, drivers: dict) -> StepRuns:
+    """The runs of ``True`` in ``mask`` (a boolean per step) of one whole run, with the
+    drivers' values (``drivers[name]``: the values at every step).
+
+    Examples
+    --------
+    >>> r = step_ranges([False, True, True, False, True], {"A": [0.0, 0.1, 0.2, 0.3, 0.4]})
+    >>> r.count, [run[:2] for run in r.runs]
+    (3, [[1, 2], [4, 4]])
+    """
+    out = StepRuns()
+    out.add(mask, 0, {k: np.asarray(v, float) for k, v in drivers.items()})
+    return out
+
+
+MAX_RANGES = 8
+"""Driver ranges a summary names before it says how many more there are."""
+
+
+def ranges_text(what: str, runs: StepRuns, kinds: dict) -> str:
+    """One line on steps of one kind: how many, and the driver ranges they cover.
+
+    The one wording of every message that counts steps of a status (``analyze``'s summary,
+    ``demo``): ``unassemblable: 12 steps, A 100°..155°, 205°..260°``.
+
+    Parameters
+    ----------
+    what : str
+        The steps' status (``"unassemblable"``).
+    runs : StepRuns
+    kinds : dict
+        Each driver's joint type (``"R"``: values in degrees, ``"P"``: in m).
+
+    Examples
+    --------
+    >>> import math
+    >>> r = step_ranges([0, 1, 1, 0, 1, 1, 1], {"A": [math.radians(x) for x in range(0, 70, 10)]})
+    >>> ranges_text("unassemblable", r, {"A": "R"})
+    'unassemblable: 5 steps, A 10°..20°, 40°..60°'
+    >>> r = step_ranges([1, 0], {"A": [0.0, 1.0], "s": [0.25, 0.5]})
+    >>> ranges_text("unassemblable", r, {"A": "R", "s": "P"})
+    'unassemblable: 1 step, A 0° with s 0.25 m'
+    >>> r = step_ranges([k % 2 for k in range(21)], {"A": [math.radians(x) for x in range(21)]})
+    >>> ranges_text("unassemblable", r, {"A": "R"})
+    'unassemblable: 10 steps, A 1°, 3°, 5°, 7°, 9°, 11°, 13°, 15° and 2 more ranges'
+    """
+    def value(name, v):
+        text = f"{math.degrees(v) if kinds[name] == 'R' else v:.6g}"
+        return "0" if float(text) == 0 else text  # never -0
+
+    def span(name, qa, qb, first):
+        unit = "°" if kinds[name] == "R" else " m"
+        a, b = value(name, qa[name]), value(name, qb[name])
+        text = f"{a}{unit}" if a == b else (f"{a}{unit}..{b}{unit}" if kinds[name] == "R"
+                                            else f"{a}..{b}{unit}")
+        return f"{name} {text}" if first else text
+
+    names = list(kinds)
+    parts = []
+    for k, (_, _, qa, qb) in enumerate(runs.runs[:MAX_RANGES]):
+        if len(names) == 1:
+            parts.append(span(names[0], qa, qb, k == 0))
+        else:
+            parts.append(" with ".join(span(n, qa, qb, True) for n in names))
+    more = runs.n_runs - MAX_RANGES
+    tail = f" and {more} more range{'s' if more != 1 else ''}" if more > 0 else ""
+    sep = ", " if len(names) <= 1 else "; "
+    steps = f"{runs.count} step{'s' if runs.count != 1 else ''}"
+    return f"{what}: {steps}" + (f", {sep.join(parts)}{tail}" if parts else "")
+
+
+@dataclass
 class Peak:
     """The largest ``|value|`` of a series over the chunks: its step, signed value, driver values."""
 
@@ -93,6 +197,7 @@ class SweepStats:
         self._amplified = [_Flagged() if g.amplification is not None else None for g in groups]
         self._choices = [None if g.used is None else [0] * len(g.choices) for g in groups]
         self.left_out = LeftOut()
+        self.unassemblable = StepRuns()  # the unassemblable steps' runs, with driver values
         self.analysis: Analysis | None = None  # the whole run, when it was kept
 
     @classmethod
@@ -119,6 +224,8 @@ class SweepStats:
         if self.n_steps == 0 and n:
             self.first_message = res.messages[skip]
         self.n_steps += n
+        self.unassemblable.add(status == UNASSEMBLABLE, offset,
+                               {k: np.asarray(d["q"], float)[skip:] for k, d in res.drivers.items()})
         ok = status == OK
         forces = res.forces
         if forces is not None:

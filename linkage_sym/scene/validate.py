@@ -64,6 +64,15 @@ LOAD_KEYS = ("link", "force", "at", "torque")
 POINT_KEYS = ("name", "link", "at")
 EFFECTS_KEYS = ("inertia", "gravity", "loads")
 JOINT_TYPES = ("R", "P", "G", "cam")
+JOINT_TYPE_NAMES = {"R": "revolute", "P": "prismatic", "G": "gear mesh", "cam": "cam contact"}
+"""What each joint type is (the format's ``R`` and ``P``, the extensions' ``G`` and ``cam``)."""
+JOINT_TYPE_SYNONYMS = {
+    "R": ("r", "revolute", "pin", "pinned", "hinge", "hinged", "rotary", "rotational", "turning"),
+    "P": ("p", "prismatic", "slider", "sliding", "slide", "slot"),
+    "G": ("g", "gear", "gears", "mesh", "gear mesh", "gear_mesh"),
+    "cam": ("cam contact", "cam_contact", "cam joint"),
+}
+"""Words read as a joint type's name (compared lower-case): the error suggests the type."""
 
 COINCIDENCE_TOLERANCE = 1e-9
 """Two joint points closer than this fraction of the mechanism's size coincide."""
@@ -656,7 +665,7 @@ class _SceneReader(FieldReader):
         value = entry["type"]
         if isinstance(value, str) and value in JOINT_TYPES:
             return value
-        self.add(f"{path}.type", f'must be "R" or "P", got {_show(value)}')
+        self.add(f"{path}.type", joint_type_problem(value))
         return None
 
     def joint_links(self, entry: Mapping[str, Any], path: str) -> tuple[str, str] | None:
@@ -683,3 +692,25 @@ class _SceneReader(FieldReader):
             self.add(field, f"both ends are link '{value[0]}'; a joint connects two different links")
             ok = False
         return (value[0], value[1]) if ok else None
+
+
+def joint_type_problem(value: Any) -> str:
+    """The reason a joint's ``type`` is refused: every accepted type named, and the one an
+    obvious synonym means.
+
+    Examples
+    --------
+    >>> print(joint_type_problem("revolute"))
+    must be "R" (revolute), "P" (prismatic), "G" (gear mesh) or "cam" (cam contact), got "revolute" (did you mean "R"?)
+    >>> joint_type_problem(3).endswith("got 3")
+    True
+    """
+    kinds = [f'"{t}" ({JOINT_TYPE_NAMES[t]})' for t in JOINT_TYPES]
+    out = f"must be {', '.join(kinds[:-1])} or {kinds[-1]}, got {_show(value)}"
+    if isinstance(value, str):
+        word = " ".join(value.strip().lower().replace("-", " ").split())
+        meant = next((t for t, words in JOINT_TYPE_SYNONYMS.items()
+                      if word in words or word.replace(" ", "_") in words or word == t.lower()), None)
+        if meant is not None:
+            out += f' (did you mean "{meant}"?)'
+    return out

@@ -15,10 +15,16 @@ gives the classes named in the four-bar design chapter of the textbook
   the crank);
 * ``double-crank``: Grashof, the shortest link is the fixed one;
 * ``double-rocker``: Grashof with the shortest link opposite the fixed one
-  (that coupler turns fully), or not Grashof (no link turns fully: a
-  triple-rocker);
+  (that coupler turns fully, both links on the frame rock);
+* ``triple-rocker``: not Grashof (no link turns fully relative to another:
+  the three moving links rock);
 * ``change point``: ``s + l = p + q`` within :data:`CHANGE_POINT_TOL` of
   the perimeter.
+
+A loop without the ground (no fixed link) is ``Grashof``, ``not Grashof`` or
+``change point``.  These names are the values of :attr:`GrashofClass.name`,
+of the design sweep's ``grashof`` columns and of ``linkage-sym structure``'s
+report (:data:`CLASS_NAMES`).
 
 NumPy-free and SymPy-free: plain arithmetic on the scene's assembly points.
 """
@@ -35,6 +41,11 @@ CHANGE_POINT_TOL = 1e-9
 """``|s + l - (p + q)|`` up to this fraction of the perimeter is a change point:
 a scene's coordinates rarely carry more digits than that."""
 
+CLASS_NAMES = ("crank-rocker", "double-crank", "double-rocker", "triple-rocker", "change point")
+"""The classes of a loop through the ground (its fixed link), in the order of the textbook."""
+LOOSE_NAMES = ("Grashof", "not Grashof", "change point")
+"""The classes of a loop without the ground (no fixed link)."""
+
 
 @dataclass(frozen=True)
 class GrashofClass:
@@ -43,9 +54,11 @@ class GrashofClass:
     Attributes
     ----------
     name : str
-        ``"crank-rocker"``, ``"double-crank"``, ``"double-rocker"`` or
-        ``"change point"``; for a loop without the ground (no fixed link)
-        ``"Grashof"``, ``"not Grashof"`` or ``"change point"``.
+        ``"crank-rocker"``, ``"double-crank"``, ``"double-rocker"`` (Grashof, the
+        shortest link opposite the frame), ``"triple-rocker"`` (not Grashof) or
+        ``"change point"`` (:data:`CLASS_NAMES`); for a loop without the ground (no
+        fixed link) ``"Grashof"``, ``"not Grashof"`` or ``"change point"``
+        (:data:`LOOSE_NAMES`).
     grashof : bool or None
         ``s + l < p + q`` (True), ``>`` (False), or None at the change point.
     shortest : int
@@ -88,11 +101,13 @@ def classify(lengths, fixed: int | None = 0, names=None) -> GrashofClass:
     'double-crank'
     >>> classify([4.0, 3.0, 1.0, 3.5], fixed=0).name   # shortest opposite the frame
     'double-rocker'
+    >>> print(classify([0.078, 0.05, 0.06, 0.05], fixed=0).detail)   # not Grashof
+    not Grashof: s + l = 0.05 + 0.078 = 0.128 > p + q = 0.11; no link turns fully: the three moving links rock
     >>> c = classify([14.0, 7.0, 17.0, 10.0], fixed=0)  # 7 + 17 = 10 + 14
     >>> c.name, c.grashof
     ('change point', None)
     >>> print(classify([3.0, 2.0, 1.8, 1.0], fixed=None).detail)
-    not Grashof: s + l = 1 + 3 = 4 > p + q = 3.8; no link turns fully (a triple-rocker)
+    not Grashof: s + l = 1 + 3 = 4 > p + q = 3.8; no link turns fully (a triple-rocker whichever link is fixed)
     """
     ls = [float(x) for x in lengths]
     if len(ls) != 4:
@@ -111,9 +126,13 @@ def classify(lengths, fixed: int | None = 0, names=None) -> GrashofClass:
                             f"change point: {sums} = {other} (within {CHANGE_POINT_TOL:g} of the "
                             "perimeter): the loop can fold flat and change its assembly mode")
     if margin < 0:
-        return GrashofClass("double-rocker" if fixed is not None else "not Grashof", False, i_s,
-                            margin, f"not Grashof: {sums} > {other}; no link turns fully "
-                            "(a triple-rocker)")
+        if fixed is None:
+            return GrashofClass("not Grashof", False, i_s, margin,
+                                f"not Grashof: {sums} > {other}; no link turns fully (a "
+                                "triple-rocker whichever link is fixed)")
+        return GrashofClass("triple-rocker", False, i_s, margin,
+                            f"not Grashof: {sums} > {other}; no link turns fully: the three "
+                            "moving links rock")
     turns = f"'{names[i_s]}' (shortest) turns fully"
     if fixed is None:
         return GrashofClass("Grashof", True, i_s, margin, f"Grashof: {sums} < {other}; {turns}")

@@ -28,8 +28,8 @@ def structure_report(scene: Scene, dec: Decomposition) -> str:
       1. input link: crank; driven joint A (R); external joints A
       2. dyad RRR (class II): coupler, rocker; external joints B, D; internal joints C
     Four-bar loops (Grashof class, textbook section 'Design of four-bar mechanisms' [2]):
-      ground D-A 3, crank A-B 1, coupler B-C 1.414, rocker C-D 1.414 (m): double-rocker
-         not Grashof: s + l = 1 + 3 = 4 > p + q = 2.82843; no link turns fully (a triple-rocker)
+      ground D-A 3, crank A-B 1, coupler B-C 1.414, rocker C-D 1.414 (m): triple-rocker
+         not Grashof: s + l = 1 + 3 = 4 > p + q = 2.82843; no link turns fully: the three moving links rock
     """
     nd = len(scene.drivers)
     lines = [

@@ -194,7 +194,7 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
     >>> fourbar(1.0, 1.0, 1.0, 2.5, crank_deg=180.0)
     Traceback (most recent call last):
     ...
-    linkage_sym.synthesis.common.SynthesisError: crank_deg: at 180° the four-bar cannot be assembled: |BD| = 3.5 m is more than coupler + rocker = 2 m (Grashof class: double-rocker: the crank turns over part of a turn only)
+    linkage_sym.synthesis.common.SynthesisError: crank_deg: at 180° the four-bar cannot be assembled: |BD| = 3.5 m is more than coupler + rocker = 2 m (Grashof class: triple-rocker: the crank turns over part of a turn only)
     """
     a, b, c, d = (positive(n, v) for n, v in
                   (("crank", crank), ("coupler", coupler), ("rocker", rocker), ("ground", ground)))
