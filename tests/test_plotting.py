@@ -313,3 +313,30 @@ def test_plotting_changes_no_global_matplotlib_state():
 
     root = pathlib.Path(__file__).resolve().parents[1]
     subprocess.run([sys.executable, "-c", code], check=True, cwd=root)
+
+
+def test_transmission_minimum_is_marked_where_it_is_read():
+    """The crank-rocker's gamma at C peaks at 132 deg at 180 deg of the crank, which is 48.2 deg
+    from folding: the mark (and its label) sit at min(gamma, 180 - gamma) = 48.2 deg there, not
+    on gamma's maximum.  Reference: the angle between C->B and C->D from the joints' positions."""
+    import linkage_sym
+    from linkage_sym.plotting.transmission import transmission_figure
+
+    scene = linkage_sym.load_example("crank_rocker")
+    res = linkage_sym.analyze(scene)
+    B, C, D = (np.asarray(res.joints[j].position, dtype=float) for j in "BCD")
+    u, v = B - C, D - C
+    gamma = np.degrees(np.arctan2(np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]),
+                                  np.sum(u * v, axis=1)))
+    dev = np.minimum(gamma, 180.0 - gamma)
+    k = int(np.argmin(dev))
+    assert gamma[k] > 90.0  # the case of the report: read off the reflected value
+    ax = transmission_figure(scene, res).axes[0]
+    marks = [ln for ln in ax.get_lines() if ln.get_marker() == "o"]
+    assert len(marks) == 1
+    (mx,), (my,) = marks[0].get_data()
+    assert mx == pytest.approx(np.degrees(res.drivers["A"]["q"][k]), rel=1e-12)
+    assert my == pytest.approx(dev[k], rel=1e-9)
+    texts = [t for t in ax.texts if t.get_text().endswith("°")]
+    assert [t.get_text() for t in texts] == [f"{dev[k]:.3g}°"]
+    assert texts[0].xy == pytest.approx((mx, my), rel=1e-12)
