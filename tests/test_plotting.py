@@ -277,20 +277,41 @@ def test_snapshot_of_an_unsolved_step_draws_nothing():
     assert mechanism_snapshot(scene, analysis, None, ax)  # assembly configuration
 
 
-def test_a_prismatic_driver_puts_millimetres_on_the_x_axis():
+def test_a_prismatic_driver_puts_metres_on_the_x_axis():
+    """Metres, as the result files have them (the axis was in mm for a scene under 1 m)."""
     from dataclasses import replace
 
     from linkage_sym.plotting.motion import driver_axis, motion_figure
 
     scene, analysis = slider_crank()
     scene = replace(scene, drivers=(Driver("D", "P", 0.0, -0.06, N, 1.0),))
-    analysis.drivers = {"D": {"q": np.linspace(0.0, -0.06, N), "qd": np.ones(N),
-                              "qdd": np.zeros(N)}}
+    q = np.linspace(0.0, -0.06, N)
+    analysis.drivers = {"D": {"q": q.copy(), "qd": np.ones(N), "qdd": np.zeros(N)}}
     x, label, unit = driver_axis(scene, analysis)
-    assert unit == "mm" and "(mm)" in label
-    assert x[-1] == pytest.approx(-60.0)
+    assert unit == "m" and "(m)" in label
+    assert np.array_equal(x, q)
     fig = motion_figure(scene, analysis, "velocity")
     assert fig.axes[-1].get_xlabel() == label
+
+
+@pytest.mark.parametrize("quantity,unit", [("position", "m"), ("velocity", "m/s"),
+                                           ("acceleration", "m/s²")])
+def test_slider_panels_are_in_the_units_of_the_result_files(quantity, unit):
+    """The slider panel of each motion diagram is in m, m/s, m/s², as the result files (it was
+    in mm, mm/s, mm/s² for a scene under 1 m).  Reference: the ram's point E read off the
+    hand-made result, along the slide (axis 0: its x component)."""
+    from linkage_sym.plotting.motion import motion_figure
+
+    scene, analysis = shaper()
+    (ax,) = [a for a in motion_figure(scene, analysis, quantity).axes
+             if a.get_ylabel().startswith("slider")]
+    assert ax.get_ylabel().endswith(f"({unit})")
+    (line,) = [ln for ln in ax.get_lines() if ln.get_label().startswith(("s:", "v:", "a:"))]
+    jk = analysis.joints["F"]
+    want = {"position": jk.position[:, 0] - scene.joint("F").at[0],
+            "velocity": jk.velocity[:, 0], "acceleration": jk.acceleration[:, 0]}[quantity]
+    scale = float(np.max(np.abs(want)))
+    assert np.max(np.abs(line.get_ydata() - want)) <= 1e-12 * scale
 
 
 def test_status_runs_split_by_status():
