@@ -361,3 +361,37 @@ def test_transmission_minimum_is_marked_where_it_is_read():
     texts = [t for t in ax.texts if t.get_text().endswith("°")]
     assert [t.get_text() for t in texts] == [f"{dev[k]:.3g}°"]
     assert texts[0].xy == pytest.approx((mx, my), rel=1e-12)
+
+
+def _luminance(rgb):
+    """WCAG 2 relative luminance of an sRGB colour (components 0..1)."""
+    c = np.asarray(rgb[:3], dtype=float)
+    c = np.where(c <= 0.03928, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    return float(0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2])
+
+
+@pytest.mark.parametrize("make", [slider_crank, "wide"])
+def test_the_label_of_a_band_of_unsolved_steps_is_legible(make):
+    """The written status of a band (``unassemblable``) was 7 pt grey 0.35 on the band's grey
+    0.82, under the grid lines (contrast 3.3:1).  It is now at least 8 pt, at least 7:1 against
+    what is behind it (WCAG's enhanced contrast) and above the grid."""
+    from matplotlib.colors import to_rgba
+
+    from linkage_sym.plotting.motion import motion_figure
+
+    scene, analysis = slider_crank()
+    if make == "wide":  # a band a third of the sweep wide
+        for step in range(10, 22):
+            _blank(analysis, step, UNASSEMBLABLE)
+    ax = motion_figure(scene, analysis, "position").axes[0]
+    labels = [t for t in ax.texts if t.get_text() in (UNASSEMBLABLE, SINGULAR)]
+    assert {t.get_text() for t in labels} == ({UNASSEMBLABLE, SINGULAR} if make != "wide"
+                                              else {UNASSEMBLABLE})
+    grid_z = max(g.get_zorder() for g in ax.xaxis.get_gridlines())
+    for t in labels:
+        box = t.get_bbox_patch()
+        behind = box.get_facecolor() if box is not None else to_rgba("0.82")
+        hi, lo = sorted((_luminance(to_rgba(t.get_color())), _luminance(behind)), reverse=True)
+        assert (hi + 0.05) / (lo + 0.05) >= 7.0, t.get_text()
+        assert t.get_fontsize() >= 8.0
+        assert t.get_zorder() > grid_z
