@@ -395,3 +395,62 @@ def test_the_label_of_a_band_of_unsolved_steps_is_legible(make):
         assert (hi + 0.05) / (lo + 0.05) >= 7.0, t.get_text()
         assert t.get_fontsize() >= 8.0
         assert t.get_zorder() > grid_z
+
+
+def _patch(ax, gid):
+    (found,) = [p for p in list(ax.patches) + list(ax.lines) if p.get_gid() == gid]
+    return found
+
+
+@pytest.mark.parametrize("step", [None, 0, 17, 40, 72])
+def test_a_cam_is_drawn_as_its_profile_turning_with_it(step):
+    """The eccentric cam of problem 3-8 was a bar from its pivot A to the contact K.  It is
+    its circle (centre (0, 15) mm on the cam, radius 25 mm), turned with the cam: every drawn
+    point is 25 mm from where the result's rotation of the cam carries the centre (1e-9
+    relative: the points are on the circle up to rounding), and no bar joins A and K."""
+    from matplotlib.figure import Figure
+
+    import linkage_sym
+
+    scene = linkage_sym.load_example("cam_eccentric_rocker")
+    res = linkage_sym.analyze(scene)
+    ax = Figure().subplots()
+    mechanism_snapshot(scene, res, step, ax, unit_scale=1000.0)
+    th = 0.0 if step is None else float(res.links["cam"].rotation[step])
+    centre = np.array([-math.sin(th), math.cos(th)]) * 15.0  # A is the origin
+    ring = _patch(ax, "cam profile K").get_xy()
+    assert len(ring) > 100
+    dist = np.hypot(*(ring - centre).T)
+    assert np.max(np.abs(dist - 25.0)) <= 1e-9 * 25.0
+    A, K = np.zeros(2), np.asarray(scene.joint("K").at) * 1000.0
+    if step is not None:
+        K = np.asarray(res.links["follower"].point(scene.joint("K").at)[step]) * 1000.0
+    for line in ax.lines:
+        xy = np.asarray(line.get_xydata())
+        if len(xy) == 2:
+            ends = sorted((tuple(np.round(xy[0], 6)), tuple(np.round(xy[1], 6))))
+            assert ends != sorted((tuple(np.round(A, 6)), tuple(np.round(K, 6))))
+
+
+@pytest.mark.parametrize("step", [None, 30, 90, 150])
+def test_a_roller_touches_the_drawn_working_profile(step):
+    """The cycloidal cam's pitch curve (``"pitch": true``) and its roller (10 mm): the roller
+    is drawn at the follower's point, and the drawn working profile, turned with the cam,
+    touches it: its nearest point is a roller's radius from the roller's centre (1e-4
+    relative: the profile is drawn as 720 chords, which stray from the curve by about
+    r (pi/720)^2 / 2 = 6e-7 m)."""
+    from matplotlib.figure import Figure
+
+    import linkage_sym
+
+    scene = linkage_sym.load_example("cam_cycloidal_roller")
+    res = linkage_sym.analyze(scene)
+    ax = Figure().subplots()
+    mechanism_snapshot(scene, res, step, ax, unit_scale=1000.0)
+    at = scene.joint("K").at
+    centre = np.asarray(at if step is None else res.links["follower"].point(at)[step]) * 1000
+    roller = _patch(ax, "cam follower K")
+    assert roller.get_center() == pytest.approx(tuple(centre), rel=1e-12)
+    assert roller.get_radius() == pytest.approx(10.0, rel=1e-12)
+    ring = _patch(ax, "cam profile K").get_xy()
+    assert np.min(np.hypot(*(ring - centre).T)) == pytest.approx(10.0, rel=1e-4)
