@@ -263,7 +263,7 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
     return artists
 
 
-def _on_link(analysis, link, step, local) -> np.ndarray:
+def points_on_link(analysis, link, step, local) -> np.ndarray:
     """Global positions (M, 2) at ``step`` (``None``: assembly) of points (M, 2) of ``link``."""
     local = np.asarray(local, dtype=float)
     if step is None or link == GROUND:
@@ -321,19 +321,19 @@ def _cam(scene, analysis, joint, step, ax, unit_scale, alpha, base_z, colors) ->
     col = colors.get(cam, "0.3")
     out = []
     bold = alpha >= 1.0  # a faded snapshot gets the outline only
-    ring = _on_link(analysis, cam, step, working) * unit_scale
+    ring = points_on_link(analysis, cam, step, working) * unit_scale
     edge = Polygon(ring, closed=True, fill=bold, facecolor=(*to_rgb(col), 0.3),
                    edgecolor=to_rgba(col, alpha), lw=1.8 if bold else 1.2, zorder=base_z - 0.1,
                    gid=f"cam profile {joint.name}")
     ax.add_patch(edge)
     out.append(edge)
     if pitch is not None and bold:
-        pc = _on_link(analysis, cam, step, pitch) * unit_scale
+        pc = points_on_link(analysis, cam, step, pitch) * unit_scale
         (line,) = ax.plot(pc[:, 0], pc[:, 1], color=col, lw=0.8, ls=(0, (4, 3)), alpha=alpha,
                           zorder=base_z - 0.1, gid=f"cam pitch curve {joint.name}")
         out.append(line)
     fcol = colors.get(follower, "0.3")
-    at = _on_link(analysis, follower, step, np.asarray([joint.at]))[0] * unit_scale
+    at = points_on_link(analysis, follower, step, np.asarray([joint.at]))[0] * unit_scale
     if spec.follower == "roller":
         roller = Circle(tuple(at), spec.radius * unit_scale, facecolor="white", edgecolor=fcol,
                         lw=1.8, alpha=alpha, zorder=base_z + 1, gid=f"cam follower {joint.name}")
@@ -344,7 +344,7 @@ def _cam(scene, analysis, joint, step, ax, unit_scale, alpha, base_z, colors) ->
         L = scene.characteristic_length() or 1.0
         lo, hi = _face_span(analysis, joint, u)
         ends = np.asarray(joint.at, dtype=float) + np.outer([lo - 0.08 * L, hi + 0.08 * L], u)
-        ends = _on_link(analysis, follower, step, ends) * unit_scale
+        ends = points_on_link(analysis, follower, step, ends) * unit_scale
         (face,) = ax.plot(ends[:, 0], ends[:, 1], color="0.15", lw=2.2, alpha=alpha,
                           solid_capstyle="butt", zorder=base_z + 1,
                           gid=f"cam follower {joint.name}")
@@ -374,6 +374,19 @@ def _ground_slot(scene, analysis, joint, ax, unit_scale, alpha):
 
 def _joint_labels(scene, ax, P, size):
     """Names of the joints at their points; coincident joints share one label."""
+    out = []
+    for p, names in joint_label_groups(scene, P, size):
+        t = ax.annotate(", ".join(names), xy=p, xytext=(7, 7), textcoords="offset points",
+                        fontsize=10, fontweight="bold", color="0.1", zorder=10,
+                        bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
+                              "alpha": 0.7})
+        out.append(t)
+    return out
+
+
+def joint_label_groups(scene, P, size) -> list:
+    """``[(point, [joint names])]``: the joints' points, coincident ones (closer than
+    ``1e-3 size``) in one group; ``P(link, local)`` places a point in the drawing."""
     groups = []
     for joint in scene.joints:
         on = joint.links[1] if joint.links[1] != GROUND else joint.links[0]
@@ -384,14 +397,7 @@ def _joint_labels(scene, ax, P, size):
                 break
         else:
             groups.append([p, [joint.name]])
-    out = []
-    for p, names in groups:
-        t = ax.annotate(", ".join(names), xy=p, xytext=(7, 7), textcoords="offset points",
-                        fontsize=10, fontweight="bold", color="0.1", zorder=10,
-                        bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
-                              "alpha": 0.7})
-        out.append(t)
-    return out
+    return [(p, names) for p, names in groups]
 
 
 def _still(path, scene) -> bool:
