@@ -191,7 +191,10 @@ def cmd_balance(args) -> int:
 
 
 def demo_balance(scene, stem, out) -> list:
-    """Song and Wang's (1992) balancing of a hinged example: JSON and before/after plots."""
+    """Song and Wang's (1992) balancing of a hinged example: JSON and before/after plots.
+
+    The plots have the names ``balance --plots`` gives them (``<stem>_shaking_force_polar.png``,
+    ``<stem>_shaking_moment.png``): one plot, one name."""
     from linkage_sym.balancing.report import balance_document
     from linkage_sym.plotting.balance import shaking_force_polar, shaking_moment_curve
 
@@ -200,8 +203,8 @@ def demo_balance(scene, stem, out) -> list:
     path.write_text(json.dumps(doc.report) + "\n")
     return [
         path,
-        shaking_force_polar(doc.series, out / f"{stem}_balance_force_polar.png", title=scene.name),
-        shaking_moment_curve(doc.series, out / f"{stem}_balance_moment.png", title=scene.name),
+        shaking_force_polar(doc.series, out / f"{stem}_shaking_force_polar.png", title=scene.name),
+        shaking_moment_curve(doc.series, out / f"{stem}_shaking_moment.png", title=scene.name),
     ]
 
 

@@ -142,7 +142,7 @@ def test_demo_writes_pngs(tmp_path):
     """Files are named after the scene's name (``crank-rocker``), as in every command."""
     assert main(["demo", "-o", str(tmp_path), "--example", "crank_rocker"]) == 0
     for suffix in ("positions", "velocities", "accelerations", "paths", "driving", "reactions",
-                   "frame", "shaking", "balance_force_polar", "balance_moment"):
+                   "frame", "shaking", "shaking_force_polar", "shaking_moment"):
         f = tmp_path / f"crank-rocker_{suffix}.png"
         assert f.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     for suffix in ("result", "balance"):

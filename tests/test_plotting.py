@@ -277,20 +277,41 @@ def test_snapshot_of_an_unsolved_step_draws_nothing():
     assert mechanism_snapshot(scene, analysis, None, ax)  # assembly configuration
 
 
-def test_a_prismatic_driver_puts_millimetres_on_the_x_axis():
+def test_a_prismatic_driver_puts_metres_on_the_x_axis():
+    """Metres, as the result files have them (the axis was in mm for a scene under 1 m)."""
     from dataclasses import replace
 
     from linkage_sym.plotting.motion import driver_axis, motion_figure
 
     scene, analysis = slider_crank()
     scene = replace(scene, drivers=(Driver("D", "P", 0.0, -0.06, N, 1.0),))
-    analysis.drivers = {"D": {"q": np.linspace(0.0, -0.06, N), "qd": np.ones(N),
-                              "qdd": np.zeros(N)}}
+    q = np.linspace(0.0, -0.06, N)
+    analysis.drivers = {"D": {"q": q.copy(), "qd": np.ones(N), "qdd": np.zeros(N)}}
     x, label, unit = driver_axis(scene, analysis)
-    assert unit == "mm" and "(mm)" in label
-    assert x[-1] == pytest.approx(-60.0)
+    assert unit == "m" and "(m)" in label
+    assert np.array_equal(x, q)
     fig = motion_figure(scene, analysis, "velocity")
     assert fig.axes[-1].get_xlabel() == label
+
+
+@pytest.mark.parametrize("quantity,unit", [("position", "m"), ("velocity", "m/s"),
+                                           ("acceleration", "m/s²")])
+def test_slider_panels_are_in_the_units_of_the_result_files(quantity, unit):
+    """The slider panel of each motion diagram is in m, m/s, m/s², as the result files (it was
+    in mm, mm/s, mm/s² for a scene under 1 m).  Reference: the ram's point E read off the
+    hand-made result, along the slide (axis 0: its x component)."""
+    from linkage_sym.plotting.motion import motion_figure
+
+    scene, analysis = shaper()
+    (ax,) = [a for a in motion_figure(scene, analysis, quantity).axes
+             if a.get_ylabel().startswith("slider")]
+    assert ax.get_ylabel().endswith(f"({unit})")
+    (line,) = [ln for ln in ax.get_lines() if ln.get_label().startswith(("s:", "v:", "a:"))]
+    jk = analysis.joints["F"]
+    want = {"position": jk.position[:, 0] - scene.joint("F").at[0],
+            "velocity": jk.velocity[:, 0], "acceleration": jk.acceleration[:, 0]}[quantity]
+    scale = float(np.max(np.abs(want)))
+    assert np.max(np.abs(line.get_ydata() - want)) <= 1e-12 * scale
 
 
 def test_status_runs_split_by_status():
@@ -313,3 +334,123 @@ def test_plotting_changes_no_global_matplotlib_state():
 
     root = pathlib.Path(__file__).resolve().parents[1]
     subprocess.run([sys.executable, "-c", code], check=True, cwd=root)
+
+
+def test_transmission_minimum_is_marked_where_it_is_read():
+    """The crank-rocker's gamma at C peaks at 132 deg at 180 deg of the crank, which is 48.2 deg
+    from folding: the mark (and its label) sit at min(gamma, 180 - gamma) = 48.2 deg there, not
+    on gamma's maximum.  Reference: the angle between C->B and C->D from the joints' positions."""
+    import linkage_sym
+    from linkage_sym.plotting.transmission import transmission_figure
+
+    scene = linkage_sym.load_example("crank_rocker")
+    res = linkage_sym.analyze(scene)
+    B, C, D = (np.asarray(res.joints[j].position, dtype=float) for j in "BCD")
+    u, v = B - C, D - C
+    gamma = np.degrees(np.arctan2(np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]),
+                                  np.sum(u * v, axis=1)))
+    dev = np.minimum(gamma, 180.0 - gamma)
+    k = int(np.argmin(dev))
+    assert gamma[k] > 90.0  # the case of the report: read off the reflected value
+    ax = transmission_figure(scene, res).axes[0]
+    marks = [ln for ln in ax.get_lines() if ln.get_marker() == "o"]
+    assert len(marks) == 1
+    (mx,), (my,) = marks[0].get_data()
+    assert mx == pytest.approx(np.degrees(res.drivers["A"]["q"][k]), rel=1e-12)
+    assert my == pytest.approx(dev[k], rel=1e-9)
+    texts = [t for t in ax.texts if t.get_text().endswith("°")]
+    assert [t.get_text() for t in texts] == [f"{dev[k]:.3g}°"]
+    assert texts[0].xy == pytest.approx((mx, my), rel=1e-12)
+
+
+def _luminance(rgb):
+    """WCAG 2 relative luminance of an sRGB colour (components 0..1)."""
+    c = np.asarray(rgb[:3], dtype=float)
+    c = np.where(c <= 0.03928, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    return float(0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2])
+
+
+@pytest.mark.parametrize("make", [slider_crank, "wide"])
+def test_the_label_of_a_band_of_unsolved_steps_is_legible(make):
+    """The written status of a band (``unassemblable``) was 7 pt grey 0.35 on the band's grey
+    0.82, under the grid lines (contrast 3.3:1).  It is now at least 8 pt, at least 7:1 against
+    what is behind it (WCAG's enhanced contrast) and above the grid."""
+    from matplotlib.colors import to_rgba
+
+    from linkage_sym.plotting.motion import motion_figure
+
+    scene, analysis = slider_crank()
+    if make == "wide":  # a band a third of the sweep wide
+        for step in range(10, 22):
+            _blank(analysis, step, UNASSEMBLABLE)
+    ax = motion_figure(scene, analysis, "position").axes[0]
+    labels = [t for t in ax.texts if t.get_text() in (UNASSEMBLABLE, SINGULAR)]
+    assert {t.get_text() for t in labels} == ({UNASSEMBLABLE, SINGULAR} if make != "wide"
+                                              else {UNASSEMBLABLE})
+    grid_z = max(g.get_zorder() for g in ax.xaxis.get_gridlines())
+    for t in labels:
+        box = t.get_bbox_patch()
+        behind = box.get_facecolor() if box is not None else to_rgba("0.82")
+        hi, lo = sorted((_luminance(to_rgba(t.get_color())), _luminance(behind)), reverse=True)
+        assert (hi + 0.05) / (lo + 0.05) >= 7.0, t.get_text()
+        assert t.get_fontsize() >= 8.0
+        assert t.get_zorder() > grid_z
+
+
+def _patch(ax, gid):
+    (found,) = [p for p in list(ax.patches) + list(ax.lines) if p.get_gid() == gid]
+    return found
+
+
+@pytest.mark.parametrize("step", [None, 0, 17, 40, 72])
+def test_a_cam_is_drawn_as_its_profile_turning_with_it(step):
+    """The eccentric cam of problem 3-8 was a bar from its pivot A to the contact K.  It is
+    its circle (centre (0, 15) mm on the cam, radius 25 mm), turned with the cam: every drawn
+    point is 25 mm from where the result's rotation of the cam carries the centre (1e-9
+    relative: the points are on the circle up to rounding), and no bar joins A and K."""
+    from matplotlib.figure import Figure
+
+    import linkage_sym
+
+    scene = linkage_sym.load_example("cam_eccentric_rocker")
+    res = linkage_sym.analyze(scene)
+    ax = Figure().subplots()
+    mechanism_snapshot(scene, res, step, ax, unit_scale=1000.0)
+    th = 0.0 if step is None else float(res.links["cam"].rotation[step])
+    centre = np.array([-math.sin(th), math.cos(th)]) * 15.0  # A is the origin
+    ring = _patch(ax, "cam profile K").get_xy()
+    assert len(ring) > 100
+    dist = np.hypot(*(ring - centre).T)
+    assert np.max(np.abs(dist - 25.0)) <= 1e-9 * 25.0
+    A, K = np.zeros(2), np.asarray(scene.joint("K").at) * 1000.0
+    if step is not None:
+        K = np.asarray(res.links["follower"].point(scene.joint("K").at)[step]) * 1000.0
+    for line in ax.lines:
+        xy = np.asarray(line.get_xydata())
+        if len(xy) == 2:
+            ends = sorted((tuple(np.round(xy[0], 6)), tuple(np.round(xy[1], 6))))
+            assert ends != sorted((tuple(np.round(A, 6)), tuple(np.round(K, 6))))
+
+
+@pytest.mark.parametrize("step", [None, 30, 90, 150])
+def test_a_roller_touches_the_drawn_working_profile(step):
+    """The cycloidal cam's pitch curve (``"pitch": true``) and its roller (10 mm): the roller
+    is drawn at the follower's point, and the drawn working profile, turned with the cam,
+    touches it: its nearest point is a roller's radius from the roller's centre (1e-4
+    relative: the profile is drawn as 720 chords, which stray from the curve by about
+    r (pi/720)^2 / 2 = 6e-7 m)."""
+    from matplotlib.figure import Figure
+
+    import linkage_sym
+
+    scene = linkage_sym.load_example("cam_cycloidal_roller")
+    res = linkage_sym.analyze(scene)
+    ax = Figure().subplots()
+    mechanism_snapshot(scene, res, step, ax, unit_scale=1000.0)
+    at = scene.joint("K").at
+    centre = np.asarray(at if step is None else res.links["follower"].point(at)[step]) * 1000
+    roller = _patch(ax, "cam follower K")
+    assert roller.get_center() == pytest.approx(tuple(centre), rel=1e-12)
+    assert roller.get_radius() == pytest.approx(10.0, rel=1e-12)
+    ring = _patch(ax, "cam profile K").get_xy()
+    assert np.min(np.hypot(*(ring - centre).T)) == pytest.approx(10.0, rel=1e-4)

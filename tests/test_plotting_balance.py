@@ -318,3 +318,20 @@ def test_plots_run_without_loading_sympy(tmp_path):
     assert p.returncode == 0, p.stderr
     assert p.stdout.strip() == "[]"
     assert (tmp_path / "f.png").exists() and (tmp_path / "m.png").exists()
+
+
+def test_demo_and_balance_plots_give_one_plot_one_name(tmp_path):
+    """The demo's balancing plots have the names ``balance --plots`` gives the same plots
+    (the demo called the polar plot ``_balance_force_polar.png``, ``balance`` called it
+    ``_shaking_force_polar.png``)."""
+    from linkage_sym.cli import main
+    from linkage_sym.cli_balance import demo_balance
+
+    scene = linkage_sym.load_example("crank_rocker")
+    (tmp_path / "demo").mkdir()
+    demo = demo_balance(scene, "crank-rocker", tmp_path / "demo")
+    assert main(["balance", str(linkage_sym.examples.example_path("crank_rocker")),
+                 "-o", str(tmp_path / "b.json"), "--plots", str(tmp_path / "balance")]) == 0
+    pngs = sorted(p.name for p in (tmp_path / "balance").iterdir())
+    assert pngs == ["crank-rocker_shaking_force_polar.png", "crank-rocker_shaking_moment.png"]
+    assert sorted(Path(p).name for p in demo if str(p).endswith(".png")) == pngs

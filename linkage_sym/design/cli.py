@@ -179,7 +179,7 @@ def _sweep(args) -> int:
     if args.plots:
         from linkage_sym.design.plots import sweep_plots
 
-        written += sweep_plots(res, args.plots)
+        written += sweep_plots(res, args.plots, scene=scene)  # the unit of an effort
     for line in summary(res, scene):
         print(line, file=out)
     note = parallel_note(len(res), scene.steps, args.workers, args.dask)

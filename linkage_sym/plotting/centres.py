@@ -19,12 +19,19 @@ Only results are read here (:mod:`linkage_sym.centres`); nothing is solved.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from matplotlib.patches import FancyArrowPatch
 
 from linkage_sym.model import GROUND
 from linkage_sym.plotting import style
-from linkage_sym.plotting.paths import mechanism_snapshot
+from linkage_sym.plotting.paths import (
+    cam_outline,
+    joint_label_groups,
+    mechanism_snapshot,
+    points_on_link,
+)
 
 __all__ = ["centres_figure", "centrodes_figure", "polygons_figure"]
 
@@ -86,7 +93,7 @@ def centres_figure(scene, analysis, centres, step, out_file):
     fig = style.new_figure(10.5, 7.0)
     ax = fig.subplots()
     ax.set_aspect("equal", adjustable="box")
-    mechanism_snapshot(scene, analysis, step, ax, labels=True, unit_scale=scale)
+    mechanism_snapshot(scene, analysis, step, ax, labels=False, unit_scale=scale)
     k_all = centres.kennedy
     pos = centres.position[step]
     names = centres.links
@@ -139,6 +146,8 @@ def centres_figure(scene, analysis, centres, step, out_file):
                     zorder=2)
 
     labels = []  # [position, [labels], colour]
+    drawn_at = []  # every centre drawn (m): a label keeps off them
+    far = []  # (tip, label) of the centres at infinity shown at their slides
     for k in range(len(centres.pairs)):
         label = centres.label(k)
         a, b = centres.pairs[k]
@@ -153,9 +162,7 @@ def centres_figure(scene, analysis, centres, step, out_file):
                 at = np.asarray(analysis.joints[src[6:-8]].position[step], dtype=float)
                 for sign in (1.0, -1.0):
                     _arrow(ax, at * scale, (at + sign * 0.16 * L * u) * scale, "0.1", lw=0.9, z=8)
-                tip = (at + 0.16 * L * u) * scale
-                ax.annotate(label + " → ∞", tuple(tip), xytext=(4, 2), textcoords="offset points",
-                            fontsize=9, color="0.1", zorder=9)
+                far.append(((at + 0.16 * L * u) * scale, label + " → ∞"))
             continue
         p = pos[k]
         if not np.all(np.isfinite(p)):
@@ -166,16 +173,14 @@ def centres_figure(scene, analysis, centres, step, out_file):
             continue
         st = KIND_STYLE[kind]
         ax.plot([p[0] * scale], [p[1] * scale], ls="none", zorder=8, **st)
+        drawn_at.append(p)
         for group in labels:  # centres close together share one label
             if np.hypot(*(group[0] - p)) <= 0.03 * L:
                 group[1].append(label)
                 break
         else:
             labels.append([p, [label], st["mec"]])
-    for p, names_here, color in labels:
-        ax.annotate(", ".join(names_here), (p[0] * scale, p[1] * scale), xytext=(6, -12),
-                    textcoords="offset points", fontsize=9, color=color, zorder=9,
-                    bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none", "alpha": 0.7})
+
 
     from matplotlib.lines import Line2D
 
@@ -191,22 +196,160 @@ def centres_figure(scene, analysis, centres, step, out_file):
     numbers = ", ".join(f"{i + 1} {n}" for i, n in enumerate(names))
     text = "numbering: " + numbers + ("\n" + "\n".join(listed) if listed else "")
     ax.text(1.02, 0.0, text, transform=ax.transAxes, fontsize=7.5, va="bottom", ha="left",
-            color="0.2", wrap=True)
+            color="0.2", wrap=True, gid="numbering")
     ax.set_xlabel(f"x ({unit})")
     ax.set_ylabel(f"y ({unit})")
     ax.grid(True, color="0.92", lw=0.6, zorder=0)
     n = len(names)
     ax.set_title(f"{scene.name}: {n * (n - 1) // 2} = {n}·{n - 1}/2 instant centres at step {step}",
                  fontsize=11)
-    lo, hi = (mid - 0.9 * L) * scale, (mid + 0.9 * L) * scale
-    for k in range(len(centres.pairs)):
-        p = pos[k]
-        if near(p):
-            lo, hi = np.minimum(lo, p * scale), np.maximum(hi, p * scale)
-    pad = 0.08 * (hi - lo).max()
-    ax.set_xlim(lo[0] - pad, hi[0] + pad)
-    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    # the drawing fills the axes: limits around what is drawn, a figure of its proportions
+    lo, hi = _drawn_box(scene, analysis, step, drawn_at, L)
+    _fit(fig, ax, lo * scale, hi * scale, text.count("\n") + 1 + len(listed))
+    points = [np.asarray(analysis.joints[j.name].position[step], dtype=float) * scale
+              for j in scene.joints] + [p * scale for p in drawn_at]
+    # the joints' names, then the centres' (none covers another, nor a point)
+
+    def place(link, local):
+        if link == GROUND:
+            return np.asarray(local, dtype=float) * scale
+        return np.asarray(analysis.links[link].point(tuple(local))[step], dtype=float) * scale
+
+    size = 0.045 * L * scale
+    joints = [(p, ", ".join(n), "0.1") for p, n in joint_label_groups(scene, place, size)]
+    place_labels(fig, ax, joints, points, size=10, weight="bold", offsets=JOINT_OFFSETS)
+    place_labels(fig, ax, [(p, text, "0.1") for p, text in far], points)
+    place_labels(fig, ax, [(p * scale, ", ".join(n), c) for p, n, c in labels], points)
     return style.save(fig, out_file)
+
+
+def _drawn_box(scene, analysis, step, centres_drawn, L):
+    """Corners (m) of what the centres figure draws at ``step``: joints, traced points,
+    centres of mass and the centres drawn, with room for the ground symbols and labels."""
+    pts = [np.asarray(analysis.joints[j.name].position[step], dtype=float) for j in scene.joints]
+    pts += [np.asarray(pk.position[step], dtype=float)
+            for pk in (getattr(analysis, "points", {}) or {}).values()]
+    pts += [np.asarray(lk.com[step], dtype=float) for lk in analysis.links.values()
+            if lk.com is not None]
+    pts += list(centres_drawn)
+    for joint in scene.cams:  # a cam is its profile
+        pts += list(points_on_link(analysis, joint.links[0], step, cam_outline(joint)[0]))
+    pts = np.array([p for p in pts if np.all(np.isfinite(p))])
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    pad = 0.06 * float((hi - lo).max()) + 0.08 * L
+    return lo - pad, hi + pad
+
+
+def _fit(fig, ax, lo, hi, text_lines):
+    """Size ``fig`` so that an equal-aspect axes showing ``lo``..``hi`` fills its room
+    (beside it: the legend and ``text_lines`` lines of notes)."""
+    dx, dy = float(hi[0] - lo[0]), float(hi[1] - lo[1])
+    ax_w, ax_h = 7.0, 7.0 * dy / dx
+    if ax_h > 7.5:
+        ax_h = 7.5
+        ax_w = max(7.5 * dx / dy, 3.5)
+    ax_h = max(ax_h, 3.0, 1.2 + 0.16 * text_lines)  # room for the legend and the notes
+    fig.set_size_inches(ax_w + 3.7, ax_h + 1.0)
+    ax.set_aspect("auto")
+    fig.draw_without_rendering()  # the room the layout leaves the axes
+    box = ax.get_window_extent()
+    # widen the short side to the room's proportions: equal scales, no room left over
+    mid, half = 0.5 * (np.asarray(lo) + np.asarray(hi)), 0.5 * np.array([dx, dy])
+    if dy / dx < box.height / box.width:
+        half[1] = half[0] * box.height / box.width
+    else:
+        half[0] = half[1] * box.width / box.height
+    ax.set_xlim(mid[0] - half[0], mid[0] + half[0])
+    ax.set_ylim(mid[1] - half[1], mid[1] + half[1])
+    ax.set_aspect("equal", adjustable="box")
+
+
+OFFSETS = tuple((r * dx, r * dy) for r in (1.0, 2.2, 3.4) for dx, dy in
+                ((6, -8), (6, 6), (-6, 6), (-6, -8), (0, -12), (0, 10), (9, 0), (-9, 0)))
+"""Where a centre's label may go (points from the centre, nearest first)."""
+
+JOINT_OFFSETS = OFFSETS[1:2] + OFFSETS[:1] + OFFSETS[2:]
+"""A joint's name: above right first, as every other drawing of the mechanism has it."""
+
+
+def place_labels(fig, ax, items, points, size=9, weight="normal", offsets=OFFSETS):
+    """Write each label next to its point where it covers no other label nor point.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        Laid out here (the labels are placed in its final pixels).
+    ax : matplotlib.axes.Axes
+        Its texts already written (the joints' names) are kept clear of.
+    items : list of (ndarray, str, colour)
+        Point (axis units), text and colour of each label.
+    points : list of ndarray
+        Points (axis units) no label may cover: the joints, the centres.
+    size : float
+        Font size.
+    weight : str
+        Font weight.
+    offsets : sequence of (float, float)
+        The places tried, in points from the point, in order.
+
+    Returns
+    -------
+    list of matplotlib.text.Annotation
+        Placed at the first of :data:`OFFSETS` that overlaps nothing inside the axes
+        (by the renderer's extents), else where it overlaps least; a label away from its
+        point gets a thin leader line.
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.transforms import Bbox
+
+    if not items:
+        return []
+    canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
+    fig.draw_without_rendering()  # the final layout and limits
+    renderer = canvas.get_renderer()
+    frame = ax.get_window_extent(renderer)
+    taken = [t.get_window_extent(renderer).padded(2)
+             for t in ax.texts if t.get_visible() and t.get_gid() != "numbering"]
+    r = 4.0 * fig.dpi / 72.0  # a marker's half size, pixels
+    for p in points:
+        if np.all(np.isfinite(p)):
+            x, y = ax.transData.transform(p)
+            taken.append(Bbox([[x - r, y - r], [x + r, y + r]]))
+
+    def overlap(a, b):
+        w = min(a.x1, b.x1) - max(a.x0, b.x0)
+        h = min(a.y1, b.y1) - max(a.y0, b.y0)
+        return w * h if w > 0 and h > 0 else 0.0
+
+    out = []
+    for p, text, color in items:
+        best = None
+        for dx, dy in offsets:
+            ha = "left" if dx > 0 else "right" if dx < 0 else "center"
+            va = "bottom" if dy > 0 else "top" if dy < 0 else "center"
+            leader = ({"arrowstyle": "-", "color": color, "lw": 0.6, "shrinkA": 0,
+                       "shrinkB": 3} if math.hypot(dx, dy) > 16 else None)  # away from its point
+            t = ax.annotate(text, tuple(p), xytext=(dx, dy), textcoords="offset points",
+                            ha=ha, va=va, fontsize=size, fontweight=weight, color=color,
+                            zorder=9,
+                            bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none",
+                                  "alpha": 0.75}, arrowprops=leader)
+            box = t.get_window_extent(renderer).padded(1)
+            outside = not (frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0
+                           and box.y1 <= frame.y1)
+            cost = sum(overlap(box, b) for b in taken) + (1e9 if outside else 0.0)
+            if best is None or cost < best[0]:
+                if best is not None:
+                    best[1].remove()
+                best = (cost, t, box)
+            else:
+                t.remove()
+            if cost == 0.0:
+                break
+        _, t, box = best
+        taken.append(box)
+        out.append(t)
+    return out
 
 
 def _broken(path, mid, L):

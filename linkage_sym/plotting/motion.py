@@ -38,14 +38,14 @@ def driver_axis(scene: Scene, analysis: Analysis) -> tuple[np.ndarray, str, str]
     Returns
     -------
     x : ndarray, shape (N,)
-        Degrees for an ``R`` driver; millimetres or metres (see
-        :func:`~linkage_sym.plotting.style.length_unit`) for a ``P`` driver.
+        Degrees for an ``R`` driver; metres for a ``P`` driver (the unit of the
+        result files).
         Where the result has no value the prescribed sweep value is used, so
         ``x`` is always finite.
     label : str
         Axis label with its unit.
     unit : str
-        ``"deg"``, ``"mm"`` or ``"m"``.
+        ``"deg"`` or ``"m"``.
     """
     drv = scene.drivers[0]
     n = analysis.n_steps
@@ -57,8 +57,7 @@ def driver_axis(scene: Scene, analysis: Analysis) -> tuple[np.ndarray, str, str]
         toward = f", direction {drv.joint}→{drv.toward}" if drv.toward else ""
         return (np.degrees(q), f"driver angle θ at joint {drv.joint} (deg{toward}{more})",
                 "deg")
-    unit, scale = style.length_unit(scene)
-    return q * scale, f"driver displacement s at joint {drv.joint} ({unit}{more})", unit
+    return q, f"driver displacement s at joint {drv.joint} (m{more})", "m"
 
 
 def input_links(scene: Scene) -> set:
@@ -173,10 +172,10 @@ _LINK_LABELS = {
     "velocity": ("angular velocity ω (rad/s)", "ω"),
     "acceleration": ("angular acceleration α (rad/s²)", "α"),
 }
-_SLIDER_LABELS = {
-    "position": ("slider displacement s ({u})", "s"),
-    "velocity": ("slider velocity v ({u}/s)", "v"),
-    "acceleration": ("slider acceleration a ({u}/s²)", "a"),
+_SLIDER_LABELS = {  # in the units of the result files
+    "position": ("slider displacement s (m)", "s"),
+    "velocity": ("slider velocity v (m/s)", "v"),
+    "acceleration": ("slider acceleration a (m/s²)", "a"),
 }
 _TITLES = {"position": "Position diagram", "velocity": "Velocity diagram",
            "acceleration": "Acceleration diagram"}
@@ -204,7 +203,6 @@ def motion_figure(scene: Scene, analysis: Analysis, quantity: str):
     if quantity not in QUANTITIES:
         raise ValueError(f"quantity must be one of {QUANTITIES}, not {quantity!r}")
     x, xlabel, xunit = driver_axis(scene, analysis)
-    unit, scale = style.length_unit(scene)
     colors = style.link_colors(scene)
     links = _link_series(analysis, quantity)
     sliders = ground_sliders(scene, analysis, quantity)
@@ -243,9 +241,8 @@ def motion_figure(scene: Scene, analysis: Analysis, quantity: str):
     if ax_sliders is not None:
         ylabel, sym = _SLIDER_LABELS[quantity]
         for link, label, values in sliders:
-            ax_sliders.plot(x, values * scale, lw=1.8, color=colors.get(link),
-                            label=f"{sym}: {label}")
-        ax_sliders.set_ylabel(ylabel.format(u=unit))
+            ax_sliders.plot(x, values, lw=1.8, color=colors.get(link), label=f"{sym}: {label}")
+        ax_sliders.set_ylabel(ylabel)
         ax_sliders.axhline(0.0, color="0.5", lw=0.6, zorder=0.5)
 
     if not links and not sliders:
@@ -278,10 +275,11 @@ def motion_diagrams(scene: Scene, analysis: Analysis, out_dir, prefix: str | Non
     """Write the position, velocity and acceleration diagrams of a sweep as PNGs.
 
     Each figure plots, against the first driver's coordinate (degrees for an
-    ``R`` driver, mm or m for a ``P`` driver), every rotating link's rotation
+    ``R`` driver, m for a ``P`` driver), every rotating link's rotation
     from the assembly configuration (deg), angular velocity (rad/s) or angular
     acceleration (rad/s²) and, in a second panel, the displacement, velocity or
-    acceleration along its axis of every slider on the ground.  Links that only
+    acceleration along its axis of every slider on the ground (m, m/s, m/s²: the
+    units of the result files).  Links that only
     translate have no rotation curve.  Steps that are not ``ok`` break the
     curves and are shaded grey, labelled ``unassemblable`` or ``singular``.
 

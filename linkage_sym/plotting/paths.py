@@ -5,7 +5,10 @@ link's point whose assembly position is the joint's ``at``
 (:meth:`~linkage_sym.numeric.result.LinkKinematics.point`); points on the ground
 do not move.  Two points make a bar, more make the convex polygon of them.
 Ground pivots are small hatched triangles, sliding pairs a slot along the axis
-with a block on it.
+with a block on it.  A cam is its profile (the closed curve of its ``cam``
+joint, :class:`~linkage_sym.numeric.cam_profile.CamProfile`, in the cam's
+frame) turning with it; the follower's element is drawn on the follower: a
+roller's circle, a flat face's straight edge (a knife is its bar's end).
 
 Only results are read here; nothing is solved.
 """
@@ -16,11 +19,17 @@ import math
 from pathlib import Path
 
 import numpy as np
+from matplotlib.colors import to_rgb, to_rgba
 from matplotlib.patches import Circle, Polygon
 
 from linkage_sym.model import GROUND, Scene
+from linkage_sym.numeric.cam_profile import CamProfile
 from linkage_sym.numeric.result import Analysis
 from linkage_sym.plotting import style
+
+PROFILE_SAMPLES = 721
+"""Points of a drawn cam profile (a polygon; its chords stray from the curve by about
+``R (pi / 720)^2 / 2``, 1e-5 of the radius ``R``)."""
 
 
 def _hull(points) -> list:
@@ -49,7 +58,8 @@ def link_points(scene: Scene) -> dict:
 
     A link's points are those of its ``R`` joints, of the ``P`` joints whose
     reference point is fixed on it (``links[1]``) and of the traced points
-    (``points``) on it.  The guide of a ``P`` joint
+    (``points``) on it; the element point of a ``cam`` joint belongs to the
+    follower (``links[1]``) only: the cam is drawn as its profile.  The guide of a ``P`` joint
     (``links[0]``) also gets the reference point when it has fewer than two
     other points, so that it is drawn as a bar.
 
@@ -66,6 +76,8 @@ def link_points(scene: Scene) -> dict:
                 continue
             if joint.type == "P" and k == 0:
                 guides.append((link, joint.at))
+                continue
+            if joint.type == "cam" and k == 0:  # the cam: its profile, not a bar to the follower
                 continue
             if tuple(joint.at) not in pts[link]:
                 pts[link].append(tuple(joint.at))
@@ -217,6 +229,10 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
         artists.append(_block(ax, centre, angle, 2.2 * size, 1.3 * size, blk_col, alpha,
                               base_z + 1))
 
+    # cams: the profile turning with the cam, the follower's roller or flat face
+    for joint in scene.cams:
+        artists += _cam(scene, analysis, joint, step, ax, unit_scale, alpha, base_z, colors)
+
     # pins and ground symbols
     for joint in scene.joints:
         on = joint.links[1] if joint.links[1] != GROUND else joint.links[0]
@@ -247,6 +263,95 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
     return artists
 
 
+def points_on_link(analysis, link, step, local) -> np.ndarray:
+    """Global positions (M, 2) at ``step`` (``None``: assembly) of points (M, 2) of ``link``."""
+    local = np.asarray(local, dtype=float)
+    if step is None or link == GROUND:
+        return local
+    lk = analysis.links[link]
+    th = float(lk.rotation[step])
+    c, s = math.cos(th), math.sin(th)
+    return np.asarray(lk.origin[step], dtype=float) + local @ np.array([[c, s], [-s, c]])
+
+
+def cam_outline(joint):
+    """The drawn curves of a ``cam`` joint, in the cam's frame (m).
+
+    Returns
+    -------
+    working : ndarray, shape (PROFILE_SAMPLES, 2)
+        The working profile: the given curve, or for a pitch curve (a roller's
+        ``"pitch": true``) the curve a roller's radius inside it.
+    pitch : ndarray or None
+        The pitch curve when the scene gives one.
+    """
+    spec = joint.cam
+    curve = CamProfile(spec.profile, spec.data)
+    u = np.linspace(0.0, 2.0 * math.pi, PROFILE_SAMPLES)
+    (x, y), _, (nx, ny), _ = curve.frame(u)
+    given = np.stack([x, y], axis=-1)
+    if not spec.pitch:
+        return given, None
+    return given - spec.radius * np.stack([nx, ny], axis=-1), given
+
+
+def _face_span(analysis, joint, unit_u) -> tuple[float, float]:
+    """Where a flat face must reach along itself (from ``at``): the contact's travel on it."""
+    lk = analysis.links.get(joint.links[1]) if analysis is not None else None
+    contact = analysis.joints.get(joint.name) if analysis is not None else None
+    s = [0.0]
+    if lk is not None and contact is not None:
+        pos = np.asarray(contact.position, dtype=float)
+        rot = np.asarray(lk.rotation, dtype=float)
+        good = np.all(np.isfinite(pos), axis=-1) & np.isfinite(rot)
+        if good.any():
+            d = pos[good] - np.asarray(lk.origin, dtype=float)[good]
+            c, sn = np.cos(rot[good]), np.sin(rot[good])
+            local = np.stack([c * d[:, 0] + sn * d[:, 1], -sn * d[:, 0] + c * d[:, 1]], axis=-1)
+            t = (local - np.asarray(joint.at, dtype=float)) @ unit_u
+            s += [float(t.min()), float(t.max())]
+    return min(s), max(s)
+
+
+def _cam(scene, analysis, joint, step, ax, unit_scale, alpha, base_z, colors) -> list:
+    """Draw cam ``joint``'s profile on its cam and its follower's element at ``step``."""
+    cam, follower = joint.links
+    spec = joint.cam
+    working, pitch = cam_outline(joint)
+    col = colors.get(cam, "0.3")
+    out = []
+    bold = alpha >= 1.0  # a faded snapshot gets the outline only
+    ring = points_on_link(analysis, cam, step, working) * unit_scale
+    edge = Polygon(ring, closed=True, fill=bold, facecolor=(*to_rgb(col), 0.3),
+                   edgecolor=to_rgba(col, alpha), lw=1.8 if bold else 1.2, zorder=base_z - 0.1,
+                   gid=f"cam profile {joint.name}")
+    ax.add_patch(edge)
+    out.append(edge)
+    if pitch is not None and bold:
+        pc = points_on_link(analysis, cam, step, pitch) * unit_scale
+        (line,) = ax.plot(pc[:, 0], pc[:, 1], color=col, lw=0.8, ls=(0, (4, 3)), alpha=alpha,
+                          zorder=base_z - 0.1, gid=f"cam pitch curve {joint.name}")
+        out.append(line)
+    fcol = colors.get(follower, "0.3")
+    at = points_on_link(analysis, follower, step, np.asarray([joint.at]))[0] * unit_scale
+    if spec.follower == "roller":
+        roller = Circle(tuple(at), spec.radius * unit_scale, facecolor="white", edgecolor=fcol,
+                        lw=1.8, alpha=alpha, zorder=base_z + 1, gid=f"cam follower {joint.name}")
+        ax.add_patch(roller)
+        out.append(roller)
+    elif spec.follower == "flat":
+        u = np.array([math.cos(spec.face), math.sin(spec.face)])
+        L = scene.characteristic_length() or 1.0
+        lo, hi = _face_span(analysis, joint, u)
+        ends = np.asarray(joint.at, dtype=float) + np.outer([lo - 0.08 * L, hi + 0.08 * L], u)
+        ends = points_on_link(analysis, follower, step, ends) * unit_scale
+        (face,) = ax.plot(ends[:, 0], ends[:, 1], color="0.15", lw=2.2, alpha=alpha,
+                          solid_capstyle="butt", zorder=base_z + 1,
+                          gid=f"cam follower {joint.name}")
+        out.append(face)
+    return out
+
+
 def _ground_slot(scene, analysis, joint, ax, unit_scale, alpha):
     """The fixed slot of a slider on the ground, long enough for its travel."""
     u = np.array([math.cos(joint.axis), math.sin(joint.axis)])
@@ -269,6 +374,19 @@ def _ground_slot(scene, analysis, joint, ax, unit_scale, alpha):
 
 def _joint_labels(scene, ax, P, size):
     """Names of the joints at their points; coincident joints share one label."""
+    out = []
+    for p, names in joint_label_groups(scene, P, size):
+        t = ax.annotate(", ".join(names), xy=p, xytext=(7, 7), textcoords="offset points",
+                        fontsize=10, fontweight="bold", color="0.1", zorder=10,
+                        bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
+                              "alpha": 0.7})
+        out.append(t)
+    return out
+
+
+def joint_label_groups(scene, P, size) -> list:
+    """``[(point, [joint names])]``: the joints' points, coincident ones (closer than
+    ``1e-3 size``) in one group; ``P(link, local)`` places a point in the drawing."""
     groups = []
     for joint in scene.joints:
         on = joint.links[1] if joint.links[1] != GROUND else joint.links[0]
@@ -279,14 +397,7 @@ def _joint_labels(scene, ax, P, size):
                 break
         else:
             groups.append([p, [joint.name]])
-    out = []
-    for p, names in groups:
-        t = ax.annotate(", ".join(names), xy=p, xytext=(7, 7), textcoords="offset points",
-                        fontsize=10, fontweight="bold", color="0.1", zorder=10,
-                        bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
-                              "alpha": 0.7})
-        out.append(t)
-    return out
+    return [(p, names) for p, names in groups]
 
 
 def _still(path, scene) -> bool:

@@ -40,6 +40,9 @@ BAND_STYLE = {
 
 DPI = 120
 
+LABEL_SIZE = 8.5
+"""Font size (pt) of the written label of a band of unsolved steps."""
+
 
 def new_figure(width: float, height: float) -> Figure:
     """A figure that needs neither pyplot nor a backend switch.
@@ -195,10 +198,15 @@ def shade_bad_steps(axes, x, status, *, label_ax=None) -> list:
         for ax in axes:
             ax.axvspan(lo, hi, zorder=0, linewidth=0.5, **style)
         if label_ax is not None:
+            # dark text on a white box above the grid: legible on the grey band; across a
+            # band wide enough for it, else along it
             tr = blended_transform_factory(label_ax.transData, label_ax.transAxes)
+            wide = (hi - lo) >= 0.15 * max(float(np.ptp(x)), 1e-300)
             label_ax.text(
-                0.5 * (lo + hi), 0.97, st, transform=tr, rotation=90, ha="center",
-                va="top", fontsize=7, color="0.35", clip_on=True, zorder=1,
+                0.5 * (lo + hi), 0.97, st, transform=tr, rotation=0 if wide else 90,
+                ha="center", va="top", fontsize=LABEL_SIZE, color="0.1", clip_on=True,
+                zorder=5, bbox={"boxstyle": "round,pad=0.2", "facecolor": "white",
+                                "edgecolor": "none", "alpha": 0.9},
             )
         seen.setdefault(st, Patch(label=f"{st} step", **style))
     return list(seen.values())
