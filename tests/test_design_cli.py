@@ -75,6 +75,15 @@ def test_samples_and_monte_carlo(tmp_path, capsys):
     (["--vary", "l_AB=0.02:0.03:2", "--write-scenes", "s", "--scene-rows", "0,x"],
      "--scene-rows: 'x': design numbers (0,5,17) or ranges"),
     ([], "--vary: give exactly one of --vary, --samples or --monte-carlo"),
+    # issue 27: a repeated --tolerance, and names of options whose metric is not asked for
+    (["--monte-carlo", "3", "--tolerance", "l_AB=1e-5", "--tolerance", "l_AB=2e-5"],
+     "--tolerance: 'l_AB' given twice"),
+    (["--vary", "l_AB=0.02:0.03:2", "--metrics", "grashof", "--output-link", "rockr"],
+     "--output-link: unknown link 'rockr'; the moving links are crank, coupler, rocker"),
+    (["--vary", "l_AB=0.02:0.03:2", "--output-link", "rockr"],  # default metrics
+     "--output-link: unknown link 'rockr'; the moving links are crank, coupler, rocker"),
+    (["--vary", "l_AB=0.02:0.03:2", "--metrics", "K", "--trace", "P", "--trace", "Q"],
+     "--trace: unknown traced point 'Q'; the scene's are P"),
 ])
 def test_refusals_name_the_option(capsys, args, message, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)

@@ -10,7 +10,7 @@ import numpy as np
 
 from linkage_sym.design.errors import SweepError
 from linkage_sym.design.execute import TARGET_ENTRIES, Spec, run_chunks
-from linkage_sym.design.metrics import DEFAULT_METRICS, MetricPlan, refuse_meshes
+from linkage_sym.design.metrics import DEFAULT_METRICS, MetricPlan, check_choices, refuse_meshes
 from linkage_sym.design.newton_groups import DEFAULT_CHUNK as ONE_AT_A_TIME_CHUNK
 from linkage_sym.design.parameters import Designs, check_names, grid, monte_carlo as _mc
 from linkage_sym.design.parameters import read_samples
@@ -136,6 +136,7 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     scene = _as_scene(scene)
     refuse_meshes(scene)
     designs = _designs(scene, parameters, samples, monte_carlo, tolerance, random_state)
+    check_choices(scene, output, trace)
     if metrics is None:
         metrics = default_metrics(scene, output)
     metrics = [metrics] if isinstance(metrics, str) else list(metrics)

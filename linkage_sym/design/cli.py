@@ -156,7 +156,12 @@ def _sweep(args) -> int:
             axes[name] = values
     tol = None
     if args.tolerance:
-        tol = dict(parse_tolerance(t) for t in args.tolerance)
+        tol = {}
+        for text in args.tolerance:
+            name, sigma = parse_tolerance(text)
+            if name in tol:
+                raise OptionError(f"--tolerance: {name!r} given twice")
+            tol[name] = sigma
     metrics = None
     if args.metrics:
         metrics = [m.strip() for m in args.metrics.split(",") if m.strip()]
