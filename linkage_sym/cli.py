@@ -121,6 +121,9 @@ def summary(scene, analysis) -> list[str]:
     lines = [f"{scene.name}: {stats.n_steps} steps: "
              + ", ".join(f"{n} {s}" for s, n in counts.items())
              + f" (stages {', '.join(stats.stages)})"]
+    if not stats.outputs:
+        lines.append("the scene's outputs are empty: the result holds each step's status and "
+                     "driver values only (the position stage ran to find which steps assemble)")
     if stats.has_forces:
         if "driving" in stats.outputs:
             for name, peak in stats.driving.items():

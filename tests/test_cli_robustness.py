@@ -317,6 +317,23 @@ def test_analyze_dash_writes_the_json_to_stdout(capsys):
     assert "peak" not in out + err
 
 
+def test_empty_outputs_return_statuses_and_drivers_and_say_so(tmp_path, capsys):
+    """``"outputs": []`` (issue 27): accepted, as the format's 'outputs lists what to
+    return' allows, but no longer silently: the summary says what the result holds, and the
+    result holds each step's status and driver values, nothing of joints or links."""
+    out = tmp_path / "r.json"
+    assert main(["analyze", small_scene(tmp_path, outputs=[]), "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert ("the scene's outputs are empty: the result holds each step's status and driver "
+            "values only (the position stage ran to find which steps assemble)") in text, text
+    r = json.loads(out.read_text())
+    assert r["stages"] == ["position"]
+    assert {k for s in r["steps"] for k in s} <= {"status", "message", "drivers", "accuracy"}
+    assert all(s["status"] == "ok" for s in r["steps"]) and len(r["steps"]) == 13
+    assert main(["analyze", small_scene(tmp_path, outputs=["kinematics"])]) == 0
+    assert "outputs are empty" not in capsys.readouterr().out
+
+
 def test_summary_names_shaking_loads_and_warnings(tmp_path):
     """Inertia only: the frame loads are the shaking force and moment; warnings are listed."""
     from linkage_sym.cli import summary
