@@ -799,6 +799,54 @@ def test_a_failure_while_writing_leaves_no_partial_file(fmt, tmp_path, capsys, m
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r." + fmt, "scene.json"]
 
 
+@pytest.mark.parametrize("signame, status", [("SIGTERM", None), ("SIGINT", 130)])
+def test_a_killed_analyze_leaves_no_partial_file(signame, status, tmp_path):
+    """Issue 27: SIGTERM ended analyze at once, leaving its ``.partial`` file.  A run of two
+    million steps (about a minute) is signalled once its partial file exists: the file is
+    removed, and the process ends as the signal ends it (killed by SIGTERM; Ctrl-C's status
+    130)."""
+    import os
+    import signal
+    import subprocess
+    import time
+
+    scene = _write(tmp_path, _with_steps(example_dict("crank_rocker"), 2_000_000))
+    out = tmp_path / "out"
+    out.mkdir()
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    p = subprocess.Popen([sys.executable, "-m", "linkage_sym", "analyze", str(scene), "-o",
+                          str(out / "r.csv")], env=env, stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 120
+        while not any(out.iterdir()) and p.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.05)
+        partial = [f.name for f in out.iterdir()]
+        assert len(partial) == 1 and partial[0].endswith(".partial"), partial
+        time.sleep(1.0)  # some chunks solved and written
+        assert p.poll() is None  # still running: killed mid-run
+        p.send_signal(getattr(signal, signame))
+        _, err = p.communicate(timeout=60)
+    finally:
+        if p.poll() is None:
+            p.kill()
+            p.communicate()
+    expected = -getattr(signal, signame) if status is None else status
+    assert p.returncode == expected, (p.returncode, err)
+    assert "Traceback" not in err, err
+    assert list(out.iterdir()) == []
+
+
+def test_the_signal_handlers_are_restored_after_a_run(tmp_path):
+    import signal
+
+    before = {s: signal.getsignal(s) for s in output.SIGNALS}
+    scene = linkage_sym.load_scene(_with_steps(example_dict("crank_rocker"), 30))
+    output.write_sweep(output.plan_sweep(compile_plan(scene)), tmp_path / "r.json")
+    assert {s: signal.getsignal(s) for s in output.SIGNALS} == before
+    assert [p.name for p in tmp_path.iterdir()] == ["r.json"]
+
+
 def test_memory_probe_reads_the_machine():
     avail = output.available_memory()
     assert avail is None or 0 < avail < 2**50

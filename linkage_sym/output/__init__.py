@@ -43,9 +43,12 @@ the core never imports.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
+import signal
 import sys
+import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
@@ -328,6 +331,62 @@ def _join(prev: dict, res: Analysis, at: int, step: int) -> None:
             lk.rotation += 2 * math.pi * turns
 
 
+class _Signalled(BaseException):
+    """Raised by :func:`_signals_unwind`'s handler: a signal that ends the process arrived."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = signum
+
+
+SIGNALS = tuple(getattr(signal, n) for n in ("SIGTERM", "SIGINT", "SIGHUP") if hasattr(signal, n))
+"""The signals that end a run (``kill``, Ctrl-C, a closed terminal) whose partial file
+:func:`write_sweep` removes before the process ends."""
+
+
+@contextlib.contextmanager
+def _signals_unwind():
+    """While the block runs, a signal of :data:`SIGNALS` unwinds it as an exception (its
+    ``except``/``finally`` clauses remove what it was writing), then is handed to the
+    handler it had before -- restored first -- so the process ends as that signal ends it
+    (killed by SIGTERM, a ``KeyboardInterrupt`` for SIGINT ...).
+
+    A signal the process ignores stays ignored; outside the main thread (where Python
+    runs no handler) nothing changes.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = {}
+
+    def unwind(signum, frame):
+        raise _Signalled(signum)
+
+    for sig in SIGNALS:
+        old = signal.getsignal(sig)
+        if old is signal.SIG_IGN or old is None:  # ignored, or not set from Python: leave it
+            continue
+        previous[sig] = old
+        signal.signal(sig, unwind)
+
+    def restore():
+        for sig, old in previous.items():
+            signal.signal(sig, old)
+
+    try:
+        yield
+    except _Signalled as got:
+        restore()
+        old = previous[got.signum]
+        if callable(old):
+            old(got.signum, None)
+        else:  # SIG_DFL: the default action, now that the file is gone
+            os.kill(os.getpid(), got.signum)
+        raise
+    finally:
+        restore()
+
+
 def write_sweep(sweep: Sweep, path=None, fmt: str = "json", *, indent: int | None = None,
                 stream=None, progress: bool = False, keep: bool = False,
                 chunk: int | None = None, memory: int | None | str = "probe") -> SweepStats:
@@ -379,7 +438,6 @@ def write_sweep(sweep: Sweep, path=None, fmt: str = "json", *, indent: int | Non
         size = chunk or chunk_steps(N, per_step, available, bool(sweep.heads),
                                     sweep.most_waypoints())
     target = tmp = None
-    fh = None
     if path is not None:
         # a symbolic link: the file it names is replaced, not the link
         target = Path(os.path.realpath(path)) if os.path.islink(path) else Path(path)
@@ -388,6 +446,15 @@ def write_sweep(sweep: Sweep, path=None, fmt: str = "json", *, indent: int | Non
                                "the result is written to a new file that replaces it"])
         target.parent.mkdir(parents=True, exist_ok=True)
         tmp = target.with_name(f".{target.name}.{os.getpid()}.partial")
+    with _signals_unwind():  # a kill or Ctrl-C removes the partial file, as an error does
+        return _write(sweep, path, fmt, indent, stream, progress, keep, N, size, stats, target,
+                      tmp)
+
+
+def _write(sweep, path, fmt, indent, stream, progress, keep, N, size, stats, target, tmp):
+    """The chunks of :func:`write_sweep`, solved and written into ``tmp`` (renamed to
+    ``target`` when complete)."""
+    fh = None
     writer: _Writer
     bar = None
     try:
