@@ -173,6 +173,10 @@ def cmd_analyze(args) -> int:
     except output.OutputError as err:
         raise OptionError(err.problems) from err
     scene = _load(args.scene)
+    # the whole run's peak (two copies of the driver values, the path, a chunk or, for
+    # --plots, every step), before any of it is made
+    output.check_run_memory(scene, "whole" if args.plots else "chunks", method=args.method,
+                            fmt=fmt if args.output else None, copies=2)
     if args.method == "symbolic":
         from linkage_sym.codegen.compile import compile_mechanism
 

@@ -118,8 +118,11 @@ def _sweep(args) -> int:
     from linkage_sym.design.parameters import parse_axis, parse_tolerance
     from linkage_sym.design.table import table_format
 
+    from linkage_sym.output import check_run_memory
+
     if args.list:
         scene = load(args.scene)
+        check_run_memory(scene, "none", copies=4)  # the model: the sweep and its path
         rows = scene_parameters(scene)
         w = max(len(n) for n, _, _ in rows)
         print(f"parameters of {scene.name!r} (SI units, angles in rad):")
@@ -153,6 +156,7 @@ def _sweep(args) -> int:
     if args.output not in (None, "-") and table_format(args.output) == "parquet":
         _require_pyarrow()
     scene = load(args.scene)
+    check_run_memory(scene, "path", copies=4)  # the model, and a design along its path
     axes = None
     if args.vary:
         axes = {}
