@@ -117,7 +117,6 @@ def _sweep(args) -> int:
     from linkage_sym.design.api import scene_parameters, sweep
     from linkage_sym.design.parameters import parse_axis, parse_tolerance
     from linkage_sym.design.table import table_format
-
     from linkage_sym.output import check_run_memory
 
     if args.list:
