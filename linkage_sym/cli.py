@@ -137,6 +137,9 @@ def summary(scene, analysis) -> list[str]:
              + f" (stages {', '.join(stats.stages)})"]
     if stats.unassemblable.count:
         lines.append(ranges_text(UNASSEMBLABLE, stats.unassemblable, _kinds(scene)))
+    if not stats.outputs:
+        lines.append("the scene's outputs are empty: the result holds each step's status and "
+                     "driver values only (the position stage ran to find which steps assemble)")
     if stats.has_forces:
         if "driving" in stats.outputs:
             for name, peak in stats.driving.items():
@@ -186,6 +189,10 @@ def cmd_analyze(args) -> int:
     except output.OutputError as err:
         raise OptionError(err.problems) from err
     scene = _load(args.scene)
+    # the whole run's peak (two copies of the driver values, the path, a chunk or, for
+    # --plots, every step), before any of it is made
+    output.check_run_memory(scene, "whole" if args.plots else "chunks", method=args.method,
+                            fmt=fmt if args.output else None, copies=2)
     if args.method == "symbolic":
         from linkage_sym.codegen.compile import compile_mechanism
 

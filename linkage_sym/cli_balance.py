@@ -159,6 +159,9 @@ def cmd_balance(args) -> int:
         folders=[("--plots", args.plots)],
     )
     scene = load(args.scene)
+    from linkage_sym.output import check_run_memory
+
+    check_run_memory(scene)  # a whole run of the sweep, before any of it is made
     options = _optimize_options(scene, args)
     kinds = {"P": "prismatic joint", "G": "gear mesh", "cam": "cam contact"}
     sliding = [f"{j.name} ({kinds.get(j.type, j.type)})" for j in scene.joints if j.type != "R"]

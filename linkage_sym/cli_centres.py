@@ -248,6 +248,10 @@ def cmd_centres(args) -> int:
     scene = _load(args.scene)
     _problems_at(scene, args)
     scene = dataclasses.replace(scene, outputs=("kinematics",))  # velocities and accelerations
+    from linkage_sym.output import check_run_memory
+
+    # the whole sweep and its centres at every step, before any of it is made
+    check_run_memory(dataclasses.replace(scene, outputs=("kinematics", "instant_centres")))
     plan = compile_plan(scene)
     sweep = plan.run()
     if args.deg is not None:

@@ -318,6 +318,23 @@ def test_analyze_dash_writes_the_json_to_stdout(capsys):
     assert "peak" not in out + err
 
 
+def test_empty_outputs_return_statuses_and_drivers_and_say_so(tmp_path, capsys):
+    """``"outputs": []`` (issue 27): accepted, as the format's 'outputs lists what to
+    return' allows, but no longer silently: the summary says what the result holds, and the
+    result holds each step's status and driver values, nothing of joints or links."""
+    out = tmp_path / "r.json"
+    assert main(["analyze", small_scene(tmp_path, outputs=[]), "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert ("the scene's outputs are empty: the result holds each step's status and driver "
+            "values only (the position stage ran to find which steps assemble)") in text, text
+    r = json.loads(out.read_text())
+    assert r["stages"] == ["position"]
+    assert {k for s in r["steps"] for k in s} <= {"status", "message", "drivers", "accuracy"}
+    assert all(s["status"] == "ok" for s in r["steps"]) and len(r["steps"]) == 13
+    assert main(["analyze", small_scene(tmp_path, outputs=["kinematics"])]) == 0
+    assert "outputs are empty" not in capsys.readouterr().out
+
+
 def test_summary_names_shaking_loads_and_warnings(tmp_path):
     """Inertia only: the frame loads are the shaking force and moment; warnings are listed."""
     from linkage_sym.cli import summary
@@ -344,6 +361,41 @@ def test_a_sweep_too_large_for_memory_is_refused_by_its_field(tmp_path, command,
     assert p.returncode == 2, p.stderr
     assert "Traceback" not in p.stderr
     assert f"drivers[0].steps: {steps} steps do not fit in memory" in p.stderr
+
+
+@pytest.mark.parametrize("command, results, copies, scene_outputs", [
+    ("analyze", "chunks", 2, None), ("analyze --plots PLOTS", "whole", 2, None),
+    ("centres", "whole", 1, ("kinematics", "instant_centres")), ("balance", "whole", 1, None),
+    ("sweep --list", "none", 4, None), ("sweep --vary l_AB=0.02,0.03", "path", 4, None),
+])
+def test_a_run_whose_peak_does_not_fit_is_refused_in_every_command(
+        tmp_path, capsys, monkeypatch, command, results, copies, scene_outputs):
+    """Issue 27: 5e8 steps were killed without a message in centres, balance and sweep (their
+    driver values alone, 12 GB, fit); now every command estimates its whole run's peak
+    (output.run_memory: driver values, solving path, results) before making any of it.
+    The memory available is made small here; a million steps is not solved."""
+    import dataclasses
+
+    from linkage_sym import output
+    from linkage_sym.numeric.heap import gib
+
+    available = 100 * 2**20
+    monkeypatch.setattr(output, "available_memory", lambda: available)
+    path = small_scene(tmp_path, steps=10**6)
+    scene = linkage_sym.load_scene(path)
+    if scene_outputs:
+        scene = dataclasses.replace(scene, outputs=scene_outputs)
+    m = output.run_memory(scene, results, copies=copies, available=available,
+                          fmt="json" if command == "analyze" else None)
+    assert m["total"] > available
+    args = [a.replace("PLOTS", str(tmp_path / "p")) for a in command.split()]
+    assert main([args[0], path, *args[1:]]) == 2
+    err = capsys.readouterr().err
+    assert (f"drivers[0].steps: 1000000 steps do not fit in memory: the run needs about "
+            f"{gib(m['total'])} at its peak (driver values {gib(m['driver values'])}, "
+            f"solving path {gib(m['solving path'])}, results {gib(m['results'])}), and this "
+            f"process can take {gib(available)} more") in err, err
+    assert files_under(tmp_path) == ["scene_file.json"]
 
 
 def test_a_solving_path_far_longer_than_the_sweep_is_refused():

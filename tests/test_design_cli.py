@@ -76,6 +76,20 @@ def test_samples_and_monte_carlo(tmp_path, capsys):
     (["--vary", "l_AB=0.02:0.03:2", "--write-scenes", "s", "--scene-rows", "0,x"],
      "--scene-rows: 'x': design numbers (0,5,17) or ranges"),
     ([], "--vary: give exactly one of --vary, --samples or --monte-carlo"),
+    # issue 27: a repeated --tolerance, and names of options whose metric is not asked for
+    (["--monte-carlo", "3", "--tolerance", "l_AB=1e-5", "--tolerance", "l_AB=2e-5"],
+     "--tolerance: 'l_AB' given twice"),
+    (["--vary", "l_AB=0.02:0.03:2", "--metrics", "grashof", "--output-link", "rockr"],
+     "--output-link: unknown link 'rockr'; the moving links are crank, coupler, rocker"),
+    (["--vary", "l_AB=0.02:0.03:2", "--output-link", "rockr"],  # default metrics
+     "--output-link: unknown link 'rockr'; the moving links are crank, coupler, rocker"),
+    (["--vary", "l_AB=0.02:0.03:2", "--metrics", "K", "--trace", "P", "--trace", "Q"],
+     "--trace: unknown traced point 'Q'; the scene's are P"),
+    (["--vary", "l_AB=-0.02:0:3", "--vary", "m_crank=0.1,0.2"],
+     "--vary: no value of l_AB gives a valid design: l_AB: joints[1].at: a length must be > 0"),
+    (["--monte-carlo", "20", "--tolerance", "l_AB=1e308"],
+     "--tolerance: none of the 20 designs is valid; design 0: l_AB: joints[1].at: must be "
+     "within +-1e+30"),
 ])
 def test_refusals_name_the_option(capsys, args, message, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
@@ -168,3 +182,23 @@ def test_parallel_note_on_a_small_sweep(capsys):
     big = -(-PARALLEL_MIN_ENTRIES["dask"] // 361)
     assert parallel_note(big, 361, 2, "local") == parallel_note(big, 361, 2, None) == ""
     assert parallel_note(2, 361, 1, None) == parallel_note(2, 361, 2, "tcp://host:8786") == ""
+
+
+def test_invalid_designs_are_counted_and_get_no_scene(tmp_path, capsys):
+    """Issue 27: designs the scene's rules refuse were solved with exit 0 and their scenes
+    written; they are now counted by the rule they break, and get no scene."""
+    assert main(["sweep", CRANK, "--vary", "m_coupler=-1,0.5", "--vary", "T_1=1e308,-0.5",
+                 "--metrics", "K", "--write-scenes", str(tmp_path / "s"),
+                 "-o", str(tmp_path / "t.csv")]) == 0
+    out = capsys.readouterr().out
+    assert "  invalid by the scene's rules, not solved (their metrics empty): 3\n" in out, out
+    assert "    m_coupler: links[1].mass: must be a finite number >= 0: 2\n" in out
+    assert "    T_1: loads[0].torque: must be within +-1e+30 (SI units)" in out
+    assert "wrote 1 design scene(s)" in out
+    assert ("no scene for design(s) 0, 1, 2: the scene's rules refuse them (design 0: "
+            "m_coupler: links[1].mass: must be a finite number >= 0, got -1.0)") in out
+    assert [p.name for p in (tmp_path / "s").iterdir()] == ["design_3.json"]
+    assert main(["analyze", str(tmp_path / "s" / "design_3.json")]) == 0
+    t = read_table(tmp_path / "t.csv")
+    assert t["invalid"][3] == "" and t["invalid"][2].startswith("T_1: loads[0].torque")
+    assert np.isnan(t["K"][:3]).all() and np.isfinite(t["K"][3])

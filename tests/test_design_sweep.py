@@ -279,3 +279,59 @@ def test_a_design_that_cannot_be_assembled_is_marked(tmp_path):
     assert math.isnan(res["K"][1]) and math.isnan(res["min_transmission_deg"][1])
     assert res["K_note"][1] == K_NOTES["assembly"]
     assert [p.name for p in tmp_path.iterdir()] == ["design_0.json"]
+
+
+def _reader_problem(change) -> str:
+    """The scene reader's own problem for the crank-rocker's file with ``change`` made to its
+    mapping (the reference the sweep's check of each design must agree with)."""
+    from linkage_sym.errors import SceneError
+    from linkage_sym.examples import example_dict
+
+    d = example_dict("crank_rocker")
+    change(d)
+    with pytest.raises(SceneError) as err:
+        linkage_sym.load_scene(d)
+    assert len(err.value.problems) == 1
+    return err.value.problems[0]
+
+
+def test_designs_that_break_the_scene_s_rules_are_marked_not_solved(tmp_path):
+    """Issue 27: a negative mass or inertia, a length <= 0, a torque of 1e308 were solved
+    (as if the length were positive) and their scenes written, which analyze refuses.  Each
+    such design is marked with the rule it breaks -- the scene reader's own words for the
+    field it fills -- its metrics left empty, and its scene not written."""
+    scene = linkage_sym.load_example("crank_rocker")
+    mass = _reader_problem(lambda d: d["links"][1].update(mass=-1.0))
+    inertia = _reader_problem(lambda d: d["links"][0].update(inertia=-2e-5))
+    torque = _reader_problem(lambda d: d["loads"][0].update(torque=1e308))
+    assert mass == "links[1].mass: must be a finite number >= 0, got -1.0"
+    res = sweep(scene, {"l_AB": [-0.02, 0.0, 0.024], "m_coupler": [-1.0, 0.5]},
+                ["assemblable", "K", "grashof"], write_scenes=tmp_path)
+    length = "l_AB: joints[1].at: a length must be > 0 (a distance between two joints), got "
+    assert res["invalid"].tolist() == [length + "-0.02"] * 2 + [length + "0.0"] * 2 + [
+        "m_coupler: " + mass, ""]
+    assert list(res.columns)[:4] == ["design", "l_AB", "m_coupler", "invalid"]
+    assert np.isnan(res["assemblable"][:5]).all() and np.isnan(res["K"][:5]).all()
+    assert res["grashof"][:5].tolist() == [""] * 5 and res["grashof"][5] == "crank-rocker"
+    # the valid design's numbers are those of a sweep of it alone
+    alone = sweep(scene, {"l_AB": [0.024], "m_coupler": [0.5]}, ["assemblable", "K", "grashof"])
+    assert res["K"][5] == alone["K"][0] and res["assemblable"][5] == 1
+    assert [p.name for p in tmp_path.iterdir()] == ["design_5.json"]
+    assert [i for i, _ in res.bad_scene] == [0, 1, 2, 3, 4]
+    res = sweep(scene, {"I_crank": [-2e-5, 1e-5], "T_1": [1e308, -0.5]}, ["assemblable"])
+    assert res["invalid"].tolist() == ["I_crank: " + inertia] * 2 + ["T_1: " + torque, ""]
+    assert np.isnan(res["assemblable"][:3]).all() and res["assemblable"][3] == 1
+    # a valid sweep's table is as before: no invalid column
+    assert "invalid" not in sweep(scene, {"l_AB": [0.02]}, ["K"]).columns
+
+
+def test_options_that_give_no_valid_design_are_refused():
+    """A grid axis with no valid value, and a Monte Carlo spread of 1e308 (every draw beyond
+    1e30, or beyond float64), are refused naming the parameter and the rule."""
+    scene = linkage_sym.load_example("crank_rocker")
+    with pytest.raises(SweepError, match=r"^parameters: no value of l_AB gives a valid design: "
+                                         r"l_AB: joints\[1\]\.at: a length must be > 0"):
+        sweep(scene, {"m_coupler": [-1.0, 0.5], "l_AB": [-0.01, 0.0]})
+    with pytest.raises(SweepError, match=r"^--tolerance: none of the 50 designs is valid; design "
+                                         r"0: l_AB: joints\[1\]\.at: must be within \+-1e\+30"):
+        sweep(scene, monte_carlo=50, tolerance={"l_AB": 1e308})

@@ -10,10 +10,10 @@ import numpy as np
 
 from linkage_sym.design.errors import SweepError
 from linkage_sym.design.execute import TARGET_ENTRIES, Spec, run_chunks
-from linkage_sym.design.metrics import DEFAULT_METRICS, MetricPlan, refuse_meshes
+from linkage_sym.design.metrics import DEFAULT_METRICS, MetricPlan, check_choices, refuse_meshes
 from linkage_sym.design.newton_groups import DEFAULT_CHUNK as ONE_AT_A_TIME_CHUNK
 from linkage_sym.design.parameters import Designs, check_names, grid, monte_carlo as _mc
-from linkage_sym.design.parameters import read_samples
+from linkage_sym.design.parameters import design_problems, read_samples, refuse_invalid
 from linkage_sym.design.table import SweepResult
 
 __all__ = ["sweep", "scene_parameters"]
@@ -102,23 +102,33 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     write_scenes : path, optional
         A folder: each design's own scene is written there as
         ``design_<i>.json`` (:mod:`linkage_sym.design.scenes`); a design that cannot
-        be assembled has none (the result's ``no_scene`` lists them).
+        be assembled has none (the result's ``no_scene`` lists them), nor has one that
+        breaks the scene's rules (``bad_scene``, with the rule: the invalid designs, and
+        any whose scene the scene reader refuses).
     scene_rows : sequence of int, optional
         Only these designs' scenes (their ``design`` numbers, rows of the table);
         default every design's.
     progress : bool
         A progress bar on a terminal (tqdm).
 
+    Every design is checked by the scene's rules
+    (:func:`~linkage_sym.design.parameters.design_problems`: each varied parameter held
+    to the rule of the scene field it fills, a length > 0): one that breaks a rule is
+    not solved and gets no scene, and the table gains an ``invalid`` column giving the
+    rule (empty for the valid designs), its metrics empty.
+
     Returns
     -------
     SweepResult
-        One row per design: ``design``, the parameters, the metric columns.
+        One row per design: ``design``, the parameters, ``invalid`` (only when a design
+        is), the metric columns.
 
     Raises
     ------
     SweepError
         Input it cannot use, naming the argument (an unknown parameter lists the
-        valid ones).
+        valid ones); designs none of which is valid (naming a grid axis none of whose
+        values is, with the rule).
 
     Examples
     --------
@@ -136,6 +146,7 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     scene = _as_scene(scene)
     refuse_meshes(scene)
     designs = _designs(scene, parameters, samples, monte_carlo, tolerance, random_state)
+    check_choices(scene, output, trace)
     if metrics is None:
         metrics = default_metrics(scene, output)
     metrics = [metrics] if isinstance(metrics, str) else list(metrics)
@@ -149,8 +160,13 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
         # a mass, inertia or load is a parameter of the force blocks only
         spec = dataclasses.replace(spec, forces=True)
         model, _ = _state(spec)
-    check_names(designs, model.names, "--tolerance" if monte_carlo is not None
-                else "--samples" if samples is not None else "parameters")
+    field_name = ("--tolerance" if monte_carlo is not None
+                  else "--samples" if samples is not None else "parameters")
+    check_names(designs, model.names, field_name)
+    recipes = {model.names[i]: r for r, i in model.recipes.items()}
+    problems = design_problems(scene, designs, recipes)
+    refuse_invalid(scene, designs, recipes, problems, field_name)
+    valid = problems == ""
     if workers is not None:
         if not isinstance(workers, int) or isinstance(workers, bool) or workers < 1:
             raise SweepError("--workers", f"a number of processes >= 1 is expected, got {workers!r}")
@@ -159,23 +175,30 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
                          else max(1, TARGET_ENTRIES // model.path.shape[1]))
     elif not isinstance(chunk_designs, int) or chunk_designs < 1:
         raise SweepError("chunk_designs", f"a number of designs >= 1 is expected, got {chunk_designs!r}")
-    files, no_scene = [], []
+    files, no_scene, bad_scene = [], [], []
     if scene_rows is not None:
         if write_scenes is None:
             raise SweepError("scene_rows", "used only with write_scenes (--write-scenes DIR)")
         scene_rows = _rows(scene_rows, len(designs))
     if write_scenes is not None:
-        files, no_scene = _write_scenes(model, designs, Path(write_scenes), chunk_designs,
-                                        scene_rows)
-    parts = run_chunks(spec, designs.values, chunk_designs, workers, dask, progress)
+        files, no_scene, bad_scene = _write_scenes(model, designs, Path(write_scenes),
+                                                   chunk_designs, scene_rows, problems)
+    # an invalid design is not solved: its metrics are left blank
+    parts = run_chunks(spec, designs.values[valid], chunk_designs, workers, dask, progress)
     columns = {"design": np.arange(len(designs))}
     for k, n in enumerate(designs.names):
         columns[n] = designs.values[:, k].copy()
-    mcols = list(parts[0]) if parts else plan.columns(model.N)
+    if not valid.all():
+        columns["invalid"] = problems
+    mcols = list(parts[0])
     for c in mcols:
-        columns[c] = np.concatenate([p[c] for p in parts])
+        solved = np.concatenate([p[c] for p in parts])
+        columns[c] = np.full(len(designs), "" if solved.dtype.kind in "US" else np.nan,
+                             dtype=solved.dtype)
+        columns[c][valid] = solved
     return SweepResult(columns, tuple(designs.names), tuple(mcols), designs.kind, designs.axes,
-                       scene.name, files, tuple(model.newton_groups), tuple(no_scene))
+                       scene.name, files, tuple(model.newton_groups), tuple(no_scene),
+                       tuple(bad_scene))
 
 
 def default_metrics(scene, output=None) -> list:
@@ -238,16 +261,23 @@ def _rows(rows, n: int) -> np.ndarray:
     return np.unique(np.array(out, dtype=int))
 
 
-def _write_scenes(model, designs, folder: Path, size: int, rows=None):
-    """Write the scenes of the designs ``rows`` (default all); the files and the designs
-    that cannot be assembled (no scene)."""
+def _write_scenes(model, designs, folder: Path, size: int, rows=None, problems=None):
+    """Write the scenes of the designs ``rows`` (default all); the files, the designs that
+    cannot be assembled (no scene), and ``(design, problem)`` of those whose scene breaks
+    the scene's rules (``problems``, from :func:`design_problems`, or the scene reader's
+    own check of the scene before it is written): none of these is written."""
     from linkage_sym.design.scenes import design_scene
+    from linkage_sym.errors import SceneError
     from linkage_sym.scene.load import dump_scene
+    from linkage_sym.scene.validate import parse_scene
 
     folder.mkdir(parents=True, exist_ok=True)
-    files, missing = [], []
+    files, missing, bad = [], [], []
     width = max(1, len(str(len(designs) - 1)))
     rows = np.arange(len(designs)) if rows is None else rows
+    if problems is not None:
+        bad = [(int(i), str(problems[i])) for i in rows if problems[i]]
+        rows = np.array([i for i in rows if not problems[i]], dtype=int)
     for a in range(0, len(rows), size):
         which = rows[a:a + size]
         vals = designs.values[which]
@@ -258,7 +288,14 @@ def _write_scenes(model, designs, folder: Path, size: int, rows=None):
                 missing.append(i)
                 continue
             sc = design_scene(model, P, X0, joints0, d, f"{model.scene.name}-design-{i}")
+            data = dump_scene(sc)
+            try:  # the reader's whole check: no scene is written that analyze would refuse
+                parse_scene(data)
+            except SceneError as err:
+                bad.append((i, err.problems[0]))
+                continue
             path = folder / f"design_{i:0{width}d}.json"
-            path.write_text(json.dumps(dump_scene(sc), indent=1) + "\n")
+            path.write_text(json.dumps(data, indent=1) + "\n")
             files.append(str(path))
-    return files, missing
+    bad.sort()
+    return files, missing, bad

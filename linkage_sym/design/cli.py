@@ -40,6 +40,13 @@ def register(sub) -> None:
         "their values (--monte-carlo with --tolerance). One row per design: its parameters and "
         "the metrics. Each design is assembled at the scene's driver values in the scene's "
         "assembly mode; one that cannot be is marked (assemblable 0, its metrics empty). "
+        "Every design is held to the rules of the scene fields its parameters fill (a mass or "
+        "inertia >= 0, every number within 1e30 SI units, an angle within 1e6 degrees) and its "
+        "lengths l_* must be > 0: a design that breaks one is not solved, the table's 'invalid' "
+        "column gives the rule (its metrics empty), the summary counts the designs by rule, and "
+        "--write-scenes writes no scene for it (nor for any design whose scene the scene reader "
+        "refuses); when no design is valid (a --vary axis none of whose values is, say) the "
+        "option is refused, naming the parameter. "
         "Scenes whose groups all have closed forms are evaluated many designs per call; "
         "groups without one (class-III triads, actuator groups) make the designs run one at "
         "a time, each by the numeric plan of its own scene.",
@@ -114,9 +121,11 @@ def _sweep(args) -> int:
     from linkage_sym.design.api import scene_parameters, sweep
     from linkage_sym.design.parameters import parse_axis, parse_tolerance
     from linkage_sym.design.table import table_format
+    from linkage_sym.output import check_run_memory
 
     if args.list:
         scene = load(args.scene)
+        check_run_memory(scene, "none", copies=4)  # the model: the sweep and its path
         rows = scene_parameters(scene)
         w = max(len(n) for n, _, _ in rows)
         print(f"parameters of {scene.name!r} (SI units, angles in rad):")
@@ -150,6 +159,7 @@ def _sweep(args) -> int:
     if args.output not in (None, "-") and table_format(args.output) == "parquet":
         _require_pyarrow()
     scene = load(args.scene)
+    check_run_memory(scene, "path", copies=4)  # the model, and a design along its path
     axes = None
     if args.vary:
         axes = {}
@@ -160,7 +170,12 @@ def _sweep(args) -> int:
             axes[name] = values
     tol = None
     if args.tolerance:
-        tol = dict(parse_tolerance(t) for t in args.tolerance)
+        tol = {}
+        for text in args.tolerance:
+            name, sigma = parse_tolerance(text)
+            if name in tol:
+                raise OptionError(f"--tolerance: {name!r} given twice")
+            tol[name] = sigma
     metrics = None
     if args.metrics:
         metrics = [m.strip() for m in args.metrics.split(",") if m.strip()]
@@ -192,6 +207,12 @@ def _sweep(args) -> int:
             more = f" and {len(res.no_scene) - 10} more" if len(res.no_scene) > 10 else ""
             print(f"  no scene for design(s) {shown}{more}: not assembled at the scene's driver "
                   "values", file=out)
+        if res.bad_scene:
+            shown = ", ".join(str(i) for i, _ in res.bad_scene[:10])
+            n = len(res.bad_scene)
+            more = f" and {n - 10} more" if n > 10 else ""
+            print(f"  no scene for design(s) {shown}{more}: the scene's rules refuse them "
+                  f"(design {res.bad_scene[0][0]}: {res.bad_scene[0][1]})", file=out)
     for w in written:
         print(f"wrote {w}", file=out)
     return 0
@@ -278,6 +299,14 @@ def summary(res, scene=None) -> list[str]:
         lines.append(f"  one design at a time: the {', '.join(res.one_at_a_time)} of {res.scene!r} "
                      "has no closed form, so each design is solved by the numeric plan of its "
                      "own scene (Newton continuation from its assembly configuration)")
+    if "invalid" in res.columns:
+        bad = res["invalid"][res["invalid"] != ""]
+        lines.append(f"  invalid by the scene's rules, not solved (their metrics empty): {len(bad)}")
+        # counted by the broken rule, the value left out
+        kinds, counts = np.unique([b.rpartition(", got ")[0] or b for b in bad],
+                                  return_counts=True)
+        for k, m in sorted(zip(kinds, counts), key=lambda t: -t[1]):
+            lines.append(f"    {k}: {m}")
     if "assemblable" in res.columns:
         a = res["assemblable"]
         lines.append(f"  assembled at the scene's driver values: {int((a > 0).sum())}; every step "

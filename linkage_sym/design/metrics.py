@@ -61,7 +61,7 @@ from linkage_sym.numeric.transmission import rrr_dyads
 from linkage_sym.structure.grashof import classify, four_bar_loops
 from linkage_sym.structure.parameters import ParameterTable, evaluate
 
-__all__ = ["METRICS", "DEFAULT_METRICS", "MetricPlan"]
+__all__ = ["METRICS", "DEFAULT_METRICS", "MetricPlan", "check_choices"]
 
 METRICS = ("assemblable", "grashof", "K", "swing", "min_transmission_deg", "peak_driving",
            "rms_driving", "peak_reaction", "rms_shaking_force", "rms_shaking_moment", "path")
@@ -121,6 +121,21 @@ def refuse_meshes(scene) -> None:
                                   "solves one design")
 
 
+def check_choices(scene, output=None, trace=None) -> None:
+    """Refuse an ``output`` link or ``trace`` points the scene does not have, listing its
+    own, whether or not the metrics that use them are asked for (a misspelt name is an
+    error, not a choice that happens to go unused)."""
+    if output is not None and output not in scene.link_names:
+        raise SweepError("output", f"unknown link {output!r}; the moving links are "
+                                   f"{', '.join(scene.link_names)}")
+    if trace is not None:
+        names = [p.name for p in scene.points]
+        for t in ([trace] if isinstance(trace, str) else list(trace)):
+            if t not in names:
+                raise SweepError("trace", f"unknown traced point {t!r}; the scene's are "
+                                          f"{', '.join(names) if names else 'none (it has no points section)'}")
+
+
 class MetricPlan:
     """The metrics asked for, checked against the scene: their columns and what the
     solution must hold for them.
@@ -147,6 +162,7 @@ class MetricPlan:
                 raise SweepError("metrics", f"unknown metric {m!r}; the metrics are "
                                             f"{', '.join(METRICS)}")
         self.metrics = list(dict.fromkeys(metrics))
+        check_choices(scene, output, trace)
         self.need = set().union(*(_NEEDS.get(m, set()) for m in self.metrics))
         self.forces = "forces" in self.need
         refuse_meshes(scene)

@@ -38,7 +38,7 @@ from linkage_sym.numeric import heap
 from linkage_sym.errors import finite_number
 
 __all__ = ["Designs", "grid", "monte_carlo", "read_samples", "parse_axis", "parse_tolerance",
-           "check_names", "parameter_list"]
+           "check_names", "parameter_list", "design_problems", "refuse_invalid"]
 
 
 @dataclass(frozen=True)
@@ -184,7 +184,9 @@ def monte_carlo(base, tolerance, n: int, random_state: int = 0) -> Designs:
     mean = np.array([float(base[k]) for k in names])
     sigma = np.array([float(tolerance[k]) for k in names])
     z = np.random.default_rng(random_state).standard_normal((n, len(names)))
-    return Designs(names, mean + sigma * z, "monte-carlo")
+    with np.errstate(over="ignore"):  # a draw beyond float64 is inf: an invalid design
+        values = mean + sigma * z
+    return Designs(names, values, "monte-carlo")
 
 
 def read_samples(path) -> Designs:
@@ -236,6 +238,115 @@ def check_names(designs: Designs, valid, field_name: str = "parameters") -> None
             raise SweepError(field_name, f"unknown parameter {n!r}; the scene's parameters are "
                                          f"{', '.join(valid)} (`linkage-sym sweep SCENE --list` "
                                          "prints them with their values)")
+
+
+def _field(scene, name: str, recipe: tuple):
+    """``(scene field, rule, how)`` that parameter ``name`` (its ``recipe``) fills in a
+    design's scene: ``how`` is ``"length"`` (a distance, > 0 besides the field's rule),
+    ``"angle"`` (radians, held in degrees to the angle rule) or ``""``."""
+    from linkage_sym.scene.validate import ANGLE_RULE, MASS_RULE
+
+    kind = recipe[0]
+    links = {lk: i for i, lk in enumerate(scene.link_names)}
+    joints = {j.name: i for i, j in enumerate(scene.joints)}
+    xy = {"x": 0, "y": 1, "gx": 0, "gy": 1, "Fx": 0, "Fy": 1}
+    if kind in ("m", "I"):
+        return f"links[{links[recipe[1]]}].{'mass' if kind == 'm' else 'inertia'}", MASS_RULE, ""
+    if kind in ("x", "y"):
+        return f"joints[{joints[recipe[1]]}].at[{xy[kind]}]", None, ""
+    if kind == "l":
+        return f"joints[{joints[recipe[2]]}].at", None, "length"
+    if kind in ("p", "q"):
+        return f"links[{links[recipe[1]]}].com", None, ""
+    if kind in ("gx", "gy"):
+        return f"effects.gravity[{xy[kind]}]", None, ""
+    if kind in ("Fx", "Fy"):
+        return f"loads[{recipe[1]}].force[{xy[kind]}]", None, ""
+    if kind in ("xi", "eta"):
+        return f"loads[{recipe[1]}].at", None, ""
+    if kind == "T":
+        return f"loads[{recipe[1]}].torque", None, ""
+    if kind == "gamma":
+        return f"joints[{joints[recipe[1]]}].axis_deg", ANGLE_RULE, "angle"
+    if kind in ("beta", "delta", "phi", "epsilon"):
+        return f"{name} in degrees", ANGLE_RULE, "angle"
+    if kind == "radius":
+        return f"joints[{joints[recipe[1]]}].radius", None, "length"
+    return name, None, ""
+
+
+def _problem(name: str, field: str, rule, how: str, v: float) -> str:
+    """Why the value ``v`` of parameter ``name`` breaks the scene's rules ("" if it does not)."""
+    from linkage_sym.scene.validate import value_problem
+
+    problem = value_problem(field, math.degrees(v) if how == "angle" and math.isfinite(v) else v,
+                            rule)
+    if problem is None and how == "length" and v <= 0:
+        # a distance between two joints of a link: 0 puts them at one point (the scene
+        # refuses it for a driven joint's `toward`, and a link loses its direction), and the
+        # closed forms would read a negative one as the same distance the other way
+        problem = f"{field}: a length must be > 0 (a distance between two joints), got {v!r}"
+    return "" if problem is None else f"{name}: {problem}"
+
+
+def design_problems(scene, designs: Designs, recipes) -> np.ndarray:
+    """Each design checked by the scene's rules: ``""`` for a design whose scene the scene
+    reader would accept, else why not (the first parameter, in ``designs.names``' order,
+    that breaks a rule).
+
+    Every varied parameter is held to the rule of the scene field it fills
+    (:func:`linkage_sym.scene.validate.value_problem`: a mass or inertia >= 0, every
+    number finite and within 1e30 in SI units, an angle within 1e6 degrees), and a
+    length (``l_*``) must be > 0 besides.  The rules are intervals, so a column whose
+    least and greatest values pass passes whole; otherwise each distinct value is checked.
+
+    ``recipes``: the parameter's recipe (:mod:`linkage_sym.structure.parameters`) by name.
+
+    Examples
+    --------
+    >>> import linkage_sym
+    >>> from linkage_sym.design.evaluate import Model
+    >>> scene = linkage_sym.load_example("crank_rocker")
+    >>> model = Model(scene, forces=True)
+    >>> recipes = {model.names[i]: r for r, i in model.recipes.items()}
+    >>> d = grid({"l_AB": [0.0, 0.024], "m_coupler": [-1.0, 0.5]})
+    >>> for why in design_problems(scene, d, recipes).tolist():
+    ...     print(repr(why))
+    'l_AB: joints[1].at: a length must be > 0 (a distance between two joints), got 0.0'
+    'l_AB: joints[1].at: a length must be > 0 (a distance between two joints), got 0.0'
+    'm_coupler: links[1].mass: must be a finite number >= 0, got -1.0'
+    ''
+    """
+    out = np.full(len(designs), "", dtype=object)
+    for k, name in enumerate(designs.names):
+        field, rule, how = _field(scene, name, recipes[name])
+        col = designs.values[:, k]
+        fin = col[np.isfinite(col)]
+        if len(fin) == len(col) and not any(_problem(name, field, rule, how, float(x))
+                                            for x in (fin.min(), fin.max())):
+            continue
+        values, which = np.unique(col, return_inverse=True)
+        why = np.array([_problem(name, field, rule, how, float(x)) for x in values], dtype=object)
+        here = why[which.ravel()]
+        fill = (out == "") & (here != "")
+        out[fill] = here[fill]
+    return out.astype(str)
+
+
+def refuse_invalid(scene, designs: Designs, recipes, problems: np.ndarray,
+                   field_name: str) -> None:
+    """Refuse designs of which none is valid (``problems`` from :func:`design_problems`):
+    a grid axis none of whose values is valid is named with the first value's problem,
+    otherwise the first design's problem is given."""
+    if (problems == "").any():
+        return
+    for name, values in designs.axes:
+        field, rule, how = _field(scene, name, recipes[name])
+        why = [_problem(name, field, rule, how, float(v)) for v in values]
+        if all(why):
+            raise SweepError(field_name, f"no value of {name} gives a valid design: {why[0]}")
+    raise SweepError(field_name, f"none of the {len(problems)} designs is valid; design 0: "
+                                 f"{problems[0]}")
 
 
 def parameter_list(scene, names, values) -> list[tuple[str, float, str]]:

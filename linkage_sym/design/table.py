@@ -54,6 +54,15 @@ class SweepResult:
         solved on its own by the numeric plan (:mod:`linkage_sym.design.newton_groups`).
     no_scene : tuple of int
         Designs whose scene was asked for but that cannot be assembled (no scene).
+    bad_scene : tuple of (int, str)
+        Designs whose scene was asked for but breaks the scene's rules, with the first
+        problem (no scene): the invalid designs, and any whose scene the scene reader
+        refuses.
+
+    A sweep with designs that break the scene's rules (a negative mass, a length <= 0, a
+    number beyond 1e30 ...: :func:`~linkage_sym.design.parameters.design_problems`) has an
+    ``invalid`` column after the parameters: the reason, empty for a valid design.  An
+    invalid design is not solved: its metrics are empty (NaN, or "" in a text column).
     """
 
     columns: dict
@@ -65,6 +74,7 @@ class SweepResult:
     files: list = field(default_factory=list)
     one_at_a_time: tuple = ()
     no_scene: tuple = ()
+    bad_scene: tuple = ()
 
     def __len__(self) -> int:
         return len(self.columns["design"])
@@ -137,6 +147,6 @@ def read_table(path) -> dict:
 
 
 def is_text(column: str) -> bool:
-    """Whether a sweep's column holds text (the Grashof classes, ``K_note``), not numbers
+    """Whether a sweep's column holds text (the Grashof classes, ``K_note``, ``invalid``), not numbers
     (in CSV an empty field is an empty text there, a NaN elsewhere)."""
-    return column == "K_note" or column.startswith("grashof")
+    return column in ("K_note", "invalid") or column.startswith("grashof")

@@ -317,6 +317,35 @@ def solving_path(scene: Scene, names, q0: dict, L: float, Q: np.ndarray):
     return np.concatenate([pre, body], axis=1), n_pre + np.arange(N) * n_ref, n_ref
 
 
+def path_size(scene: Scene) -> tuple[int, int]:
+    """``(points, n_ref)`` of the solving path of the scene's own sweep
+    (:func:`solving_path`) at most, from the drivers' fields alone: nothing allocated, so
+    that a run's memory can be estimated before its arrays are made.
+
+    Examples
+    --------
+    >>> import linkage_sym
+    >>> path_size(linkage_sym.load_example("crank_rocker"))  # 361 steps 1 degree apart
+    (362, 1)
+    """
+    from linkage_sym.structure.parameters import driver_q0
+
+    N = scene.drivers[0].steps
+    q0 = driver_q0(scene)
+    L = scene.characteristic_length() or 1.0
+    to_first, apart = [0.0], [0.0]
+    for d in scene.drivers:
+        lim = MAX_ANGLE_STEP if scene.joint(d.joint).type == "R" else MAX_SLIDE_STEP * L
+        to_first.append(abs(d.start - q0[d.joint]) / lim)
+        if N > 1:
+            apart.append(abs(d.stop - d.start) / (N - 1) / lim)
+    # an upper bound: the steps' increments computed from their values differ from the
+    # nominal one in the last bits, and one just above the largest increment doubles n_ref
+    n_pre = max(1, math.ceil(max(to_first) * (1 + 1e-9)))
+    n_ref = max(1, math.ceil(max(apart) * (1 + 1e-9))) if N > 1 else 1
+    return n_pre + (N - 1) * n_ref + 1, n_ref
+
+
 def scene_sweep(scene: Scene):
     """Driver values ``(q, qd, qdd)`` of a scene's sweep: dicts of (N,) arrays.
 

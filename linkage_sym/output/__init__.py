@@ -43,9 +43,12 @@ the core never imports.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
+import signal
 import sys
+import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
@@ -75,6 +78,7 @@ __all__ = [
     "FORMATS", "SUFFIXES", "OutputError", "output_format", "require_pyarrow", "available_memory",
     "bytes_per_step", "chunk_steps", "check_whole", "Sweep", "plan_sweep", "compiled_sweep",
     "chunk_bounds", "progress_bar", "ChunkError", "write_sweep", "SweepStats", "Peak", "ProgressFn",
+    "run_memory", "check_run_memory",
 ]
 
 
@@ -134,6 +138,91 @@ def _centre_pairs(res) -> int:
 
 def _size(n: float) -> str:
     return f"{n / 2**30:.2f} GB" if n >= 2**30 else f"{n / 2**20:.0f} MB"
+
+
+SMALL_RUN = 10**4
+"""Steps up to which :func:`check_run_memory` does not estimate (a few tens of MB at most)."""
+
+RESULTS = ("whole", "chunks", "path", "none")
+"""What of a run's results :func:`run_memory` counts: every step's at once (``centres``,
+``balance``, ``analyze --plots``), a chunk's (``analyze``), one design's along its
+solving path (a design sweep), none (``sweep --list``)."""
+
+
+def run_memory(scene, results: str = "whole", *, method: str = "dyad", fmt: str | None = None,
+               copies: int = 1, available: int | None = None) -> dict:
+    """Estimated peak memory (bytes) of a run of ``scene``'s sweep, by part, and its ``total``.
+
+    * ``driver values``: the steps' ``q``, ``qd``, ``qdd`` (``copies`` of them: ``analyze``
+      holds the plan's and its chunked sweep's, 2; a design sweep's model the scene's, its
+      own and its compiled mechanism's with that one's path, 4 -- measured: 137 bytes a
+      step of a four-bar's model, 249 of the five-bar's, against 144 and 272 estimated);
+    * ``solving path``: while it is built, the steps stacked, the path with its pieces and
+      temporaries and the steps' indices (:func:`~linkage_sym.numeric.sweep.solving_path`),
+      then the path kept (:func:`~linkage_sym.numeric.sweep.path_size` points, an upper bound);
+    * ``results``: ``results`` (:data:`RESULTS`) steps at :func:`bytes_per_step` each, from
+      the columns of a run of the scene at two steps, and :data:`FIXED_BYTES` (a chunk as
+      :func:`chunk_steps` makes it with ``available`` bytes); none for ``"none"``.
+
+    The path is built before the results are made: the total is the driver values and the
+    larger of the path being built and the path kept with the results.
+
+    Examples
+    --------
+    >>> import linkage_sym
+    >>> m = run_memory(linkage_sym.load_example("crank_rocker"), "whole")
+    >>> sorted(m), m["driver values"]
+    (['driver values', 'results', 'solving path', 'total'], 8664)
+    """
+    import dataclasses
+
+    from linkage_sym.numeric.plan import compile_plan
+    from linkage_sym.numeric.sweep import path_size
+
+    if results not in RESULTS:
+        raise ValueError(f"results must be one of {', '.join(RESULTS)}, got {results!r}")
+    D, N = len(scene.drivers), scene.drivers[0].steps
+    K, n_ref = path_size(scene)
+    drivers = copies * 3 * 8 * D * N
+    build = 8 * (D * N + 3 * D * K + 2 * N)
+    kept = 8 * (D * K + N)
+    count = 0
+    per_step = 0
+    if results != "none":
+        two = dataclasses.replace(scene, drivers=tuple(dataclasses.replace(d, steps=2)
+                                                       for d in scene.drivers))
+        sweep = plan_sweep(compile_plan(two), "dyad" if method == "symbolic" else method)
+        template = sweep.solve(0, 1)
+        per_step = bytes_per_step(len(_numeric_columns(template)), method, bool(sweep.heads),
+                                  fmt, _centre_pairs(template))
+        budget = (CHUNK_MEMORY if available is None
+                  else min(CHUNK_MEMORY, max(0, available - FIXED_BYTES) // 2))
+        count = {"whole": N, "path": K,
+                 "chunks": min(N, max(MIN_CHUNK, budget // per_step))}[results]
+    res = count * per_step + FIXED_BYTES if results != "none" else 0
+    return {"driver values": drivers, "solving path": max(build, kept), "results": res,
+            "total": drivers + max(build, kept + res)}
+
+
+def check_run_memory(scene, results: str = "whole", *, method: str = "dyad",
+                     fmt: str | None = None, copies: int = 1) -> None:
+    """Refuse (:class:`~linkage_sym.errors.SceneError` naming ``drivers[0].steps``) a run
+    whose :func:`run_memory` exceeds what this process can still take
+    (:func:`available_memory`); runs of up to :data:`SMALL_RUN` steps are not estimated."""
+    from linkage_sym.errors import SceneError
+    from linkage_sym.numeric.heap import gib
+
+    N = scene.drivers[0].steps if scene.drivers else 0
+    if N <= SMALL_RUN:
+        return
+    available = available_memory()
+    m = run_memory(scene, results, method=method, fmt=fmt, copies=copies, available=available)
+    if available is not None and m["total"] > available:
+        parts = ", ".join(f"{k} {gib(v)}" for k, v in m.items() if k != "total")
+        raise SceneError([
+            f"drivers[0].steps: {N} steps do not fit in memory: the run needs about "
+            f"{gib(m['total'])} at its peak ({parts}), and this process can take "
+            f"{gib(available)} more; give fewer steps (or split the sweep into several scenes)"])
 
 
 def chunk_steps(n_steps: int, per_step: int, available: int | None, newton: bool,
@@ -328,6 +417,62 @@ def _join(prev: dict, res: Analysis, at: int, step: int) -> None:
             lk.rotation += 2 * math.pi * turns
 
 
+class _Signalled(BaseException):
+    """Raised by :func:`_signals_unwind`'s handler: a signal that ends the process arrived."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = signum
+
+
+SIGNALS = tuple(getattr(signal, n) for n in ("SIGTERM", "SIGINT", "SIGHUP") if hasattr(signal, n))
+"""The signals that end a run (``kill``, Ctrl-C, a closed terminal) whose partial file
+:func:`write_sweep` removes before the process ends."""
+
+
+@contextlib.contextmanager
+def _signals_unwind():
+    """While the block runs, a signal of :data:`SIGNALS` unwinds it as an exception (its
+    ``except``/``finally`` clauses remove what it was writing), then is handed to the
+    handler it had before -- restored first -- so the process ends as that signal ends it
+    (killed by SIGTERM, a ``KeyboardInterrupt`` for SIGINT ...).
+
+    A signal the process ignores stays ignored; outside the main thread (where Python
+    runs no handler) nothing changes.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = {}
+
+    def unwind(signum, frame):
+        raise _Signalled(signum)
+
+    for sig in SIGNALS:
+        old = signal.getsignal(sig)
+        if old is signal.SIG_IGN or old is None:  # ignored, or not set from Python: leave it
+            continue
+        previous[sig] = old
+        signal.signal(sig, unwind)
+
+    def restore():
+        for sig, old in previous.items():
+            signal.signal(sig, old)
+
+    try:
+        yield
+    except _Signalled as got:
+        restore()
+        old = previous[got.signum]
+        if callable(old):
+            old(got.signum, None)
+        else:  # SIG_DFL: the default action, now that the file is gone
+            os.kill(os.getpid(), got.signum)
+        raise
+    finally:
+        restore()
+
+
 def write_sweep(sweep: Sweep, path=None, fmt: str = "json", *, indent: int | None = None,
                 stream=None, progress: bool = False, keep: bool = False,
                 chunk: int | None = None, memory: int | None | str = "probe") -> SweepStats:
@@ -379,7 +524,6 @@ def write_sweep(sweep: Sweep, path=None, fmt: str = "json", *, indent: int | Non
         size = chunk or chunk_steps(N, per_step, available, bool(sweep.heads),
                                     sweep.most_waypoints())
     target = tmp = None
-    fh = None
     if path is not None:
         # a symbolic link: the file it names is replaced, not the link
         target = Path(os.path.realpath(path)) if os.path.islink(path) else Path(path)
@@ -388,6 +532,15 @@ def write_sweep(sweep: Sweep, path=None, fmt: str = "json", *, indent: int | Non
                                "the result is written to a new file that replaces it"])
         target.parent.mkdir(parents=True, exist_ok=True)
         tmp = target.with_name(f".{target.name}.{os.getpid()}.partial")
+    with _signals_unwind():  # a kill or Ctrl-C removes the partial file, as an error does
+        return _write(sweep, path, fmt, indent, stream, progress, keep, N, size, stats, target,
+                      tmp)
+
+
+def _write(sweep, path, fmt, indent, stream, progress, keep, N, size, stats, target, tmp):
+    """The chunks of :func:`write_sweep`, solved and written into ``tmp`` (renamed to
+    ``target`` when complete)."""
+    fh = None
     writer: _Writer
     bar = None
     try:

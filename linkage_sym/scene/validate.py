@@ -52,7 +52,7 @@ from linkage_sym.model.scene import (
     TracedPoint,
 )
 
-__all__ = ["parse_scene"]
+__all__ = ["parse_scene", "value_problem", "MASS_RULE", "ANGLE_RULE"]
 
 TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs", "points")
 LINK_KEYS = ("name", "mass", "com", "inertia")
@@ -104,6 +104,36 @@ MAX_SLIDE = 1000.0
 The solver follows a slide in increments of 2 % of the size (of 1 m when a single
 joint gives no size), so such a sweep is already 150 000 solving points.
 """
+
+MASS_RULE = {"minimum": 0.0}
+"""The rule of a link's ``mass`` and ``inertia`` (besides every number's magnitude)."""
+
+ANGLE_RULE = _ANGLE
+"""The rule of an angle in degrees (``axis_deg``, ``start_deg``, ``stop_deg``)."""
+
+
+def value_problem(field: str, value: float, rule: Mapping[str, Any] | None = None) -> str | None:
+    """The problem the scene reader reports for the number ``value`` at ``field``, or ``None``.
+
+    The reader's own check (:meth:`FieldReader.number`), for a value that comes from
+    elsewhere than a scene file -- a design of a sweep, say -- to be held to the rules
+    of the field it would fill: every number finite and within
+    :data:`~linkage_sym.scene.fields.MAX_MAGNITUDE`, and ``rule``'s own
+    (:data:`MASS_RULE`, :data:`ANGLE_RULE`; default none besides).
+
+    Examples
+    --------
+    >>> value_problem("links[1].mass", -1.0)
+    >>> value_problem("links[1].mass", -1.0, MASS_RULE)
+    'links[1].mass: must be a finite number >= 0, got -1.0'
+    >>> value_problem("loads[0].torque", 0.5) is None
+    True
+    """
+    reader = FieldReader()
+    path, _, key = field.rpartition(".")
+    reader.number({key: float(value)}, key, path, **(rule or {}))
+    return reader.problems[0] if reader.problems else None
+
 
 def parse_scene(data: Mapping[str, Any]) -> Scene:
     """Validate a parsed scene mapping and build the :class:`Scene` it describes.
@@ -228,11 +258,11 @@ class _SceneReader(FieldReader):
             elif name is not None:
                 self.link_index[name] = i
             names_ok = names_ok and name is not None and self.link_index.get(name) == i
-            mass = self.number(entry, "mass", path, default=0.0, minimum=0.0)
+            mass = self.number(entry, "mass", path, default=0.0, **MASS_RULE)
             com = self.point(entry, "com", path, default=None, position=True)
             if mass is not None and mass > 0 and "com" not in entry:
                 self.missing(f"{path}.com", "a link with mass > 0 must give its centre of mass")
-            inertia = self.number(entry, "inertia", path, default=0.0, minimum=0.0)
+            inertia = self.number(entry, "inertia", path, default=0.0, **MASS_RULE)
             if len(self.problems) == before:
                 links.append(Link(name, mass, com, inertia))
         self.links_ok = names_ok
@@ -281,7 +311,7 @@ class _SceneReader(FieldReader):
                 self.add(f"{path}.axis_deg", f"not allowed on {what} (only a P joint has an axis)")
             elif jtype == "P":
                 why = "a P joint gives its slide direction"
-                axis = _radians(self.number(entry, "axis_deg", path, why=why, **_ANGLE))
+                axis = _radians(self.number(entry, "axis_deg", path, why=why, **ANGLE_RULE))
             elif jtype == "R" and "axis_deg" in entry:
                 self.add(f"{path}.axis_deg", "not allowed on an R joint (only a P joint has an axis)")
             if name is not None and name not in self.joints:
