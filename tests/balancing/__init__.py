@@ -1,0 +1,1 @@
+"""Balancing: Song and Wang's module, counterweights, partial balancing."""

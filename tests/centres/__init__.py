@@ -1,0 +1,1 @@
+"""Instant centres: Kennedy's construction, the velocity method, polygons, the output."""

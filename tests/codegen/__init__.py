@@ -1,0 +1,1 @@
+"""Compiled mechanisms: the cache and the arbitrary-precision run."""

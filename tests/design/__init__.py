@@ -1,0 +1,1 @@
+"""Design sweeps: the API, parallel runs, linkage-sym sweep, its pictures."""

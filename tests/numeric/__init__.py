@@ -1,0 +1,1 @@
+"""The numeric solver: kinematics, forces, Newton groups, continuation, accuracy, extremes."""

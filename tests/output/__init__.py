@@ -1,0 +1,1 @@
+"""Result files of any length: chunks, formats, partial files."""

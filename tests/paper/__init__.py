@@ -1,0 +1,1 @@
+"""Reproductions of the sources (paper_repro/) and the notebooks (notebooks/)."""

@@ -1,0 +1,1 @@
+"""The plotting layer: readable PNGs of motion, forces, balancing, instant centres."""

@@ -1,0 +1,1 @@
+"""The repository as a whole: architecture contracts, the README's commands."""

@@ -1,0 +1,1 @@
+"""Scenes: loading, validation, the JSON Schema, mutations, traced points, the shipped examples."""

@@ -1,0 +1,1 @@
+"""Structural analysis: mobility, Assur groups, disconnections, Grashof."""

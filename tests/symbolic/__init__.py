@@ -1,0 +1,1 @@
+"""The symbolic layer: derivation, compiled functions, LaTeX."""

@@ -1,0 +1,1 @@
+"""Synthesis: builders, K ratio, coupler positions, design equations, new/synthesize."""
