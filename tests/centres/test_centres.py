@@ -254,7 +254,7 @@ rate = st.tuples(sigma, st.floats(0.1, 20.0)).map(lambda t: t[0] * t[1])
 
 def _crank_rocker(l2, l3, l4, f):
     """The crank length of a crank-rocker with these links, well away from dead centres
-    (as tests/test_kinematics_properties.py draws them)."""
+    (as tests/numeric/test_kinematics_properties.py draws them)."""
     l1max = min(l4 - abs(l2 - l3), l2 + l3 - l4)
     if l1max <= 0.05:
         return None

@@ -11,7 +11,7 @@
   ``{"links": [a, b], "undefined": true}``, ``"method": "velocity"`` where
   Kennedy's construction does not reach; steps that are not ``ok`` have none.
 * The records are those of :func:`linkage_sym.centres.instant_centres` (whose
-  two methods ``tests/test_centres.py`` checks against each other); the
+  two methods ``tests/centres/test_centres.py`` checks against each other); the
   symbolic method's result carries the same centres as the numeric one, to
   1e-9 of the mechanism's size.
 """

@@ -1,6 +1,6 @@
 """Polygon quantities (:func:`linkage_sym.centres.polygon_quantities`) against closed forms.
 
-Second methods, sharing no code with the package (``tests/reference_kinematics.py``
+Second methods, sharing no code with the package (``tests/support/reference_kinematics.py``
 imports nothing of linkage_sym):
 
 * sliding pairs between moving links: the slip velocity and slip acceleration

@@ -33,7 +33,7 @@ from linkage_sym.numeric.plan import compile_plan
 from linkage_sym.numeric.sweep import run_warnings
 from linkage_sym.numeric.result import Analysis
 
-from tests.support import scenes  # the tests' scene builders (tests/scenes.py)
+from tests.support import scenes  # the tests' scene builders (tests/support/scenes.py)
 
 REL = 1e-12
 """Chunked vs whole: tolerance relative to the largest magnitude of the quantity."""

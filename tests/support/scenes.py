@@ -327,7 +327,7 @@ def assert_close(actual, expected, rtol, what, scale=None, atol=None):
             f"got {a[idx]!r}, expected {e[idx]!r}, |err| = {err[idx]:.3e} > tol {tol[idx]:.3e}")
 
 
-# -- Newton groups (tests/test_newton_groups.py, tests/test_output_formats.py) ----------------
+# -- Newton groups (tests/numeric/test_newton_groups.py, tests/output/test_output_formats.py) --
 
 def knee_scene(K, A, G, start_deg=-60.0, stop_deg=120.0, steps=37):
     """Knee linkage: hip H at the origin, knee K, ankle A, rocker pivot G; the knee driven."""

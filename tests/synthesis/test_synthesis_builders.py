@@ -5,7 +5,7 @@ and its lengths -- distances of the joints' assembly points -- must equal the
 requested ones to 1e-12 relative (the coordinates are computed, so they round:
 a few ulps).  The builders' K, theta, swing, stroke and minimum transmission
 angle are checked against the solver (extremes as roots of the output's
-velocity, tests/synthesis_checks.py) and the transmission angle against the
+velocity, tests/support/synthesis_checks.py) and the transmission angle against the
 solver's joint positions.
 """
 

@@ -2,7 +2,7 @@
 
 Every synthesized scene is analysed by the solver, which shares no code with
 the synthesis: the output's extreme positions are the roots of its velocity
-(tests/synthesis_checks.py, brentq on single-step solver runs), and the
+(tests/support/synthesis_checks.py, brentq on single-step solver runs), and the
 swing or stroke and K they give must equal the request to 1e-9 (relative).
 
 Admissible and forbidden requests are generated here from an independent
