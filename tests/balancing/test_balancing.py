@@ -219,6 +219,7 @@ def test_song_wang_sixbar_conditions_are_its_eq14():
     assert ours.shape[0] == 6 and _same_solution_set(ours, theirs)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", HINGED)
 def test_force_balanced_design_has_no_shaking_force(name):
     """Counterweights from the derived conditions: the force solver's shaking
@@ -311,6 +312,7 @@ def test_optimiser_matches_exact_counterweights():
 
 
 # -- command line ------------------------------------------------------------------
+@pytest.mark.slow
 def test_cli_balance_json(tmp_path):
     out = tmp_path / "b.json"
     r = subprocess.run([sys.executable, "-m", "linkage_sym", "balance",
@@ -343,6 +345,7 @@ def test_cli_balance_refuses_prismatic_and_writes_nothing(tmp_path):
     assert r.returncode == 2 and "prismatic" in r.stderr and not out.exists()
 
 
+@pytest.mark.slow
 def test_cli_balance_writes_balanced_and_optimised_scenes(tmp_path):
     out, bal, opt = tmp_path / "b.json", tmp_path / "bal.json", tmp_path / "opt.json"
     r = subprocess.run([sys.executable, "-m", "linkage_sym", "balance",
@@ -365,6 +368,7 @@ def _momentum_force(scene):
                 for link in scene.links if link.mass > 0)
 
 
+@pytest.mark.slow
 def test_cli_balance_optimises_a_slider_crank(tmp_path):
     """Prismatic joints: no module, so no derived conditions (the JSON says why), but
     --optimize runs.  With the force weight only, full force balance is possible (rod and

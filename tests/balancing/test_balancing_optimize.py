@@ -500,6 +500,7 @@ def test_default_mass_bounds_are_the_links_own_masses_and_scale_with_them():
     assert res.max_mass == mm
 
 
+@pytest.mark.slow
 def test_an_optimisation_that_did_not_converge_is_reported(tmp_path, capsys):
     """'the convex relaxation did not converge' appeared only inside the JSON's message:
     it is now in the result's notes and printed as a warning line (in the summary, or on

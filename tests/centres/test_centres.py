@@ -327,6 +327,7 @@ def test_random_guide_bars(l4, f, g, gamma, sg, start, rot, sc, w):
     check_rebuilt_velocities(scene, res)
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(l2=length, l3=length, l4=length, f=st.floats(0.1, 0.9), sg=sigma, sg2=sigma,
        e_len=st.floats(0.3, 1.5), e_ang=st.floats(30.0, 330.0), gx=st.floats(-3.0, 6.0),

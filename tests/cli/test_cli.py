@@ -138,6 +138,7 @@ def test_structure_command(capsys):
     assert "dyad RRR (class II): coupler, rocker" in text
 
 
+@pytest.mark.slow
 def test_demo_writes_pngs(tmp_path):
     """Files are named after the scene's name (``crank-rocker``), as in every command."""
     assert main(["demo", "-o", str(tmp_path), "--example", "crank_rocker"]) == 0

@@ -24,6 +24,7 @@ def run(*args):
                           capture_output=True, text=True, cwd=ROOT)
 
 
+@pytest.mark.slow
 def test_table_json_and_plots(tmp_path):
     out = tmp_path / "c.json"
     p = run(example_path("guide_bar_quick_return"), "--step", 0, "--polygons", "-o", out,
@@ -71,6 +72,7 @@ def test_json_to_standard_output():
     assert "from the velocities" in p.stderr
 
 
+@pytest.mark.slow
 def test_no_floating_link_no_centrodes(tmp_path):
     """A lone slider on the ground has one centre (at infinity, normal to the slide) and no
     floating link, so no centrodes to draw."""

@@ -122,6 +122,7 @@ def _with_steps(scene, steps):
         dataclasses.replace(d, steps=steps) for d in scene.drivers))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", symbolic_examples())  # the mpmath reference is symbolic
 def test_bounds_every_step_of_the_shipped_examples(name):
     scene = load_example(name)
@@ -297,6 +298,7 @@ def test_bounds_random_slider_cranks(l1, r, ef, sg, start, rot, sc):
     _check_mp(scene, res, "random slider-crank", TALLY)
 
 
+@pytest.mark.slow
 @settings(**{**SETTINGS, "max_examples": 6})
 @given(j=st.tuples(*[st.floats(-0.03, 0.03, allow_nan=False)] * 12))
 def test_bounds_random_class_three_triads(j):

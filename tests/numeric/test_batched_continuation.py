@@ -187,6 +187,7 @@ def test_the_shipped_newton_examples_are_the_expected_ones():
 
 # -- batched against point by point ------------------------------------------------------------
 
+@pytest.mark.slow
 @pytest.mark.parametrize("steps", [None, 1441])
 @pytest.mark.parametrize("name", NEWTON_EXAMPLES)
 def test_shipped_examples_batched_equal_point_by_point(name, steps):
@@ -198,6 +199,7 @@ def test_shipped_examples_batched_equal_point_by_point(name, steps):
         assert_assembly_mode(scene, bat)
 
 
+@pytest.mark.slow
 def test_a_triad_that_jumps_past_a_limit_batched_equals_point_by_point():
     scene = linkage_sym.load_scene(scenes.triad_jump())
     for m in METHODS:
@@ -206,6 +208,7 @@ def test_a_triad_that_jumps_past_a_limit_batched_equals_point_by_point():
         assert_same(seq, bat, f"triad jump ({m})", scene.characteristic_length())
 
 
+@pytest.mark.slow
 @settings(**{**SETTINGS, "max_examples": 8})
 @given(j=knee_points, long=st.booleans())
 def test_random_knees_with_limits_and_gaps_batched_equal_point_by_point(j, long):
@@ -221,6 +224,7 @@ def test_random_knees_with_limits_and_gaps_batched_equal_point_by_point(j, long)
         assert_assembly_mode(scene, bat)
 
 
+@pytest.mark.slow
 @settings(**SETTINGS)
 @given(j=wide_jitter)
 def test_random_triads_batched_equal_point_by_point(j):
@@ -277,6 +281,7 @@ def _same_roots(a, b):
         np.max(np.abs(u - v)) <= 1e-9 for x, y in zip(a, b) for (u, _), (v, _) in zip(x, y))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["near-degenerate triad", "knee with gaps"])
 def test_the_root_search_reaches_the_same_roots_from_seeds_moved_by_rounding(case, monkeypatch):
     """Every re-entry search of a sweep, repeated with its reference configurations moved
@@ -336,6 +341,7 @@ def _knee_limit_deg(d):
     return math.degrees(lo)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("past_deg", [-math.degrees(1e-7), -1e-3, 2.0, 30.0])
 def test_sweeps_ending_near_or_past_a_limit_batched_equal_point_by_point(past_deg):
     """The knee driven up to 1e-7 rad (and 1e-3 deg) before its limit position, where the
@@ -371,6 +377,7 @@ def test_shipped_examples_batched_do_not_depend_on_the_step_count(name, n):
                         coarse.characteristic_length(), rows_b=slice(None, None, 20), words=False)
 
 
+@pytest.mark.slow
 @settings(**{**SETTINGS, "max_examples": 6})
 @given(j=knee_points, kind=st.sampled_from(["knee", "triad"]), jt=jitter)
 def test_random_newton_groups_batched_do_not_depend_on_the_step_count(j, kind, jt):
@@ -462,6 +469,7 @@ def test_batched_newton_is_the_walks_newton_row_by_row(method):
             assert np.sign(np.linalg.det(Jj)) == np.sign(np.linalg.det(J[j]))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", METHODS)
 def test_batched_root_search_is_the_walks_search_at_every_gap_point(method):
     """At every unassemblable point of a knee sweep, and at the points around them, the

@@ -340,6 +340,7 @@ CASES = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("follower,pivot,profile", CASES, ids=[f"{c[0]}-{c[1]}" for c in CASES])
 def test_replacement_rates_agree_with_the_direct_contact_solution(follower, pivot, profile):
     at, face, prof = _touching(profile, follower, pivot)

@@ -120,6 +120,7 @@ def test_plot_marks_the_minimum(tmp_path):
         plot_angles(linkage_sym.load_example("slider_crank_offset"), r2, tmp_path / "x.png")
 
 
+@pytest.mark.slow
 def test_analyze_plots_include_it(tmp_path):
     pics = tmp_path / "pics"
     assert main(["analyze", str(example_path("crank_rocker")), "--plots", str(pics)]) == 0

@@ -35,6 +35,7 @@ def test_import_contracts():
     assert p.returncode == 0, p.stdout + p.stderr
 
 
+@pytest.mark.slow
 def test_cached_mechanism_loads_and_runs_without_sympy(tmp_path):
     """A second process runs the symbolic method from the disk cache with NumPy only."""
     env = {**os.environ, "LINKAGE_SYM_CACHE": str(tmp_path)}

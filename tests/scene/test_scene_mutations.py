@@ -140,6 +140,7 @@ def assert_strict_json(analysis) -> dict:
     return parsed
 
 
+@pytest.mark.slow
 @settings(
     max_examples=100,
     deadline=None,

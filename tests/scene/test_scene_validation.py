@@ -755,6 +755,7 @@ def _leaf_paths(value, prefix=()):
             yield from _leaf_paths(item, (*prefix, i))
 
 
+@pytest.mark.slow
 @given(base=st.sampled_from(sorted(BASES)), where=st.integers(0, 10_000), value=json_values)
 def test_any_corruption_is_a_scene_error_or_a_scene(base, where, value):
     data = copy.deepcopy(BASES[base])

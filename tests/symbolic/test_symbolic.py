@@ -352,6 +352,7 @@ def test_random_offset_slider_cranks(l1, ratio, e, sigma, rot, seed):
     assert np.all(num.status == "ok")
 
 
+@pytest.mark.slow
 @HYP
 @given(l1=st.floats(0.3, 0.8), l2=st.floats(2.0, 3.0), l3=st.floats(1.5, 2.5),
        e_len=st.floats(0.5, 2.0), e_ang=st.floats(-150, 150),
@@ -386,6 +387,7 @@ def _mp_fn(syms, exprs):
     return sp.lambdify(syms, exprs, modules="mpmath")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", SUBST)
 def test_symbolic_dimensions_substituted_equal_numeric_derivation(name):
     """``derive(scene, True)`` with the scene's values substituted equals

@@ -21,6 +21,7 @@ def run(*args):
                           text=True, cwd=ROOT)
 
 
+@pytest.mark.slow
 def test_help_lists_the_commands():
     p = run("--help")
     assert p.returncode == 0 and "new" in p.stdout and "synthesize" in p.stdout
@@ -75,6 +76,7 @@ def test_synthesize_without_condition_says_so(capsys):
     assert "largest minimum transmission angle" in text and "-o FILE" in text
 
 
+@pytest.mark.slow
 def test_synthesize_slider_crank_guide_bar_positions_equations(tmp_path, capsys):
     assert main(["synthesize", "slider-crank", "--K", "1.4", "--stroke", "0.1", "--offset",
                  "0.02"]) == 0
@@ -138,6 +140,7 @@ def test_both_extra_conditions_are_refused_by_the_parser(tmp_path):
     assert p.returncode == 2 and "not allowed with argument" in p.stderr
 
 
+@pytest.mark.slow
 def test_positions_file_refusals(tmp_path):
     out = tmp_path / "never.json"
     missing = run("synthesize", "coupler-positions", "--positions", str(tmp_path / "no.json"),

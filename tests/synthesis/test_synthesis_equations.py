@@ -80,6 +80,7 @@ def test_guide_bar_relations():
     assert EQS["guide_swing"].rhs == theta
 
 
+@pytest.mark.slow
 def test_every_check_reduces_to_zero():
     """design_equations asserts it; here again, by a second route (numbers at random points)."""
     import random
@@ -96,6 +97,7 @@ def test_every_check_reduces_to_zero():
 latex2mathml = pytest.importorskip("latex2mathml.converter")
 
 
+@pytest.mark.slow
 def test_latex_parses_and_labels_are_unique():
     doc = latex_document()
     bodies = re.findall(r"\\begin\{equation\}(.*?)\\end\{equation\}", doc, re.S)

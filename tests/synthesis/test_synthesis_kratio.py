@@ -97,6 +97,7 @@ def test_crank_rocker_without_condition_meets_K_and_psi(K, psi, c):
     assert d.lengths["rocker"] == c
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None)
 @given(Ks, psis, st.floats(0.0, 1.0), st.sampled_from(["ground", "crank"]))
 def test_crank_rocker_at_random_admissible_pivots(K, psi, pick, which):
@@ -121,6 +122,7 @@ def test_crank_rocker_at_random_admissible_pivots(K, psi, pick, which):
     assert got_K == pytest.approx(K, rel=TOL)
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None)
 @given(Ks, psis, st.floats(0.0, 1.0))
 @example(K=3.234375, psi=10.0, pick=0.0)  # admissible pivots only next to the bisector
@@ -144,6 +146,7 @@ def test_crank_rocker_crank_only_on_the_forbidden_arcs_is_refused(K, psi, pick):
         assert err.value.field == "K" and "leaves no admissible crank pivot" in err.value.reason
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None)
 @given(Ks, psis, st.floats(0.0, 1.0))
 def test_crank_rocker_ground_only_on_the_forbidden_arcs_is_refused(K, psi, pick):
