@@ -141,6 +141,7 @@ def test_two_options_naming_one_file_are_refused(tmp_path):
     assert not out.exists()
 
 
+@pytest.mark.slow
 def test_missing_output_folders_are_still_created(tmp_path):
     out = tmp_path / "a" / "b" / "r.json"
     pics = tmp_path / "c" / "pics"
@@ -262,6 +263,7 @@ def test_version():
 # -- 7. plot files are named after the scene ---------------------------------------------
 
 
+@pytest.mark.slow
 def test_plot_files_are_named_after_the_scene_in_every_command(tmp_path):
     """The scene's ``name`` made file-name safe, not the scene file's name or the example's."""
     scene = small_scene(tmp_path, name="my rig: v2/3", outputs=["kinematics", "driving"])
@@ -419,6 +421,7 @@ def test_a_solving_path_far_longer_than_the_sweep_is_refused():
     assert "would add 2.86e+11 points to the 1 step (at most 1000000)" in err.value.problems[0]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("args, message", [
     (["--samples", "BINARY"], "--samples: 'BINARY' is not a text (UTF-8) CSV file: byte 0xff at position 0"),
     (["--monte-carlo", "10", "--tolerance", "l_AB=0.001", "--random-state", "-1"],
@@ -438,6 +441,7 @@ def test_malformed_sweep_options_are_refused_by_name(tmp_path, args, message):
     assert p.stderr.startswith(f"linkage-sym sweep: {message}"), p.stderr
 
 
+@pytest.mark.slow
 def test_fuzzed_scenes_are_refused_or_solved_without_a_traceback(tmp_path):
     """Scene files that ended in tracebacks: a gear mesh in a scene without ``links`` (a
     TypeError placing the mesh), JSON nested 100,000 deep (RecursionError), a name with a
@@ -613,6 +617,7 @@ def _closed_stdout_commands(tmp_path):
     ]
 
 
+@pytest.mark.slow
 def test_every_command_runs_with_standard_output_closed(tmp_path):
     """Started with standard output closed (``>&-``), derive, synthesize, new, balance,
     centres -o - and sweep -o - ended in AttributeError ('NoneType' object has no attribute

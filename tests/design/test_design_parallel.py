@@ -5,6 +5,7 @@ and every backend evaluates them by one function)."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 import linkage_sym
 from linkage_sym.cli import main
@@ -15,6 +16,7 @@ METRICS = ["assemblable", "grashof", "K", "swing", "min_transmission_deg", "peak
            "peak_reaction", "rms_shaking_force", "rms_shaking_moment"]
 
 
+@pytest.mark.slow
 def test_in_process_workers_and_dask_give_identical_tables():
     scene = linkage_sym.load_example("crank_rocker")
     ref = linkage_sym.sweep(scene, AXES, METRICS, chunk_designs=4)

@@ -222,6 +222,7 @@ def _fourbar_reference(scene, res, l1, l2, l3, l4, sigma):
     return B, C, margin
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(lengths=st.lists(st.floats(0.5, 4.0), min_size=4, max_size=4),
        th_deg=st.floats(-180, 180), sigma=st.sampled_from([1, -1]),
@@ -277,6 +278,7 @@ def test_the_issue_fourbar_rocker_comes_back_nearest():
 
 # -- guide-bars (a block sliding on a turning guide): closed-form positions ---------------
 
+@pytest.mark.slow
 @SETTINGS
 @given(l1=st.floats(0.5, 3.0), l3=st.floats(0.2, 3.0), l4=st.floats(0.5, 3.0),
        gamma=st.floats(20.0, 160.0), th_deg=st.floats(-180, 180), sigma=st.sampled_from([1, -1]),

@@ -142,6 +142,7 @@ def test_reconstruction_builds_the_shipped_scene():
     assert mine["drivers"][0]["start_deg"] == shipped["drivers"][0]["start_deg"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["R34n", "R34t", "R53n", "R53t"])
 def test_reactions_match_the_paper_within_the_rounding_spread(name):
     scene, plan, a, g = analyses()

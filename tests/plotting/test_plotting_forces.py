@@ -127,6 +127,7 @@ def _texts(fig) -> str:
 # ------------------------------------------------------------------ files written
 
 
+@pytest.mark.slow
 def test_each_function_writes_a_readable_png(tmp_path):
     scene, analysis = example()
     out = tmp_path / "a" / "b"
@@ -137,6 +138,7 @@ def test_each_function_writes_a_readable_png(tmp_path):
         _assert_png(out / name)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["shaper", "hydraulic_boom", "fivebar", "sixbar_class3"])
 def test_other_examples_plot(tmp_path, name):
     scene, analysis = example(name)
@@ -144,6 +146,7 @@ def test_other_examples_plot(tmp_path, name):
         _assert_png(fn(scene, analysis, tmp_path / f"{fn.__name__}.png"))
 
 
+@pytest.mark.slow
 def test_plot_all_adds_force_files_only_with_forces(tmp_path):
     scene, analysis = example()
     with_forces = plot_all(scene, analysis, tmp_path / "with")
@@ -160,6 +163,7 @@ def test_plot_all_adds_force_files_only_with_forces(tmp_path):
                                             "transmission", "paths")]
 
 
+@pytest.mark.slow
 def test_plot_all_follows_the_outputs(tmp_path):
     scene, analysis = example()
     analysis.outputs = ("kinematics", "frame")
@@ -267,6 +271,7 @@ def test_nan_steps_break_the_curves():
     assert {UNASSEMBLABLE, SINGULAR} <= {t.get_text() for t in fig.axes[1].texts}
 
 
+@pytest.mark.slow
 def test_all_nan_does_not_raise(tmp_path):
     scene, analysis = example()
     _mark_bad(analysis, {k: UNASSEMBLABLE for k in range(analysis.n_steps)})
@@ -312,6 +317,7 @@ def _chain(n_links: int):
     return scene, analysis
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("n", [1, 5, 12])
 def test_one_to_twelve_joints_lay_out(tmp_path, n):
     scene, analysis = _chain(n)
@@ -323,6 +329,7 @@ def test_one_to_twelve_joints_lay_out(tmp_path, n):
     assert "shaking" in _texts(frame_loads_figure(scene, analysis))
 
 
+@pytest.mark.slow
 def test_plotting_forces_needs_no_pyplot():
     import subprocess
     import sys
