@@ -132,6 +132,7 @@ def test_sliders_and_ternary_links_equal_analyze(tmp_path, name):
     _check_against_analyze(res, scenes)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name, metrics", [
     ("printing_mechanism", ["K", "swing", "peak_driving", "rms_driving", "peak_reaction",
                             "rms_shaking_force", "rms_shaking_moment"]),

@@ -735,6 +735,7 @@ def test_memory_estimate_covers_the_measured_peak(name, method, steps, outputs):
     assert peak / steps >= est / 3, (peak / steps, est)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["crank_rocker", "fivebar"])
 def test_run_memory_grows_as_the_measured_peak(name, tmp_path, monkeypatch):
     """Issue 27: a run's peak was estimated from its driver values alone.  run_memory's

@@ -346,6 +346,7 @@ def tracked(name):
     return (cl, *cl.track())
 
 
+@pytest.mark.slow
 def test_assemblable_over_the_sweep(name):
     """Continuation along the sweep: closure residual < 1e-10 m at every step,
     a regular Jacobian (dimensionless condition number well below the spec's

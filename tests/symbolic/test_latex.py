@@ -204,6 +204,7 @@ def test_the_four_bar_has_no_equation_longer_than_250_characters(documents):
     assert doc.count(r"\sqrt{\left(- d_{2}") == 1
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", symbolic_examples())  # the symbolic layer refuses cams
 def test_the_named_positions_are_the_closed_forms(name):
     """Substituting the intermediates back gives the closed forms the code is generated
