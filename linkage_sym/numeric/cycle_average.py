@@ -40,7 +40,8 @@ import math
 
 import numpy as np
 
-__all__ = ["PERIOD_RTOL", "counted_steps", "cycle_mean", "cycle_rms", "whole_period"]
+__all__ = ["PERIOD_RTOL", "counted_steps", "cycle_mean", "cycle_rms", "whole_period",
+           "whole_turns"]
 
 PERIOD_RTOL = 1e-9
 """A driver's range is a whole number of periods when it is within this fraction
@@ -95,6 +96,22 @@ def whole_period(scene) -> bool:
             if _whole_multiple(span.get(load.driver, 0.0), float(load.period)) is None:
                 return False
     return True
+
+
+def whole_turns(q, kind: str = "R") -> bool:
+    """Whether sampled driver values ``q`` (N,) end a whole number of turns (at least one,
+    to :data:`PERIOD_RTOL`) from where they start: the sweep of a series known by its
+    driver values alone (a plot's), its last step then a repeat of its first.
+
+    >>> import numpy as np
+    >>> whole_turns(np.linspace(0, 2 * np.pi, 13)), whole_turns(np.linspace(0, 5.8, 12))
+    (True, False)
+    """
+    q = np.asarray(q, dtype=float)
+    if kind != "R" or len(q) < 2 or not (np.isfinite(q[0]) and np.isfinite(q[-1])):
+        return False
+    n = _whole_multiple(float(q[-1] - q[0]), 2.0 * math.pi)
+    return n is not None and n != 0
 
 
 def counted_steps(ok, periodic: bool) -> np.ndarray:
