@@ -16,10 +16,12 @@ throughout (the balance does not depend on them).
 
 A sampled trigonometric polynomial of degree 2 has its exact mean over the period from
 the 12 distinct points of a 13-step turn, so the references are exact up to rounding:
-tolerances 1e-12 relative for evaluations; 1e-9 relative for the optimiser's design,
-whose objective is flat at its minimum (a relative change ``d`` of the first moment
-changes the RMS by ``O(d^2)``), so it is located to about the square root of the
-rounding of the objective (observed: 2.5e-10).
+tolerances 1e-12 relative for evaluations; 1e-7 relative for the optimiser's design: its
+objective is flat at the minimum (a relative change ``d`` of the first moment changes the
+RMS by ``O(d^2)``) and the optimiser stops on its gradient in its own scaled variables, so
+the design is located only to about 1e-9 (observed 2.5e-10, and 1.4e-9 with the links'
+own masses as the default bounds); 1e-7 still tells the old 325.96 (2.3e-2 off) from the
+book's 318.75 by five orders of magnitude.
 """
 
 from __future__ import annotations
@@ -40,6 +42,7 @@ W_REVOLVING = 150.0  # lb, at the crank pin
 RADIUS = 6.0  # in, the balance weight's radius
 OMEGA = 10.0  # rad/s
 BOOK = 318.75  # lb at 6 in
+OPT_RTOL = 1e-7  # the optimiser's design at a flat minimum (module docstring)
 
 
 def yoke(stop_deg, steps, start_deg=0.0):
@@ -87,11 +90,11 @@ def test_reference_is_the_book_answer():
 
 def test_whole_turn_in_13_steps_gives_the_least_rms_weight():
     full, across = balance_weight(360.0, 13)
-    assert abs(full - BOOK) <= 1e-9 * BOOK, full  # was 325.96: the end point counted twice
-    assert abs(across) <= 1e-9 * BOOK * RADIUS
+    assert abs(full - BOOK) <= OPT_RTOL * BOOK, full  # was 325.96: the end point counted twice
+    assert abs(across) <= OPT_RTOL * BOOK * RADIUS
     part, _ = balance_weight(330.0, 12)
-    assert abs(part - BOOK) <= 1e-9 * BOOK
-    assert abs(full - part) <= 1e-9 * BOOK
+    assert abs(part - BOOK) <= OPT_RTOL * BOOK
+    assert abs(full - part) <= OPT_RTOL * BOOK
 
 
 @pytest.mark.parametrize("stop, steps", [(360.0, 13), (330.0, 12), (720.0, 25)])
