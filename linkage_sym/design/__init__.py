@@ -9,8 +9,8 @@
 * :mod:`~linkage_sym.design.execute` -- in-process, local processes or Dask;
 * :mod:`~linkage_sym.design.scenes` -- each design as a scene of its own;
 * :mod:`~linkage_sym.design.table` -- the table, CSV or Parquet;
-* :mod:`~linkage_sym.design.cli` -- ``linkage-sym sweep``; :mod:`~linkage_sym.design.plots` --
-  design maps and histograms.
+* :mod:`~linkage_sym.design.plots` -- design maps and histograms;
+* ``linkage-sym sweep`` reads its options in :mod:`linkage_sym.cli.sweep`.
 """
 
 from linkage_sym.design.api import scene_parameters, sweep

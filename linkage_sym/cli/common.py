@@ -3,18 +3,59 @@
 The :class:`OptionError` every command raises for options it cannot use,
 loading a scene file, checking every output path before anything is
 computed (:func:`check_outputs`), writing a file the command was asked for,
-and the file stem of a scene's plots.  The commands live in
-:mod:`linkage_sym.cli` and its ``cli_*`` and ``synthesis.cli`` neighbours,
-each importing from here (not from each other).
+and the file stem of a scene's plots.  The commands live in the modules of
+:mod:`linkage_sym.cli` (one a command), each importing from here (not from
+each other).
 """
 
 from __future__ import annotations
 
+import argparse
 import os
 import sys
 from pathlib import Path
 
-__all__ = ["OptionError", "load", "check_outputs", "write", "emit", "stem", "closed_streams_to_devnull"]
+__all__ = ["BROKEN_PIPE", "EXIT_STATUS", "NO_STEP_ASSEMBLED", "CommandParser", "OptionError",
+           "load", "check_outputs", "write", "emit", "stem", "driver_kinds",
+           "closed_streams_to_devnull"]
+
+NO_STEP_ASSEMBLED = 3  # analyze: the result file is written, but no step could be assembled
+BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for `yes | head`
+
+EXIT_STATUS = f"""\
+exit status:
+  0    done
+  1    a file could not be written after all (e.g. disk full, or out of memory): the message
+       says which; no partial file is left
+  2    invalid scene or option: a message names each field or option; nothing is written
+       (every output path is checked before anything is computed)
+  {NO_STEP_ASSEMBLED}    analyze: no step of the sweep could be assembled; the result file is still
+       written (-o), no plots
+  {BROKEN_PIPE}  standard output closed early (e.g. | head): stops quietly
+"""
+
+
+class CommandParser(argparse.ArgumentParser):
+    """An argument parser whose help may name what only a library knows (the metrics of
+    ``sweep``): ``help_hook(parser)``, when set, fills those texts the first time help is
+    formatted, so that building the parser (``--version``, another command) imports no
+    library.
+
+    Examples
+    --------
+    >>> p = CommandParser(prog="x", add_help=False)
+    >>> p.help_hook = lambda parser: setattr(parser, "epilog", "filled")
+    >>> p.format_help().strip().splitlines()[-1]
+    'filled'
+    """
+
+    help_hook = None
+
+    def format_help(self) -> str:
+        hook, self.help_hook = self.help_hook, None
+        if hook is not None:
+            hook(self)
+        return super().format_help()
 
 
 class OptionError(Exception):
@@ -147,6 +188,11 @@ def emit(output, text: str) -> None:
     else:
         write(output, text)
         print(f"wrote {output}")
+
+
+def driver_kinds(scene) -> dict:
+    """Each driver's joint type, for :func:`~linkage_sym.output.stats.ranges_text`."""
+    return {d.joint: scene.joint(d.joint).type for d in scene.drivers}
 
 
 def stem(scene) -> str:
