@@ -97,9 +97,9 @@ def register(sub) -> None:
 
 
 def _metrics_help(p) -> None:
-    """The help's texts that name the metrics, filled when help is shown (they import the
-    design package, which building the parser does not)."""
-    from linkage_sym.design.metrics import DEFAULT_METRICS, METRICS
+    """The help's texts that name the metrics, filled when help is shown: building the
+    parser imports nothing of the design package, the help only its list of names."""
+    from linkage_sym.design.names import DEFAULT_METRICS, METRICS
 
     p.epilog = "metrics: " + ", ".join(METRICS) + " (definitions: linkage_sym.design.metrics)"
     for action in p._actions:
