@@ -81,7 +81,7 @@ from importlib import import_module
 
 from linkage_sym._version import __version__
 from linkage_sym.cli.common import BROKEN_PIPE, EXIT_STATUS, NO_STEP_ASSEMBLED, OptionError
-from linkage_sym.cli.common import CommandParser, closed_streams_to_devnull
+from linkage_sym.cli.common import CommandParser, closed_streams_to_devnull, error_text
 from linkage_sym.errors import BalanceError, SceneError
 
 __all__ = ["BROKEN_PIPE", "EXIT_STATUS", "NO_STEP_ASSEMBLED", "build_parser", "main"]
@@ -114,7 +114,7 @@ def _run(argv) -> int:
             print(f"linkage-sym {args.command}: {problem}", file=sys.stderr)
         return 2
     except (SceneError, BalanceError) as err:
-        print(f"linkage-sym: {err}", file=sys.stderr)
+        print(f"linkage-sym: {error_text(err, args.command)}", file=sys.stderr)
         return 2
     except BrokenPipeError:
         raise

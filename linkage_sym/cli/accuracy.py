@@ -82,13 +82,9 @@ class Report:
         self.extreme_lines: list[str] = []
 
     def _step_of(self, drivers: dict) -> int | None:
-        import numpy as np
+        from linkage_sym.output.stats import step_at
 
-        mask = np.ones(self.sweep.n_steps, bool)
-        for n, v in drivers.items():
-            mask &= np.asarray(self.sweep.q[n], float) == v
-        hits = np.flatnonzero(mask)
-        return int(hits[0]) if len(hits) else None
+        return step_at(self.sweep.q, drivers, self.sweep.n_steps)
 
     def add(self, res) -> None:
         acc = getattr(res, "accuracy", None)

@@ -24,7 +24,7 @@ import math
 import sys
 from pathlib import Path
 
-from linkage_sym.cli.common import OptionError, check_outputs, load, write
+from linkage_sym.cli.common import OptionError, check_outputs, load, option_error, write
 from linkage_sym.cli.common import stem as file_stem
 from linkage_sym.errors import BalanceError
 
@@ -49,7 +49,7 @@ def _optimize_options(scene, args):
             max_mass=args.max_mass,
         )
     except OptionsError as err:
-        raise OptionError([f"--{option.replace('_', '-')}: {why}" for option, why in err.problems]) from err
+        raise option_error(err) from err
 
 
 def _latex_path(args) -> str | None:
@@ -165,8 +165,9 @@ def cmd_balance(args) -> int:
 
     check_run_memory(scene)  # a whole run of the sweep, before any of it is made
     options = _optimize_options(scene, args)
-    kinds = {"P": "prismatic joint", "G": "gear mesh", "cam": "cam contact"}
-    sliding = [f"{j.name} ({kinds.get(j.type, j.type)})" for j in scene.joints if j.type != "R"]
+    from linkage_sym.balancing.pins import JOINT_KINDS, non_hinged
+
+    sliding = [f"{j.name} ({JOINT_KINDS.get(j.type, j.type)})" for _, j in non_hinged(scene)]
     if sliding and not args.optimize:
         raise OptionError(
             f"the derived balancing conditions cover hinged (R-joint only) linkages; "

@@ -15,9 +15,9 @@ import os
 import sys
 from pathlib import Path
 
-__all__ = ["BROKEN_PIPE", "EXIT_STATUS", "NO_STEP_ASSEMBLED", "CommandParser", "OptionError",
-           "load", "check_outputs", "write", "emit", "stem", "driver_kinds",
-           "closed_streams_to_devnull"]
+__all__ = ["BROKEN_PIPE", "EXIT_STATUS", "NO_STEP_ASSEMBLED", "OPTIONS", "CommandParser",
+           "OptionError", "option_of", "option_error", "error_text", "load", "check_outputs",
+           "write", "emit", "stem", "driver_kinds", "closed_streams_to_devnull"]
 
 NO_STEP_ASSEMBLED = 3  # analyze: the result file is written, but no step could be assembled
 BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for `yes | head`
@@ -64,6 +64,73 @@ class OptionError(Exception):
     def __init__(self, problems):
         self.problems = [problems] if isinstance(problems, str) else list(problems)
         super().__init__("; ".join(self.problems))
+
+
+SWEEP_OPTIONS = {"parameters": "--vary", "output": "--output-link", "trace": "--trace",
+                 "metrics": "--metrics", "chunk_designs": "--chunk-designs", "scene": "scene",
+                 "scene_rows": "--scene-rows", "workers": "--workers", "tolerance": "--tolerance",
+                 "samples": "--samples"}
+"""The parameters of :func:`linkage_sym.design.sweep` (the ``field`` of a ``SweepError``) and
+the options of ``sweep`` that fill them, named apart (``parameters``: ``--vary``); a field
+not listed is printed as it is (``parameters['l_AB']``, and the fields the design package
+still names by their option: ``--vary``, ``--samples``, ``--dask``, ``-o/--output``)."""
+
+OPTIONS = {"sweep": SWEEP_OPTIONS}
+"""Each command whose options are not its library parameters with dashes: its table."""
+
+
+def option_of(field: str, command: str | None = None) -> str:
+    """The option that fills the library's parameter ``field``: the command's table in
+    :data:`OPTIONS`, else ``--`` and the field with dashes for underscores, an index kept
+    after it.  The one place that maps what the library names to what a user types.
+
+    Examples
+    --------
+    >>> option_of("swing_deg"), option_of("positions[1][2]"), option_of("max_mass")
+    ('--swing-deg', '--positions [1][2]', '--max-mass')
+    >>> option_of("parameters", "sweep"), option_of("workers", "sweep"), option_of("--dask", "sweep")
+    ('--vary', '--workers', '--dask')
+    """
+    if command in OPTIONS:
+        return OPTIONS[command].get(field, field)
+    base, _, index = field.partition("[")
+    opt = "--" + base.replace("_", "-")
+    return f"{opt} [{index}" if index else opt
+
+
+def option_error(err, command: str | None = None) -> OptionError:
+    """A library error about a command's parameters as the :class:`OptionError` that names
+    the options: ``err.field`` and ``err.reason`` (``SweepError``, ``SynthesisError``), or
+    ``err.problems`` of ``(field, reason)`` (the balancing's ``OptionsError``).
+
+    Examples
+    --------
+    >>> from linkage_sym.design.errors import SweepError
+    >>> option_error(SweepError("parameters", "no parameter to vary"), "sweep").problems
+    ['--vary: no parameter to vary']
+    """
+    if hasattr(err, "field"):
+        return OptionError(f"{option_of(err.field, command)}: {err.reason}")
+    return OptionError([f"{option_of(field, command)}: {why}" for field, why in err.problems])
+
+
+def error_text(err, command: str | None = None) -> str:
+    """What the command line prints of a library error it does not turn into an
+    :class:`OptionError` (an invalid scene, a balancing that cannot be met): its text, the
+    parameter it names (``BalanceError.field``) given as the option.
+
+    Examples
+    --------
+    >>> from linkage_sym.errors import BalanceError
+    >>> error_text(BalanceError("no step could be assembled", field="optimize"), "balance")
+    'cannot balance: --optimize: no step could be assembled'
+    """
+    from linkage_sym.errors import BalanceError
+
+    field = getattr(err, "field", None) if isinstance(err, BalanceError) else None
+    if field is None:
+        return str(err)
+    return f"cannot balance: {option_of(field, command)}: {err.reason}"
 
 
 def closed_streams_to_devnull() -> None:

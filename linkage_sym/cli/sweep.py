@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 import sys
 
-from linkage_sym.cli.common import OptionError, check_outputs, load
+from linkage_sym.cli.common import OptionError, check_outputs, load, option_error
 
 __all__ = ["register", "cmd_sweep"]
 
@@ -114,14 +114,7 @@ def cmd_sweep(args) -> int:
     try:
         return _sweep(args)
     except SweepError as err:
-        raise OptionError(_option(err)) from err
-
-
-def _option(err) -> str:
-    names = {"parameters": "--vary", "output": "--output-link", "trace": "--trace",
-             "metrics": "--metrics", "chunk_designs": "--chunk-designs", "scene": "scene",
-             "scene_rows": "--scene-rows"}
-    return f"{names.get(err.field, err.field)}: {err.reason}"
+        raise option_error(err, "sweep") from err
 
 
 def _sweep(args) -> int:
@@ -146,12 +139,6 @@ def _sweep(args) -> int:
     if len(given) != 1:
         raise OptionError("--vary: give exactly one of --vary, --samples or --monte-carlo"
                           + (f" (got {', '.join(given)})" if given else " (or --list)"))
-    if args.tolerance and args.monte_carlo is None:
-        raise OptionError("--tolerance: used only with --monte-carlo N")
-    if args.workers is not None and args.workers < 1:
-        raise OptionError(f"--workers: at least 1 process, got {args.workers}")
-    if args.chunk_designs is not None and args.chunk_designs < 1:
-        raise OptionError(f"--chunk-designs: at least 1 design, got {args.chunk_designs}")
     check_outputs(files=[("-o/--output", args.output)],
                   folders=[("--plots", args.plots), ("--write-scenes", args.write_scenes)])
     if args.output not in (None, "-"):

@@ -28,23 +28,10 @@ import json
 import sys
 
 
-def _option(field: str) -> str:
-    """The command-line option of an API parameter named in a :class:`SynthesisError`.
-
-    Examples
-    --------
-    >>> _option("swing_deg"), _option("positions[1][2]")
-    ('--swing-deg', '--positions [1][2]')
-    """
-    base, _, index = field.partition("[")
-    opt = "--" + base.replace("_", "-")
-    return f"{opt} [{index}" if index else opt
-
-
 def _refuse(err):
-    from linkage_sym.cli.common import OptionError
+    from linkage_sym.cli.common import option_error
 
-    return OptionError(f"{_option(err.field)}: {err.reason}")
+    return option_error(err)
 
 
 def _numbers(option: str, text: str | None, n: int, names: str):
