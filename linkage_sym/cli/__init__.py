@@ -1,10 +1,13 @@
 """The ``linkage-sym`` command line (also ``python -m linkage_sym``).
 
-One module a command (``linkage_sym.cli.analyze``, ``.derive``, ``.balance``,
-``.centres``, ``.structure``, ``.demo``, ``.synthesize``, ``.sweep``), each with
-its ``register`` and ``cmd_*``; what they share is in :mod:`linkage_sym.cli.common`.
-This module builds the parser and runs the command; no command's imports run
-until the command does, so ``--version`` and ``--help`` load no library.
+One module a command (``linkage_sym.cli.analyze`` with its ``.accuracy`` options,
+``.derive``, ``.structure``, ``.demo`` with ``examples``, ``.synthesize`` with ``new``,
+``.balance``, ``.centres``, ``.sweep``), each with its ``register`` and ``cmd_*``,
+reading options and printing; what they compute is the library's.  What they share
+is in :mod:`linkage_sym.cli.common`, with the one mapping of the library's parameter
+names to options.  This module builds the parser and runs the command; no command's
+imports run until the command does, so ``--version`` and ``--help`` load no library
+(``sweep --help`` only the metric names).
 
 Commands
 --------
