@@ -69,11 +69,13 @@ class OptionError(Exception):
 SWEEP_OPTIONS = {"parameters": "--vary", "output": "--output-link", "trace": "--trace",
                  "metrics": "--metrics", "chunk_designs": "--chunk-designs", "scene": "scene",
                  "scene_rows": "--scene-rows", "workers": "--workers", "tolerance": "--tolerance",
-                 "samples": "--samples"}
-"""The parameters of :func:`linkage_sym.design.sweep` (the ``field`` of a ``SweepError``) and
-the options of ``sweep`` that fill them, named apart (``parameters``: ``--vary``); a field
-not listed is printed as it is (``parameters['l_AB']``, and the fields the design package
-still names by their option: ``--vary``, ``--samples``, ``--dask``, ``-o/--output``)."""
+                 "samples": "--samples", "monte_carlo": "--monte-carlo",
+                 "random_state": "--random-state", "dask": "--dask", "path": "-o/--output"}
+"""The parameters of :func:`linkage_sym.design.sweep` (the ``field`` of a ``SweepError``;
+``path``: the table's file) and the options of ``sweep`` that fill them, named apart
+(``parameters``: ``--vary``).  A field's first word is looked up (``parameters l_AB``: the
+axis ``l_AB`` of ``--vary``); a field not listed is printed as it is
+(``parameters['l_AB']``)."""
 
 OPTIONS = {"sweep": SWEEP_OPTIONS}
 """Each command whose options are not its library parameters with dashes: its table."""
@@ -88,11 +90,15 @@ def option_of(field: str, command: str | None = None) -> str:
     --------
     >>> option_of("swing_deg"), option_of("positions[1][2]"), option_of("max_mass")
     ('--swing-deg', '--positions [1][2]', '--max-mass')
-    >>> option_of("parameters", "sweep"), option_of("workers", "sweep"), option_of("--dask", "sweep")
-    ('--vary', '--workers', '--dask')
+    >>> option_of("parameters", "sweep"), option_of("parameters l_AB", "sweep")
+    ('--vary', '--vary l_AB')
+    >>> option_of("path", "sweep"), option_of("parameters['l_AB']", "sweep")
+    ('-o/--output', "parameters['l_AB']")
     """
     if command in OPTIONS:
-        return OPTIONS[command].get(field, field)
+        table = OPTIONS[command]
+        base, space, rest = field.partition(" ")
+        return table[base] + space + rest if base in table else field
     base, _, index = field.partition("[")
     opt = "--" + base.replace("_", "-")
     return f"{opt} [{index}" if index else opt
