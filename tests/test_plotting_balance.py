@@ -326,7 +326,7 @@ def test_demo_and_balance_plots_give_one_plot_one_name(tmp_path):
     (the demo called the polar plot ``_balance_force_polar.png``, ``balance`` called it
     ``_shaking_force_polar.png``)."""
     from linkage_sym.cli import main
-    from linkage_sym.cli_balance import demo_balance
+    from linkage_sym.cli.demo import demo_balance
 
     scene = linkage_sym.load_example("crank_rocker")
     (tmp_path / "demo").mkdir()

@@ -63,6 +63,7 @@ import math
 import numpy as np
 
 from linkage_sym.design.errors import SweepError
+from linkage_sym.design.names import DEFAULT_METRICS, METRICS
 from linkage_sym.model import GROUND
 from linkage_sym.numeric.cycle_average import cycle_rms, whole_period
 from linkage_sym.numeric.transmission import rrr_dyads
@@ -71,11 +72,6 @@ from linkage_sym.structure.parameters import ParameterTable, evaluate
 
 __all__ = ["METRICS", "DEFAULT_METRICS", "MetricPlan", "check_choices"]
 
-METRICS = ("assemblable", "grashof", "K", "swing", "min_transmission_deg", "peak_driving",
-           "rms_driving", "peak_reaction", "rms_shaking_force", "rms_shaking_moment", "path")
-"""Every metric a sweep computes (see the module docstring)."""
-
-DEFAULT_METRICS = ("assemblable", "grashof", "K", "swing", "min_transmission_deg")
 
 _NEEDS = {"K": {"rate_t"}, "swing": {"rate_t"}, "peak_driving": {"forces"},
           "rms_driving": {"forces"}, "peak_reaction": {"forces"},
