@@ -30,17 +30,21 @@ class SceneError(ValueError):
 
 class BalanceError(ValueError):
     """A balancing request that cannot be met (e.g. conditions that no
-    counterweights on the given links satisfy).
+    counterweights on the given links satisfy); ``field``, when given, names the
+    parameter of the request that could not be met (``optimize``).
 
     Examples
     --------
     >>> print(BalanceError("counterweights on crank only cannot balance the force"))
     cannot balance: counterweights on crank only cannot balance the force
+    >>> print(BalanceError("no step could be assembled", field="optimize"))
+    cannot balance: optimize: no step could be assembled
     """
 
-    def __init__(self, reason: str):
+    def __init__(self, reason: str, field: str | None = None):
         self.reason = reason
-        super().__init__(f"cannot balance: {reason}")
+        self.field = field
+        super().__init__(f"cannot balance: {field + ': ' if field else ''}{reason}")
 
 
 def finite_number(field: str, value, error: type) -> float:

@@ -50,7 +50,25 @@ def tag(name: str) -> str:
     return "".join(ch if ch.isalnum() or ch == "_" else "_" for ch in name)
 
 
-KINDS = {"P": "a prismatic joint", "G": "a gear mesh", "cam": "a cam contact"}
+JOINT_KINDS = {"P": "prismatic joint", "G": "gear mesh", "cam": "cam contact"}
+"""What each joint type other than a hinge (``R``) is called in a message."""
+
+KINDS = {t: f"a {kind}" for t, kind in JOINT_KINDS.items()}
+
+
+def non_hinged(scene: Scene) -> list:
+    """``(index, joint)`` of every joint of ``scene`` that is not a hinge (an ``R`` joint), in
+    scene order: what the derived balancing conditions do not cover.
+
+    Examples
+    --------
+    >>> from linkage_sym.examples import load_example
+    >>> non_hinged(load_example("crank_rocker"))
+    []
+    >>> [(i, j.name, JOINT_KINDS[j.type]) for i, j in non_hinged(load_example("slider_crank_offset"))]
+    [(3, 'C_guide', 'prismatic joint')]
+    """
+    return [(i, j) for i, j in enumerate(scene.joints) if j.type != "R"]
 
 
 def require_hinged(scene: Scene, what: str) -> None:
@@ -59,8 +77,7 @@ def require_hinged(scene: Scene, what: str) -> None:
     bad = [
         f"joints[{i}] '{j.name}': {KINDS.get(j.type, j.type)}; {what} covers hinged (R-joint) "
         "linkages only"
-        for i, j in enumerate(scene.joints)
-        if j.type != "R"
+        for i, j in non_hinged(scene)
     ]
     if bad:
         raise SceneError(bad)

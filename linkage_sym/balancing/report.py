@@ -287,7 +287,7 @@ def _optimized(scene: Scene, options: SearchOptions) -> tuple:
         res = optimize_counterweights(scene, links=options.links, weights=options.weights,
                                       max_mass=options.max_mass, max_radius=options.max_radius)
     except ValueError as err:  # what the optimiser refuses (e.g. no ok step)
-        raise BalanceError(f"--optimize: {err}") from err
+        raise BalanceError(str(err), field="optimize") from err
     after = solver_series(load_scene(res.scene), label="optimised")
     section = {
         "weights": list(options.weights), "links": list(options.links),

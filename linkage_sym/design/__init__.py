@@ -5,19 +5,36 @@
   designs x steps;
 * :mod:`~linkage_sym.design.newton_groups` -- designs whose groups have no closed form,
   one at a time by the numeric plan;
-* :mod:`~linkage_sym.design.metrics` -- what is reported per design;
+* :mod:`~linkage_sym.design.metrics` -- what is reported per design (their names:
+  :mod:`~linkage_sym.design.names`);
 * :mod:`~linkage_sym.design.execute` -- in-process, local processes or Dask;
 * :mod:`~linkage_sym.design.scenes` -- each design as a scene of its own;
 * :mod:`~linkage_sym.design.table` -- the table, CSV or Parquet;
-* :mod:`~linkage_sym.design.cli` -- ``linkage-sym sweep``; :mod:`~linkage_sym.design.plots` --
-  design maps and histograms.
+* :mod:`~linkage_sym.design.plots` -- design maps and histograms;
+* ``linkage-sym sweep`` reads its options in :mod:`linkage_sym.cli.sweep`.
 """
 
-from linkage_sym.design.api import scene_parameters, sweep
-from linkage_sym.design.errors import SweepError
-from linkage_sym.design.metrics import DEFAULT_METRICS, METRICS
-from linkage_sym.design.parameters import Designs, grid, monte_carlo, read_samples
-from linkage_sym.design.table import SweepResult
+from importlib import import_module
+
+_HOME = {"scene_parameters": "api", "sweep": "api", "SweepError": "errors",
+         "DEFAULT_METRICS": "names", "METRICS": "names", "Designs": "parameters",
+         "grid": "parameters", "monte_carlo": "parameters", "read_samples": "parameters",
+         "SweepResult": "table"}
+"""The module of each name the package exports: imported when the name is first used, so
+that importing a module of the package (:mod:`~linkage_sym.design.names` for the help
+of ``linkage-sym sweep``) does not load the sweep's machinery."""
 
 __all__ = ["DEFAULT_METRICS", "METRICS", "Designs", "SweepError", "SweepResult", "grid",
            "monte_carlo", "read_samples", "scene_parameters", "sweep"]
+
+
+def __getattr__(name):
+    if name in _HOME:
+        value = getattr(import_module(f"linkage_sym.design.{_HOME[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_HOME))

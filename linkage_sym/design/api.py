@@ -160,8 +160,8 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
         # a mass, inertia or load is a parameter of the force blocks only
         spec = dataclasses.replace(spec, forces=True)
         model, _ = _state(spec)
-    field_name = ("--tolerance" if monte_carlo is not None
-                  else "--samples" if samples is not None else "parameters")
+    field_name = ("tolerance" if monte_carlo is not None
+                  else "samples" if samples is not None else "parameters")
     check_names(designs, model.names, field_name)
     recipes = {model.names[i]: r for r, i in model.recipes.items()}
     problems = design_problems(scene, designs, recipes)
@@ -169,16 +169,16 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     valid = problems == ""
     if workers is not None:
         if not isinstance(workers, int) or isinstance(workers, bool) or workers < 1:
-            raise SweepError("--workers", f"a number of processes >= 1 is expected, got {workers!r}")
+            raise SweepError("workers", f"at least 1 process, got {workers!r}")
     if chunk_designs is None:
         chunk_designs = (ONE_AT_A_TIME_CHUNK if model.one_at_a_time
                          else max(1, TARGET_ENTRIES // model.path.shape[1]))
     elif not isinstance(chunk_designs, int) or chunk_designs < 1:
-        raise SweepError("chunk_designs", f"a number of designs >= 1 is expected, got {chunk_designs!r}")
+        raise SweepError("chunk_designs", f"at least 1 design, got {chunk_designs!r}")
     files, no_scene, bad_scene = [], [], []
     if scene_rows is not None:
         if write_scenes is None:
-            raise SweepError("scene_rows", "used only with write_scenes (--write-scenes DIR)")
+            raise SweepError("scene_rows", "used only with write_scenes (a folder)")
         scene_rows = _rows(scene_rows, len(designs))
     if write_scenes is not None:
         files, no_scene, bad_scene = _write_scenes(model, designs, Path(write_scenes),
@@ -217,11 +217,11 @@ def _designs(scene, parameters, samples, monte_carlo, tolerance, random_state) -
     given = [n for n, v in (("parameters", parameters), ("samples", samples),
                             ("monte_carlo", monte_carlo)) if v is not None]
     if len(given) != 1:
-        raise SweepError("parameters", "give exactly one of a grid of parameters (--vary), "
-                                       "samples (--samples) or a Monte Carlo spread "
-                                       f"(--monte-carlo); got {', '.join(given) or 'none'}")
+        raise SweepError("parameters", "give exactly one of parameters (a grid), samples "
+                                       "or monte_carlo (a Monte Carlo spread); got "
+                                       f"{', '.join(given) or 'none'}")
     if tolerance is not None and monte_carlo is None:
-        raise SweepError("--tolerance", "used only with a Monte Carlo spread (--monte-carlo N)")
+        raise SweepError("tolerance", "used only with monte_carlo (a Monte Carlo spread)")
     if isinstance(parameters, Designs):
         return parameters
     if parameters is not None:
@@ -234,7 +234,7 @@ def _designs(scene, parameters, samples, monte_carlo, tolerance, random_state) -
     base = {n: v for n, v in zip(model.names, model.base)}
     for n in (tolerance or {}):
         if n not in base or n.startswith("theta0_"):
-            check_names(Designs((n,), np.zeros((1, 1)), "monte-carlo"), model.names, "--tolerance")
+            check_names(Designs((n,), np.zeros((1, 1)), "monte-carlo"), model.names, "tolerance")
     return _mc(base, tolerance or {}, monte_carlo, random_state)
 
 

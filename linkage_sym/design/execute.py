@@ -150,7 +150,7 @@ def dask_client(address, workers=None):
     try:
         from dask.distributed import Client, LocalCluster
     except ImportError:
-        raise SweepError("--dask", "needs dask's distributed scheduler, which is not installed: "
+        raise SweepError("dask", "needs dask's distributed scheduler, which is not installed: "
                                    "pip install 'linkage_sym[sweep]'") from None
     if address == "local":
         import dask
@@ -167,9 +167,9 @@ def dask_client(address, workers=None):
     try:
         client = Client(address, timeout=30)
     except OSError as err:
-        raise SweepError("--dask", f"cannot reach the scheduler at {address!r}: {err}") from None
+        raise SweepError("dask", f"cannot reach the scheduler at {address!r}: {err}") from None
     except ValueError as err:  # not an address dask can parse ('', 'tcp://', 'host:')
-        raise SweepError("--dask", f"{address!r} is not a scheduler address (HOST:PORT, "
+        raise SweepError("dask", f"{address!r} is not a scheduler address (HOST:PORT, "
                                    f"tcp://HOST:PORT, or 'local'): {err}") from None
     return client, [client]
 

@@ -112,27 +112,27 @@ def parse_axis(text: str) -> tuple[str, np.ndarray]:
     >>> parse_axis("l_AB=0.02:0.03")
     Traceback (most recent call last):
     ...
-    linkage_sym.design.errors.SweepError: --vary: 'l_AB=0.02:0.03': NAME=LO:HI:N (N values from LO to HI) or NAME=V1,V2,... is expected
+    linkage_sym.design.errors.SweepError: parameters: 'l_AB=0.02:0.03': NAME=LO:HI:N (N values from LO to HI) or NAME=V1,V2,... is expected
     """
     form = "NAME=LO:HI:N (N values from LO to HI) or NAME=V1,V2,... is expected"
     name, sep, rest = text.partition("=")
     name = name.strip()
     if not sep or not name or not rest.strip():
-        raise SweepError("--vary", f"{text!r}: {form}")
+        raise SweepError("parameters", f"{text!r}: {form}")
     if ":" in rest:
         parts = rest.split(":")
         if len(parts) != 3:
-            raise SweepError("--vary", f"{text!r}: {form}")
-        lo, hi = (_finite(f"--vary {name}", p) for p in parts[:2])
+            raise SweepError("parameters", f"{text!r}: {form}")
+        lo, hi = (_finite(f"parameters {name}", p) for p in parts[:2])
         try:
             n = int(parts[2])
         except ValueError:
-            raise SweepError("--vary", f"{text!r}: N must be a whole number, got {parts[2]!r}") from None
+            raise SweepError("parameters", f"{text!r}: N must be a whole number, got {parts[2]!r}") from None
         if n < 1:
-            raise SweepError("--vary", f"{text!r}: N must be at least 1")
-        _fits(n, 1, "--vary")
+            raise SweepError("parameters", f"{text!r}: N must be at least 1")
+        _fits(n, 1, "parameters")
         return name, np.linspace(lo, hi, n)
-    return name, np.array([_finite(f"--vary {name}", p) for p in rest.split(",")])
+    return name, np.array([_finite(f"parameters {name}", p) for p in rest.split(",")])
 
 
 def parse_tolerance(text: str) -> tuple[str, float]:
@@ -145,10 +145,10 @@ def parse_tolerance(text: str) -> tuple[str, float]:
     """
     name, sep, rest = text.partition("=")
     if not sep or not name.strip():
-        raise SweepError("--tolerance", f"{text!r}: NAME=SIGMA is expected")
-    sigma = _finite(f"--tolerance {name.strip()}", rest)
+        raise SweepError("tolerance", f"{text!r}: NAME=SIGMA is expected")
+    sigma = _finite(f"tolerance {name.strip()}", rest)
     if sigma < 0:
-        raise SweepError("--tolerance", f"{text!r}: SIGMA is a standard deviation, >= 0")
+        raise SweepError("tolerance", f"{text!r}: SIGMA is a standard deviation, >= 0")
     return name.strip(), sigma
 
 
@@ -166,21 +166,21 @@ def monte_carlo(base, tolerance, n: int, random_state: int = 0) -> Designs:
     ((4, 1), True)
     """
     if not tolerance:
-        raise SweepError("--tolerance", "a Monte Carlo sweep needs at least one NAME=SIGMA")
+        raise SweepError("tolerance", "a Monte Carlo sweep needs at least one NAME=SIGMA")
     try:
         n = int(n)
     except (TypeError, ValueError):
-        raise SweepError("--monte-carlo", f"a number of designs is expected, got {n!r}") from None
+        raise SweepError("monte_carlo", f"a number of designs is expected, got {n!r}") from None
     if n < 1:
-        raise SweepError("--monte-carlo", f"at least one design is needed, got {n}")
+        raise SweepError("monte_carlo", f"at least one design is needed, got {n}")
     if not (isinstance(random_state, (int, np.integer)) and not isinstance(random_state, bool)
             and random_state >= 0):
-        raise SweepError("--random-state", f"a whole number >= 0 is expected, got {random_state!r}")
+        raise SweepError("random_state", f"a whole number >= 0 is expected, got {random_state!r}")
     names = tuple(tolerance)
-    _fits(n, len(names), "--monte-carlo")
+    _fits(n, len(names), "monte_carlo")
     for k in names:
         if k not in base:
-            raise SweepError("--tolerance", f"unknown parameter {k!r}")
+            raise SweepError("tolerance", f"unknown parameter {k!r}")
     mean = np.array([float(base[k]) for k in names])
     sigma = np.array([float(tolerance[k]) for k in names])
     z = np.random.default_rng(random_state).standard_normal((n, len(names)))
@@ -204,25 +204,25 @@ def read_samples(path) -> Designs:
     try:
         text = p.read_text(encoding="utf-8-sig")  # a spreadsheet's byte-order mark is no name
     except OSError as err:
-        raise SweepError("--samples", f"{str(path)!r}: {err.strerror or err}") from None
+        raise SweepError("samples", f"{str(path)!r}: {err.strerror or err}") from None
     except UnicodeDecodeError as err:
-        raise SweepError("--samples", f"{str(path)!r} is not a text (UTF-8) CSV file: byte "
+        raise SweepError("samples", f"{str(path)!r} is not a text (UTF-8) CSV file: byte "
                                       f"{err.object[err.start]:#04x} at position {err.start}") from None
     rows = [r for r in csv.reader(text.splitlines()) if any(c.strip() for c in r)]
     if not rows:
-        raise SweepError("--samples", f"{str(path)!r} is empty; a header of parameter names is expected")
+        raise SweepError("samples", f"{str(path)!r} is empty; a header of parameter names is expected")
     names = tuple(c.strip() for c in rows[0])
     if len(set(names)) != len(names) or not all(names):
-        raise SweepError("--samples", f"{str(path)!r}: the header must name each parameter once")
+        raise SweepError("samples", f"{str(path)!r}: the header must name each parameter once")
     values = []
     for i, r in enumerate(rows[1:], start=2):
         if len(r) != len(names):
-            raise SweepError("--samples", f"{str(path)!r} line {i}: {len(r)} values for "
+            raise SweepError("samples", f"{str(path)!r} line {i}: {len(r)} values for "
                                           f"{len(names)} parameters")
-        values.append([_finite(f"--samples {str(path)!r} line {i} column {names[k]!r}", c)
+        values.append([_finite(f"samples {str(path)!r} line {i} column {names[k]!r}", c)
                        for k, c in enumerate(r)])
     if not values:
-        raise SweepError("--samples", f"{str(path)!r} has a header but no design")
+        raise SweepError("samples", f"{str(path)!r} has a header but no design")
     return Designs(names, np.array(values, float), "samples")
 
 

@@ -26,7 +26,7 @@ def table_format(path) -> str:
     """``"csv"`` or ``"parquet"`` from a file's suffix."""
     fmt = FORMATS.get(Path(str(path)).suffix.lower())
     if fmt is None:
-        raise SweepError("-o/--output", f"{str(path)!r}: a .csv or .parquet file is expected")
+        raise SweepError("path", f"{str(path)!r}: a .csv or .parquet file is expected")
     return fmt
 
 
@@ -111,7 +111,7 @@ class SweepResult:
             import pyarrow as pa
             import pyarrow.parquet as pq
         except ImportError:
-            raise SweepError("-o/--output", "a Parquet file needs pyarrow, which is not "
+            raise SweepError("path", "a Parquet file needs pyarrow, which is not "
                                             "installed: pip install 'linkage_sym[sweep]'") from None
         arrays = {k: pa.array(v) for k, v in self.columns.items()}
         table = pa.table(arrays, metadata={"linkage_sym": f"sweep of {self.scene}"})

@@ -29,7 +29,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 
 TWO_PI = 2.0 * math.pi
 
@@ -55,6 +54,8 @@ class CamProfile:
             (cx, cy), R = data
             self.centre, self.R = (float(cx), float(cy)), float(R)
         elif kind == "polar":
+            from scipy.interpolate import CubicSpline  # on use: a scene without cams never loads it
+
             centre, phi, r = data
             self.centre = (float(centre[0]), float(centre[1]))
             phi = np.asarray(phi, float)
@@ -66,6 +67,8 @@ class CamProfile:
             self._r = CubicSpline(np.append(phi - shift, TWO_PI), np.append(r, r[0]),
                                   bc_type="periodic")
         elif kind == "points":
+            from scipy.interpolate import CubicSpline
+
             (pts,) = data
             P = np.asarray(pts, float)
             if np.allclose(P[0], P[-1]):

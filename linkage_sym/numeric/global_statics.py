@@ -33,8 +33,6 @@ disconnection turns into dyads (:func:`solve_dense`).
 from __future__ import annotations
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.linalg import spsolve
 
 from linkage_sym.model import GROUND
 
@@ -186,6 +184,9 @@ def solve_global(scene, geo, W, L, K):
         rows_i.append(r + nrows * steps)
         cols_i.append(c + ncols * steps)
         vals.append(np.broadcast_to(np.asarray(v, dtype=float), (K,)))
+    import scipy.sparse as sp  # on use: only --method global loads SciPy's sparse solver
+    from scipy.sparse.linalg import spsolve
+
     A = sp.csc_matrix(
         (np.concatenate(vals), (np.concatenate(rows_i), np.concatenate(cols_i))),
         shape=(nrows * K, ncols * K),

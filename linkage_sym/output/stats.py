@@ -85,6 +85,30 @@ def step_ranges(mask, drivers: dict) -> StepRuns:
     return out
 
 
+def step_at(q: dict, drivers: dict, n_steps: int) -> int | None:
+    """The step of a sweep at the driver values ``drivers`` (one value per driver), or None.
+
+    ``q[name]``: the sweep's values of each driver, at its ``n_steps`` steps.  The rule: the
+    first step at which every driver has exactly (``==``) the value given.  A step's result
+    carries the sweep's own driver values (the same float64 numbers), so its step is found;
+    values computed anew (rounded otherwise, e.g. by a solver in more precision) name no
+    step, and a sweep that passes the same driver values twice names its first.
+
+    Examples
+    --------
+    >>> q = {"A": [0.0, 0.5, 1.0, 0.5]}
+    >>> step_at(q, {"A": 0.5}, 4), step_at(q, {"A": 0.5 + 2e-16}, 4)
+    (1, None)
+    >>> step_at(q, {}, 4)
+    0
+    """
+    mask = np.ones(n_steps, bool)
+    for name, value in drivers.items():
+        mask &= np.asarray(q[name], float) == value
+    hits = np.flatnonzero(mask)
+    return int(hits[0]) if len(hits) else None
+
+
 MAX_RANGES = 8
 """Driver ranges a summary names before it says how many more there are."""
 

@@ -339,7 +339,7 @@ def test_empty_outputs_return_statuses_and_drivers_and_say_so(tmp_path, capsys):
 
 def test_summary_names_shaking_loads_and_warnings(tmp_path):
     """Inertia only: the frame loads are the shaking force and moment; warnings are listed."""
-    from linkage_sym.cli import summary
+    from linkage_sym.cli.analyze import summary
 
     d = example_dict("crank_rocker")
     d["effects"] = {"inertia": True, "gravity": None, "loads": False}

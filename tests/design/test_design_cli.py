@@ -159,7 +159,7 @@ def test_summary_gives_units_and_no_empty_K_note(capsys):
         num = r"[0-9.e+-]+"
         assert re.fullmatch(rf"  {col}: {num}{unit} \(design \d\) \.\. {num}{unit} \(design \d\), "
                             rf"mean {num}{unit}", line), line
-    from linkage_sym.design.cli import metric_unit
+    from linkage_sym.cli.sweep import metric_unit
 
     assert metric_unit("peak_driving_P", linkage_sym.load_example("hydraulic_boom")) == "N"
 
@@ -176,7 +176,7 @@ def test_parallel_note_on_a_small_sweep(capsys):
             "faster at this size") in out
     assert main(args) == 0
     assert "note:" not in capsys.readouterr().out
-    from linkage_sym.design.cli import PARALLEL_MIN_ENTRIES, parallel_note
+    from linkage_sym.cli.sweep import PARALLEL_MIN_ENTRIES, parallel_note
 
     assert "LocalCluster" in parallel_note(2, 361, 2, "local")
     big = -(-PARALLEL_MIN_ENTRIES["dask"] // 361)

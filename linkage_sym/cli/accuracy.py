@@ -19,8 +19,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 PRECISION_HELP = (
     "double (float64, default) or a number of significant digits, e.g. 50: the derived "
     "equations evaluated in mpmath and rounded to float64 -- the answer near a dead centre "
@@ -40,7 +38,7 @@ def add_analyze_options(parser) -> None:
 
 
 def _option_error(problems):
-    from linkage_sym.cli_common import OptionError
+    from linkage_sym.cli.common import OptionError
 
     return OptionError(problems)
 
@@ -84,16 +82,16 @@ class Report:
         self.extreme_lines: list[str] = []
 
     def _step_of(self, drivers: dict) -> int | None:
-        mask = np.ones(self.sweep.n_steps, bool)
-        for n, v in drivers.items():
-            mask &= np.asarray(self.sweep.q[n], float) == v
-        hits = np.flatnonzero(mask)
-        return int(hits[0]) if len(hits) else None
+        from linkage_sym.output.stats import step_at
+
+        return step_at(self.sweep.q, drivers, self.sweep.n_steps)
 
     def add(self, res) -> None:
         acc = getattr(res, "accuracy", None)
         if not acc:
             return
+        import numpy as np
+
         for name, v in acc.items():
             v = np.asarray(v, float)
             if not np.isfinite(v).any():

@@ -19,10 +19,7 @@ from __future__ import annotations
 import math
 import sys
 
-import numpy as np
-
-from linkage_sym.cli_common import OptionError, check_outputs, load
-from linkage_sym.design.errors import SweepError
+from linkage_sym.cli.common import OptionError, check_outputs, load, option_error
 
 __all__ = ["register", "cmd_sweep"]
 
@@ -30,8 +27,6 @@ __all__ = ["register", "cmd_sweep"]
 def register(sub) -> None:
     """Add the ``sweep`` command to the ``linkage-sym`` sub-parsers."""
     import argparse
-
-    from linkage_sym.design.metrics import DEFAULT_METRICS, METRICS
 
     p = sub.add_parser(
         "sweep", help="evaluate many designs of a scene: a grid, samples or a Monte Carlo spread",
@@ -51,7 +46,6 @@ def register(sub) -> None:
         "groups without one (class-III triads, actuator groups) make the designs run one at "
         "a time, each by the numeric plan of its own scene.",
         formatter_class=argparse.RawDescriptionHelpFormatter,
-        epilog="metrics: " + ", ".join(METRICS) + " (definitions: linkage_sym.design.metrics)",
     )
     p.add_argument("scene", help="scene JSON file")
     p.add_argument("--list", action="store_true",
@@ -69,9 +63,7 @@ def register(sub) -> None:
     p.add_argument("--random-state", type=int, default=0, metavar="K",
                    help="state of the random generator of --monte-carlo (default 0): the same "
                    "K gives the same designs")
-    p.add_argument("--metrics", metavar="LIST",
-                   help="comma-separated metrics (default: those of "
-                   f"{','.join(DEFAULT_METRICS)} the scene has)")
+    p.add_argument("--metrics", metavar="LIST")  # its help: _metrics_help
     p.add_argument("--output-link", metavar="LINK",
                    help="the link whose limit positions give K and swing (default: the last "
                    "link pivoted on the ground that is not driven)")
@@ -101,20 +93,28 @@ def register(sub) -> None:
                    "19, as Python slices) or :100 (the first 100); default every design")
     p.add_argument("--chunk-designs", type=int, metavar="N", help="designs per chunk")
     p.set_defaults(func=cmd_sweep)
+    p.help_hook = _metrics_help
+
+
+def _metrics_help(p) -> None:
+    """The help's texts that name the metrics, filled when help is shown: building the
+    parser imports nothing of the design package, the help only its list of names."""
+    from linkage_sym.design.names import DEFAULT_METRICS, METRICS
+
+    p.epilog = "metrics: " + ", ".join(METRICS) + " (definitions: linkage_sym.design.metrics)"
+    for action in p._actions:
+        if "--metrics" in action.option_strings:
+            action.help = ("comma-separated metrics (default: those of "
+                           f"{','.join(DEFAULT_METRICS)} the scene has)")
 
 
 def cmd_sweep(args) -> int:
+    from linkage_sym.design.errors import SweepError
+
     try:
         return _sweep(args)
     except SweepError as err:
-        raise OptionError(_option(err)) from err
-
-
-def _option(err: SweepError) -> str:
-    names = {"parameters": "--vary", "output": "--output-link", "trace": "--trace",
-             "metrics": "--metrics", "chunk_designs": "--chunk-designs", "scene": "scene",
-             "scene_rows": "--scene-rows"}
-    return f"{names.get(err.field, err.field)}: {err.reason}"
+        raise option_error(err, "sweep") from err
 
 
 def _sweep(args) -> int:
@@ -139,12 +139,6 @@ def _sweep(args) -> int:
     if len(given) != 1:
         raise OptionError("--vary: give exactly one of --vary, --samples or --monte-carlo"
                           + (f" (got {', '.join(given)})" if given else " (or --list)"))
-    if args.tolerance and args.monte_carlo is None:
-        raise OptionError("--tolerance: used only with --monte-carlo N")
-    if args.workers is not None and args.workers < 1:
-        raise OptionError(f"--workers: at least 1 process, got {args.workers}")
-    if args.chunk_designs is not None and args.chunk_designs < 1:
-        raise OptionError(f"--chunk-designs: at least 1 design, got {args.chunk_designs}")
     check_outputs(files=[("-o/--output", args.output)],
                   folders=[("--plots", args.plots), ("--write-scenes", args.write_scenes)])
     if args.output not in (None, "-"):
@@ -291,6 +285,8 @@ def metric_unit(column: str, scene=None) -> str:
 def summary(res, scene=None) -> list[str]:
     """What ``sweep`` prints: the designs, how many assemble, each metric's range (with its
     unit: efforts in N·m or N by their driver's joint, given the ``scene``)."""
+    import numpy as np
+
     n = len(res)
     how = {"grid": "grid " + " x ".join(f"{k} {len(v)}" for k, v in res.axes),
            "monte-carlo": "Monte Carlo", "samples": "samples"}[res.kind]

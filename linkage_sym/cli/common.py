@@ -3,18 +3,59 @@
 The :class:`OptionError` every command raises for options it cannot use,
 loading a scene file, checking every output path before anything is
 computed (:func:`check_outputs`), writing a file the command was asked for,
-and the file stem of a scene's plots.  The commands live in
-:mod:`linkage_sym.cli` and its ``cli_*`` and ``synthesis.cli`` neighbours,
-each importing from here (not from each other).
+and the file stem of a scene's plots.  The commands live in the modules of
+:mod:`linkage_sym.cli` (one a command), each importing from here (not from
+each other).
 """
 
 from __future__ import annotations
 
+import argparse
 import os
 import sys
 from pathlib import Path
 
-__all__ = ["OptionError", "load", "check_outputs", "write", "emit", "stem", "closed_streams_to_devnull"]
+__all__ = ["BROKEN_PIPE", "EXIT_STATUS", "NO_STEP_ASSEMBLED", "OPTIONS", "CommandParser",
+           "OptionError", "option_of", "option_error", "error_text", "load", "check_outputs",
+           "write", "emit", "stem", "driver_kinds", "closed_streams_to_devnull"]
+
+NO_STEP_ASSEMBLED = 3  # analyze: the result file is written, but no step could be assembled
+BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for `yes | head`
+
+EXIT_STATUS = f"""\
+exit status:
+  0    done
+  1    a file could not be written after all (e.g. disk full, or out of memory): the message
+       says which; no partial file is left
+  2    invalid scene or option: a message names each field or option; nothing is written
+       (every output path is checked before anything is computed)
+  {NO_STEP_ASSEMBLED}    analyze: no step of the sweep could be assembled; the result file is still
+       written (-o), no plots
+  {BROKEN_PIPE}  standard output closed early (e.g. | head): stops quietly
+"""
+
+
+class CommandParser(argparse.ArgumentParser):
+    """An argument parser whose help may name what only a library knows (the metrics of
+    ``sweep``): ``help_hook(parser)``, when set, fills those texts the first time help is
+    formatted, so that building the parser (``--version``, another command) imports no
+    library.
+
+    Examples
+    --------
+    >>> p = CommandParser(prog="x", add_help=False)
+    >>> p.help_hook = lambda parser: setattr(parser, "epilog", "filled")
+    >>> p.format_help().strip().splitlines()[-1]
+    'filled'
+    """
+
+    help_hook = None
+
+    def format_help(self) -> str:
+        hook, self.help_hook = self.help_hook, None
+        if hook is not None:
+            hook(self)
+        return super().format_help()
 
 
 class OptionError(Exception):
@@ -23,6 +64,79 @@ class OptionError(Exception):
     def __init__(self, problems):
         self.problems = [problems] if isinstance(problems, str) else list(problems)
         super().__init__("; ".join(self.problems))
+
+
+SWEEP_OPTIONS = {"parameters": "--vary", "output": "--output-link", "trace": "--trace",
+                 "metrics": "--metrics", "chunk_designs": "--chunk-designs", "scene": "scene",
+                 "scene_rows": "--scene-rows", "workers": "--workers", "tolerance": "--tolerance",
+                 "samples": "--samples", "monte_carlo": "--monte-carlo",
+                 "random_state": "--random-state", "dask": "--dask", "path": "-o/--output"}
+"""The parameters of :func:`linkage_sym.design.sweep` (the ``field`` of a ``SweepError``;
+``path``: the table's file) and the options of ``sweep`` that fill them, named apart
+(``parameters``: ``--vary``).  A field's first word is looked up (``parameters l_AB``: the
+axis ``l_AB`` of ``--vary``); a field not listed is printed as it is
+(``parameters['l_AB']``)."""
+
+OPTIONS = {"sweep": SWEEP_OPTIONS}
+"""Each command whose options are not its library parameters with dashes: its table."""
+
+
+def option_of(field: str, command: str | None = None) -> str:
+    """The option that fills the library's parameter ``field``: the command's table in
+    :data:`OPTIONS`, else ``--`` and the field with dashes for underscores, an index kept
+    after it.  The one place that maps what the library names to what a user types.
+
+    Examples
+    --------
+    >>> option_of("swing_deg"), option_of("positions[1][2]"), option_of("max_mass")
+    ('--swing-deg', '--positions [1][2]', '--max-mass')
+    >>> option_of("parameters", "sweep"), option_of("parameters l_AB", "sweep")
+    ('--vary', '--vary l_AB')
+    >>> option_of("path", "sweep"), option_of("parameters['l_AB']", "sweep")
+    ('-o/--output', "parameters['l_AB']")
+    """
+    if command in OPTIONS:
+        table = OPTIONS[command]
+        base, space, rest = field.partition(" ")
+        return table[base] + space + rest if base in table else field
+    base, _, index = field.partition("[")
+    opt = "--" + base.replace("_", "-")
+    return f"{opt} [{index}" if index else opt
+
+
+def option_error(err, command: str | None = None) -> OptionError:
+    """A library error about a command's parameters as the :class:`OptionError` that names
+    the options: ``err.field`` and ``err.reason`` (``SweepError``, ``SynthesisError``), or
+    ``err.problems`` of ``(field, reason)`` (the balancing's ``OptionsError``).
+
+    Examples
+    --------
+    >>> from linkage_sym.design.errors import SweepError
+    >>> option_error(SweepError("parameters", "no parameter to vary"), "sweep").problems
+    ['--vary: no parameter to vary']
+    """
+    if hasattr(err, "field"):
+        return OptionError(f"{option_of(err.field, command)}: {err.reason}")
+    return OptionError([f"{option_of(field, command)}: {why}" for field, why in err.problems])
+
+
+def error_text(err, command: str | None = None) -> str:
+    """What the command line prints of a library error it does not turn into an
+    :class:`OptionError` (an invalid scene, a balancing that cannot be met): its text, the
+    parameter it names (``BalanceError.field``) given as the option.
+
+    Examples
+    --------
+    >>> from linkage_sym.errors import BalanceError
+    >>> error_text(BalanceError("no step could be assembled", field="optimize"), "balance")
+    'cannot balance: --optimize: no step could be assembled'
+    """
+    from linkage_sym.errors import BalanceError
+
+    field = getattr(err, "field", None) if isinstance(err, BalanceError) else None
+    if field is None:
+        return str(err)
+    return f"cannot balance: {option_of(field, command)}: {err.reason}"
 
 
 def closed_streams_to_devnull() -> None:
@@ -147,6 +261,11 @@ def emit(output, text: str) -> None:
     else:
         write(output, text)
         print(f"wrote {output}")
+
+
+def driver_kinds(scene) -> dict:
+    """Each driver's joint type, for :func:`~linkage_sym.output.stats.ranges_text`."""
+    return {d.joint: scene.joint(d.joint).type for d in scene.drivers}
 
 
 def stem(scene) -> str:

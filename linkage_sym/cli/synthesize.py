@@ -27,30 +27,16 @@ import argparse
 import json
 import sys
 
-from linkage_sym.synthesis.common import SynthesisError
 
-def _option(field: str) -> str:
-    """The command-line option of an API parameter named in a :class:`SynthesisError`.
+def _refuse(err):
+    from linkage_sym.cli.common import option_error
 
-    Examples
-    --------
-    >>> _option("swing_deg"), _option("positions[1][2]")
-    ('--swing-deg', '--positions [1][2]')
-    """
-    base, _, index = field.partition("[")
-    opt = "--" + base.replace("_", "-")
-    return f"{opt} [{index}" if index else opt
-
-
-def _refuse(err: SynthesisError):
-    from linkage_sym.cli_common import OptionError
-
-    return OptionError(f"{_option(err.field)}: {err.reason}")
+    return option_error(err)
 
 
 def _numbers(option: str, text: str | None, n: int, names: str):
     """``n`` comma-separated numbers of an option, or :class:`OptionError`."""
-    from linkage_sym.cli_common import OptionError
+    from linkage_sym.cli.common import OptionError
 
     if text is None:
         return None
@@ -65,7 +51,7 @@ def _numbers(option: str, text: str | None, n: int, names: str):
 
 def _emit(design, args, what: str) -> int:
     """Print the design and write its scene (``-o``); ``-o -`` writes the scene to standard output."""
-    from linkage_sym.cli_common import write as _write
+    from linkage_sym.cli.common import write as _write
     from linkage_sym.synthesis.builders import describe
 
     to_stdout = args.output == "-"
@@ -92,7 +78,8 @@ def _sweep(args) -> dict:
 
 def cmd_new(args) -> int:
     """``linkage-sym new fourbar|slider-crank|guide-bar``."""
-    from linkage_sym.cli_common import check_outputs as _check_outputs
+    from linkage_sym.synthesis.common import SynthesisError
+    from linkage_sym.cli.common import check_outputs as _check_outputs
     from linkage_sym.synthesis import builders
 
     _check_outputs(files=[("-o/--output", args.output)])
@@ -119,7 +106,8 @@ _SOURCE = "textbook section 'Design of four-bar mechanisms' [2]"
 
 def cmd_synthesize(args) -> int:
     """``linkage-sym synthesize crank-rocker|slider-crank|guide-bar|coupler-positions|equations``."""
-    from linkage_sym.cli_common import check_outputs as _check_outputs
+    from linkage_sym.synthesis.common import SynthesisError
+    from linkage_sym.cli.common import check_outputs as _check_outputs
 
     _check_outputs(files=[("-o/--output", args.output)])
     if args.kind == "equations":
@@ -168,7 +156,8 @@ def _read_positions(path):
     (Python's limit on converting such strings), and one beyond float64's range
     becomes ``inf``, refused with the position that holds it.
     """
-    from linkage_sym.cli_common import OptionError
+    from linkage_sym.synthesis.common import SynthesisError
+    from linkage_sym.cli.common import OptionError
 
     try:
         with open(path, encoding="utf-8") as fh:
@@ -186,7 +175,7 @@ def _read_positions(path):
 
 
 def _equations(args) -> int:
-    from linkage_sym.cli_common import emit
+    from linkage_sym.cli.common import emit
     from linkage_sym.synthesis.equations import latex_document, plain_text
 
     text = latex_document() if args.latex else plain_text()

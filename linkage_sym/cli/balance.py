@@ -24,13 +24,11 @@ import math
 import sys
 from pathlib import Path
 
-import numpy as np
-
-from linkage_sym.cli_common import OptionError, check_outputs, load, write
-from linkage_sym.cli_common import stem as file_stem
+from linkage_sym.cli.common import OptionError, check_outputs, load, option_error, write
+from linkage_sym.cli.common import stem as file_stem
 from linkage_sym.errors import BalanceError
 
-__all__ = ["cmd_balance", "demo_balance", "register", "summary"]
+__all__ = ["cmd_balance", "register", "summary"]
 
 
 def _optimize_options(scene, args):
@@ -51,7 +49,7 @@ def _optimize_options(scene, args):
             max_mass=args.max_mass,
         )
     except OptionsError as err:
-        raise OptionError([f"--{option.replace('_', '-')}: {why}" for option, why in err.problems]) from err
+        raise option_error(err) from err
 
 
 def _latex_path(args) -> str | None:
@@ -68,6 +66,8 @@ def _latex_path(args) -> str | None:
 
 def _rms(values) -> float:
     """RMS over the steps that have a value (NaN where a step is not ok)."""
+    import numpy as np
+
     v = np.asarray(values, dtype=float)
     v = v[np.isfinite(v)]
     return math.sqrt(float(np.mean(v * v))) if v.size else math.nan
@@ -84,6 +84,8 @@ def summary(report, series) -> list[str]:
     ``report`` and ``series``: those of a
     :class:`~linkage_sym.balancing.report.BalanceDocument`.
     """
+    import numpy as np
+
     lines = [f"{report['scene']}: shaking force and moment balance (Song and Wang 1992)"]
     if report.get("conditions_derived", True):
         lines.append("force balance conditions (each = 0):")
@@ -163,8 +165,9 @@ def cmd_balance(args) -> int:
 
     check_run_memory(scene)  # a whole run of the sweep, before any of it is made
     options = _optimize_options(scene, args)
-    kinds = {"P": "prismatic joint", "G": "gear mesh", "cam": "cam contact"}
-    sliding = [f"{j.name} ({kinds.get(j.type, j.type)})" for j in scene.joints if j.type != "R"]
+    from linkage_sym.balancing.pins import JOINT_KINDS, non_hinged
+
+    sliding = [f"{j.name} ({JOINT_KINDS.get(j.type, j.type)})" for _, j in non_hinged(scene)]
     if sliding and not args.optimize:
         raise OptionError(
             f"the derived balancing conditions cover hinged (R-joint only) linkages; "
@@ -191,26 +194,6 @@ def cmd_balance(args) -> int:
     if args.optimize:
         files.append((args.optimize, json.dumps(doc.optimized_scene, indent=2) + "\n"))
     return _write_balance(scene, args, doc, files)
-
-
-def demo_balance(scene, stem, out) -> list:
-    """Song and Wang's (1992) balancing of a hinged example: JSON and before/after plots.
-
-    The plots have the names ``balance --plots`` gives them (``<stem>_shaking_force_polar.png``,
-    ``<stem>_shaking_moment.png``): one plot, one name."""
-    from linkage_sym.balancing.report import balance_document
-    from linkage_sym.plotting.balance import shaking_force_polar, shaking_moment_curve
-
-    doc = balance_document(scene)
-    path = out / f"{stem}_balance.json"
-    path.write_text(json.dumps(doc.report) + "\n")
-    return [
-        path,
-        shaking_force_polar(doc.series, out / f"{stem}_shaking_force_polar.png", title=scene.name),
-        shaking_moment_curve(doc.series, out / f"{stem}_shaking_moment.png", title=scene.name),
-    ]
-
-
 
 
 def register(sub) -> None:

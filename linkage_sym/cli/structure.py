@@ -1,0 +1,23 @@
+"""``linkage-sym structure``: the drivers and Assur groups in solving order."""
+
+from __future__ import annotations
+
+from linkage_sym.cli.common import load as _load
+
+__all__ = ["cmd_structure", "register"]
+
+
+def cmd_structure(args) -> int:
+    from linkage_sym.structure import decompose, structure_report
+
+    scene = _load(args.scene)
+    print(structure_report(scene, decompose(scene)))
+    return 0
+
+
+
+def register(sub) -> None:
+    """Add the ``structure`` command to the ``linkage-sym`` subparsers ``sub``."""
+    s = sub.add_parser("structure", help="print drivers and Assur groups in solving order")
+    s.add_argument("scene", help="scene JSON file")
+    s.set_defaults(func=cmd_structure)
