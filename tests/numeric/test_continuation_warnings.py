@@ -19,17 +19,13 @@ its limits (``scenes.triad_jump``) keeps one warning per limit.
 from __future__ import annotations
 
 import math
-import os
 import re
-import sys
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, os.path.dirname(__file__))
-
-import scenes  # noqa: E402
-from test_newton_groups import knee_truth  # noqa: E402
+from tests.support import scenes  # noqa: E402
+from tests.numeric.test_newton_groups import knee_truth  # noqa: E402
 
 import linkage_sym  # noqa: E402
 
@@ -79,6 +75,7 @@ def warned_steps(res, kind):
     return [int(re.search(r"at step (\d+)", w).group(1)) for w in res.warnings if kind in w]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", ["dyad", "symbolic"])
 @pytest.mark.parametrize("sweep", [(-180.0, -170.0, 6), (-180.0, 540.0, 721)])
 def test_a_knee_warns_once_per_gap_and_never_of_a_limit_it_does_not_pass(method, sweep):
