@@ -183,6 +183,7 @@ def test_the_shipped_class3_sixbar_agrees_with_the_pose_formulation():
     assert (a.status == "ok").all()
 
 
+@pytest.mark.slow
 @settings(**SETTINGS)
 @given(j=wide_jitter)
 def test_random_triads_agree_with_the_pose_formulation(j):
@@ -199,6 +200,7 @@ def test_the_printing_mechanism_agrees_with_the_pose_formulation():
         assert (a.status == "ok").all()
 
 
+@pytest.mark.slow
 @settings(**SETTINGS)
 @given(j=st.tuples(*[st.floats(-0.06, 0.06, allow_nan=False)] * 8,
                    st.floats(-0.5, 0.5, allow_nan=False)))
@@ -235,6 +237,7 @@ def test_the_hydraulic_boom_agrees_with_the_pose_formulation():
     assert (a.status == "ok").all()
 
 
+@pytest.mark.slow
 @settings(**{**SETTINGS, "max_examples": 4})
 @given(j=st.tuples(*[st.floats(-0.12, 0.12, allow_nan=False)] * 6), long=st.booleans())
 def test_random_knees_agree_with_the_pose_formulation(j, long):
