@@ -157,6 +157,7 @@ def _steps_of(d, steps):
 
 # -- the knee linkage against its closed form --------------------------------------------------
 
+@pytest.mark.slow
 @settings(**SETTINGS)
 @given(j=knee_points)
 def test_knee_linkage_both_methods_match_the_closed_form(j):
@@ -181,6 +182,7 @@ def test_knee_linkage_both_methods_match_the_closed_form(j):
     assert_same(results["dyad"], results["symbolic"], "dyad vs symbolic", size=L)
 
 
+@pytest.mark.slow
 @settings(**SETTINGS)
 @given(j=knee_points)
 def test_knee_linkage_rotation_across_a_gap_is_the_nearest_value(j):
