@@ -1,6 +1,6 @@
 """Newton groups solved many path points at once: the same results as point by point.
 
-:mod:`linkage_sym.numeric.batched_path` walks the continuation policy of
+:mod:`linkage_sym.numeric.continuation.batched_path` walks the continuation policy of
 :mod:`linkage_sym.numeric.continuation` on blocks of points; the point-by-point
 walk stays (``continuation.BATCHED = False``).  Checked here, on the shipped
 examples with Newton groups (the class-III six-bar, the printing mechanism of
@@ -59,8 +59,10 @@ import linkage_sym  # noqa: E402
 from linkage_sym.errors import SceneError  # noqa: E402
 from example_sets import symbolic_examples  # noqa: E402
 from linkage_sym.examples import example_path  # noqa: E402
-from linkage_sym.numeric import batched_path, continuation, newton  # noqa: E402
-from linkage_sym.numeric.newton import NewtonSolver  # noqa: E402
+from linkage_sym.numeric.continuation import batched_path  # noqa: E402
+from linkage_sym.numeric import continuation  # noqa: E402
+from linkage_sym.numeric.kinematics import newton  # noqa: E402
+from linkage_sym.numeric.kinematics.newton import NewtonSolver  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 
 TOL = 1e-10

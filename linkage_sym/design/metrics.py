@@ -28,7 +28,7 @@
                             where it has no value, ``K_note`` says which of
                             :data:`K_NOTES` failed (empty where ``K`` has a value)
 ``min_transmission_deg``    the smallest ``min(gamma, 180 - gamma)`` of every RRR dyad's
-                            transmission angle (:mod:`linkage_sym.numeric.transmission`) over
+                            transmission angle (:mod:`linkage_sym.numeric.results.transmission`) over
                             the steps with positions (degrees)
 ``peak_driving``            per driver: largest ``|effort|`` over the ``ok`` steps (N m or N)
 ``rms_driving``             per driver: root mean square of the effort over the ``ok`` steps
@@ -57,7 +57,7 @@ import numpy as np
 
 from linkage_sym.design.errors import SweepError
 from linkage_sym.model import GROUND
-from linkage_sym.numeric.transmission import rrr_dyads
+from linkage_sym.numeric.results.transmission import rrr_dyads
 from linkage_sym.structure.grashof import classify, four_bar_loops
 from linkage_sym.structure.parameters import ParameterTable, evaluate
 

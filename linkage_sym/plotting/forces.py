@@ -13,8 +13,8 @@ Three figures of a force analysis:
   *shaking moment* and are labelled so.
 
 This module only draws results: it reads
-:attr:`Analysis.forces <linkage_sym.numeric.result.Analysis.forces>` (a
-:class:`~linkage_sym.numeric.result.Forces`) and never solves anything.
+:attr:`Analysis.forces <linkage_sym.numeric.results.result.Analysis.forces>` (a
+:class:`~linkage_sym.numeric.results.result.Forces`) and never solves anything.
 Steps that are not ``ok`` are NaN in the results: they break the curves, and
 on plots against the driver they are also shaded and labelled.
 """
@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from linkage_sym.model import Scene
-from linkage_sym.numeric.result import Analysis
+from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.plotting import style
 from linkage_sym.plotting.motion import driver_axis
 
@@ -133,7 +133,7 @@ def driving_effort_figure(scene: Scene, analysis: Analysis):
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.forces` set.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.forces` set.
 
     Returns
     -------
@@ -213,7 +213,7 @@ def driving_effort(scene: Scene, analysis: Analysis, path) -> Path:
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.forces` set.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.forces` set.
     path : str or os.PathLike
         PNG file to write; its folder is created if needed.
 
@@ -320,7 +320,7 @@ def reaction_hodographs_figure(scene: Scene, analysis: Analysis, joints=None):
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.forces` set.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.forces` set.
     joints : sequence of str, optional
         Joints to draw, in this order; default every joint with a reaction,
         in scene order.
@@ -400,7 +400,7 @@ def reaction_hodographs(scene: Scene, analysis: Analysis, path, joints=None) -> 
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.forces` set.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.forces` set.
     path : str or os.PathLike
         PNG file to write; its folder is created if needed.
     joints : sequence of str, optional
@@ -424,7 +424,7 @@ def frame_loads_figure(scene: Scene, analysis: Analysis):
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.forces` set.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.forces` set.
 
     Returns
     -------
@@ -500,7 +500,7 @@ def frame_loads(scene: Scene, analysis: Analysis, path) -> Path:
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.forces` set.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.forces` set.
     path : str or os.PathLike
         PNG file to write; its folder is created if needed.
 
