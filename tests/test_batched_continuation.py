@@ -61,6 +61,7 @@ from example_sets import symbolic_examples  # noqa: E402
 from linkage_sym.examples import example_path  # noqa: E402
 from linkage_sym.numeric.continuation import batched_path  # noqa: E402
 from linkage_sym.numeric import continuation  # noqa: E402
+from linkage_sym.numeric.continuation import roots  # noqa: E402
 from linkage_sym.numeric.kinematics import newton  # noqa: E402
 from linkage_sym.numeric.kinematics.newton import NewtonSolver  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
@@ -311,9 +312,9 @@ def test_the_root_search_reaches_the_same_roots_from_seeds_moved_by_rounding(cas
     for k, search in enumerate(searches[:: max(1, len(searches) // 12)]):
         assert flips(*search) == 0, (case, k)
     if case == "near-degenerate triad":
-        monkeypatch.setattr(continuation, "SEARCH_STEP", math.inf)
-        monkeypatch.setattr(continuation, "SEARCH_ITER", 30)
-        monkeypatch.setattr(continuation, "TURNED_SEEDS", 16)
+        monkeypatch.setattr(roots, "SEARCH_STEP", math.inf)
+        monkeypatch.setattr(roots, "SEARCH_ITER", 30)
+        monkeypatch.setattr(roots, "TURNED_SEEDS", 16)
         assert flips(*searches[0], repeats=20) > 0
 
 
