@@ -326,10 +326,10 @@ def test_positions_whose_four_bar_leaves_the_scene_limits_are_refused(capsys, tm
 
 @pytest.mark.parametrize("args", [
     ["synthesize", "slider-crank", "--K", "1.2", "--stroke", "1e29"],
-    ["synthesize", "slider-crank", "--K", "2.9999999999", "--stroke", "1e-29"],
+    ["synthesize", "slider-crank", "--K", "2.99", "--stroke", "1e-29"],
     ["synthesize", "crank-rocker", "--K", "1.5", "--rocker", "1e-29", "--swing-deg", "45"],
     ["synthesize", "guide-bar", "--K", "1.0000000013", "--ground", "0.1"],
-    ["synthesize", "guide-bar", "--K", "2.2e6", "--ground", "1e30"],
+    ["synthesize", "guide-bar", "--K", "1e4", "--ground", "1e30"],
     ["new", "fourbar", "--crank", "1e-30", "--coupler", "3e-30", "--rocker", "3e-30",
      "--ground", "3.5e-30", "--crank-deg", "999640"],
 ])
@@ -349,3 +349,16 @@ def test_the_synthesis_limits_are_the_scene_formats():
     assert common.MIN_LENGTH == validate.MIN_SIZE
     assert common.COINCIDENCE == validate.COINCIDENCE_TOLERANCE
     assert common.MAX_SPREAD == validate.MAX_SPREAD
+
+
+@pytest.mark.parametrize("args, option", [
+    (["synthesize", "guide-bar", "--K", "2200000", "--ground", "0.0307"], "--K"),
+    (["synthesize", "slider-crank", "--K", "2.2892", "--stroke", "0.238", "--offset=-2.4e-13"],
+     "--offset"),
+])
+def test_a_K_the_scene_cannot_hold_is_refused(capsys, tmp_path, args, option):
+    """Issue 27: these wrote scenes whose K was 1.6e-6 and 4.3e-5 off the request."""
+    err = refused(capsys, tmp_path, *args)
+    assert err.startswith(f"linkage-sym synthesize: {option}: the linkage's joint coordinates "
+                          "(float64) do not hold K = "), err
+    assert "its limit positions give K = " in err

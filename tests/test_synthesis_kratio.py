@@ -13,6 +13,7 @@ criterion (C1 and C2 on one side of AD) evaluated here.
 """
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -339,3 +340,69 @@ def test_refusals_name_the_field_and_the_reason(call, field, words):
         call()
     assert err.value.field == field
     assert words in err.value.reason, err.value.reason
+
+
+# ------------------------------------------------------------------ the scene holds K (issue 27)
+
+
+def mp_scene_K(scene):
+    """``K`` of a scene's coordinates as written, in 50-digit arithmetic: the textbook's
+    extreme-position angle ``theta`` from the limit positions (crank and coupler in line),
+    ``K = (pi + theta) / (pi - theta)``; for a guide-bar the guide's swing
+    ``theta = 2 asin(a / d)``."""
+    import mpmath as mp
+
+    with mp.workdps(50):
+        P = {j["name"]: (mp.mpf(j["at"][0]), mp.mpf(j["at"][1])) for j in scene["joints"]}
+        dist = lambda p, q: mp.sqrt((p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2)  # noqa: E731
+        a = dist(P["A"], P["B"])
+        if "D" in P and "C" not in P:  # guide-bar
+            theta = 2 * mp.asin(a / dist(P["A"], P["D"]))
+        elif "D" not in P:  # slider-crank, slide along x
+            b, e = dist(P["B"], P["C"]), P["C"][1] - P["A"][1]
+            theta = abs(mp.asin(e / (b - a)) - mp.asin(e / (b + a)))
+        else:  # crank-rocker: the angles C1 A D and C2 A D by the law of cosines
+            b, c, d = dist(P["B"], P["C"]), dist(P["C"], P["D"]), dist(P["A"], P["D"])
+            g = [mp.acos((d ** 2 + r ** 2 - c ** 2) / (2 * d * r)) for r in (b + a, b - a)]
+            theta = abs(g[0] - g[1])
+        return float((mp.pi + theta) / (mp.pi - theta))
+
+
+REQUESTS_MET = [
+    lambda: kratio.guide_bar(2.0, 0.4), lambda: kratio.guide_bar(1000.0, 0.0307),
+    lambda: kratio.slider_crank(1.4, 0.1, offset=0.02), lambda: kratio.slider_crank(2.2892, 0.238),
+    lambda: kratio.slider_crank(2.2892, 0.238, offset=-0.01),
+    lambda: kratio.crank_rocker(1.4, 0.05, 40.0), lambda: kratio.crank_rocker(1.2, 0.05, 40.0, ground=0.09),
+]
+
+
+@pytest.mark.parametrize("call", REQUESTS_MET)
+def test_scene_K_is_the_coordinates_K(call):
+    """:func:`kratio.scene_K` against the 50-digit closed form of the same coordinates
+    (1e-12: float64 rounding of a well-conditioned evaluation), and both against the
+    request (``K_RTOL``)."""
+    design = call()
+    ref = mp_scene_K(design.scene)
+    assert abs(kratio.scene_K(design) - ref) <= 1e-12 * ref
+    assert abs(ref - design.K) <= kratio.K_RTOL * design.K
+
+
+@pytest.mark.parametrize("call, field, K", [
+    # the guide-bar's crank within a few ulp of the frame distance
+    (lambda: kratio.guide_bar(2200000, 0.0307), "K", 2.2e6),
+    # a tiny offset: crank and connecting rod equal to 1e-12, K rests on their difference
+    (lambda: kratio.slider_crank(2.2892, 0.238, offset=-2.4e-13), "offset", 2.2892),
+    # theta within 1e-10 of 90 degrees: asin(e / (b - a)) at 1
+    (lambda: kratio.slider_crank(2.9999999999, 1e-29), "K", 2.9999999999),
+])
+def test_a_request_the_scene_cannot_hold_is_refused_with_the_K_it_would_have(monkeypatch, call,
+                                                                               field, K):
+    with pytest.raises(SynthesisError) as err:
+        call()
+    assert err.value.field == field
+    got = float(re.search(r"limit positions give K = ([0-9.e+-]+)", err.value.reason).group(1))
+    # the scene it would have written (the check switched off), by the 50-digit closed form
+    monkeypatch.setattr(kratio, "K_RTOL", math.inf)
+    ref = mp_scene_K(call().scene)
+    assert abs(ref - K) > 1e-9 * K  # the request really is not met
+    assert abs(got - ref) <= 1e-9 * ref  # the message's K is the scene's (10 digits printed)

@@ -54,6 +54,7 @@ import numpy as np
 
 from linkage_sym.balancing.counterweight import as_scene, check_counterweights
 from linkage_sym.model import OUTPUTS, Effects
+from linkage_sym.numeric.results.cycle_average import counted_steps, whole_period
 from linkage_sym.numeric.plan import compile_plan
 from linkage_sym.numeric.engine.sweep import scene_sweep
 from linkage_sym.structure.parameters import link_frames
@@ -97,7 +98,16 @@ class CycleModel:
     status : ndarray of str (N,)
         Status of every step (``"ok"`` or why not).
     ok : ndarray of bool (N,)
-        Steps solved at every stage (the only ones counted by :meth:`rms`).
+        Steps solved at every stage.
+    periodic : bool
+        The sweep is a whole period
+        (:func:`~linkage_sym.numeric.results.cycle_average.whole_period`): its last
+        step repeats its first.
+    counted : ndarray of bool (N,)
+        The steps every cycle average (:meth:`rms`, :meth:`mean_square_factors`,
+        :attr:`gross`) counts: the ``ok`` ones, the repeated end point of a
+        whole period once
+        (:func:`~linkage_sym.numeric.results.cycle_average.counted_steps`).
     n_steps : int
         Number of steps of the sweep.
     n_excluded : int
@@ -140,6 +150,8 @@ class CycleModel:
         self.status = an.status.copy()
         self.status[~ok & (self.status == "ok")] = "inconsistent"
         self.ok = ok
+        self.periodic = whole_period(scene)
+        self.counted = counted_steps(ok, self.periodic)
         self.n_steps = N
         self.n_excluded = int((~ok).sum())
         self.analysis = an
@@ -197,7 +209,7 @@ class CycleModel:
         for k, dname in enumerate(self.drivers):
             Y0[3 + k] = own.forces.driving[dname]
         self._B, self._Y0 = B, Y0
-        okc = self.ok
+        okc = self.counted
         self._Bok = B[:, okc, :]
         self._Y0ok = Y0[:, okc]
         # the links' own mass distributions as (mu, s_x, s_y, J) about u: gross scales
@@ -275,7 +287,7 @@ class CycleModel:
         }
 
     def rms(self, counterweights) -> dict:
-        """RMS over the ``ok`` steps of the series of :meth:`evaluate`.
+        """RMS over the cycle (the :attr:`counted` steps) of the series of :meth:`evaluate`.
 
         Returns
         -------
@@ -287,7 +299,7 @@ class CycleModel:
         return self._rms_of(self._series(self.parameters(counterweights), ok_only=True))
 
     def mean_square_factors(self, links) -> dict:
-        """Each term's mean square over the ``ok`` steps as a quadratic form in the counterweights.
+        """Each term's mean square over the cycle as a quadratic form in the counterweights.
 
         Parameters
         ----------
@@ -299,13 +311,14 @@ class CycleModel:
         dict
             ``{term: R}`` for the terms of :data:`TERMS` (``force``,
             ``moment``, ``driving``): ``R`` is triangular with ``4 n + 1``
-            columns, and ``|R @ x|^2`` is the mean over the ``ok`` steps of
-            the term's square (``|F|^2``, ``M^2``, the sum of the efforts'
-            squares) with counterweights whose :meth:`parameters` on
-            ``links`` (in that order) are ``p``, where ``x = (p, 1)``.  So
-            :meth:`rms` is ``|R @ x|`` at a cost that does not depend on the
-            number of steps: the QR factorisation of ``[B, Y0] / sqrt(N_ok)``
-            is done once here.
+            columns, and ``|R @ x|^2`` is the mean over the cycle (the
+            :attr:`counted` steps) of the term's square (``|F|^2``, ``M^2``,
+            the sum of the efforts' squares) with counterweights whose
+            :meth:`parameters` on ``links`` (in that order) are ``p``, where
+            ``x = (p, 1)``.  So :meth:`rms` is ``|R @ x|`` at a cost that
+            does not depend on the number of steps: the QR factorisation of
+            ``[B, Y0] / sqrt(N_c)`` over the ``N_c`` counted steps is done
+            once here.
         """
         idx = [self.links.index(n) for n in links]
         cols = np.concatenate([np.arange(4 * i, 4 * i + 4) for i in idx])

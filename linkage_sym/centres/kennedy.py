@@ -113,6 +113,11 @@ class KennedyCentres:
         Per pair: ``"joint A"``, ``"joint S (slide)"``, ``"pin of joints C, C2"``,
         ``"three-centre lines"`` or ``"unreachable"`` (the three-centre lines
         run out: no two triangles of known centres close on the pair).
+    pinned : ndarray of bool, shape (P,)
+        Whether the pair's links share a pin (an ``R`` joint between them, or a
+        pin shared by several links): the pin is a point of zero relative
+        velocity at every step, so it is their centre even at a step where
+        they are at rest relative to each other.
     """
 
     links: tuple
@@ -125,6 +130,7 @@ class KennedyCentres:
     via: np.ndarray
     weakest: np.ndarray
     source: tuple
+    pinned: np.ndarray
 
     def index(self, a: str, b: str) -> int:
         """Index into :attr:`pairs` of the unordered pair ``{a, b}``.
@@ -267,6 +273,7 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
     weak = np.full((n, n, N), np.nan)
     via = np.full((n, n, N, 2), -1, dtype=int)
     source: dict = {}
+    pinned: set = set()
 
     def put(a, b, h, err, what, at=None):
         weak[a, b] = weak[b, a] = np.where(np.all(np.isfinite(h), axis=-1), np.pi / 2, np.nan)
@@ -288,6 +295,7 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
             if not known[a, b]:
                 at = np.asarray(analysis.joints[joint.name].position, dtype=float)
                 put(a, b, *finite(at), f"joint {joint.name}", at)
+                pinned.add((min(a, b), max(a, b)))
     for joint in scene.joints:  # a gear mesh rolls without slip: its pitch point (Fig. 3-3c)
         if joint.type == "G":
             a, b = idx[joint.links[0]], idx[joint.links[1]]
@@ -313,6 +321,7 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
             for b in members:
                 if a < b and not known[a, b]:
                     put(a, b, *where, label, at)
+                    pinned.add((a, b))
 
     for joint in scene.joints:  # a cam contact's centre: on the contact normal (Kennedy)
         if joint.type == "cam":
@@ -415,6 +424,7 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
         via=np.stack([via[i, j] for i, j in P], axis=1),
         weakest=np.stack([weak[i, j] for i, j in P], axis=1),
         source=tuple(source.get(p, "unreachable") for p in P),
+        pinned=np.array([p in pinned for p in P], dtype=bool),
     )
 
 

@@ -6,8 +6,10 @@ construction (:mod:`linkage_sym.centres.kennedy`); a pair that construction
 cannot reach is filled from the velocity fields
 (:mod:`linkage_sym.centres.velocity`) and marked; a pair whose links are at
 rest relative to each other at that step has no centre (every point would be
-one) and is reported ``undefined``.  The result's ``instant_centres`` output
-(an extension of the scene format) is :meth:`InstantCentres.records`.
+one) and is reported ``undefined``, unless they share a pin: the pin has no
+relative velocity at any step, so it is their centre then too.  The result's
+``instant_centres`` output (an extension of the scene format) is
+:meth:`InstantCentres.records`.
 """
 
 from __future__ import annotations
@@ -181,7 +183,8 @@ def instant_centres(scene, analysis) -> InstantCentres:
 
     Kennedy's construction gives them (it is the default); the velocity
     method fills the pairs Kennedy cannot reach (marked), and says where two
-    links are at rest relative to each other (``undefined``).
+    links are at rest relative to each other (``undefined``; two links that
+    share a pin keep the pin as their centre).
 
     Parameters
     ----------
@@ -214,7 +217,8 @@ def instant_centres(scene, analysis) -> InstantCentres:
         v = velocity_centres(analysis)
         if v.pairs != k.pairs:  # both list ground first, then the links in scene order
             raise ValueError(f"the analysis' links {v.links} are not the scene's {k.links}")
-        undefined = v.undefined & rates[:, None]
+        # a pin is a centre of its links at every step, at relative rest too
+        undefined = v.undefined & rates[:, None] & ~k.pinned[None, :]
     else:
         v = None
         undefined = np.zeros((N, P), dtype=bool)

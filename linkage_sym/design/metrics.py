@@ -31,9 +31,10 @@
                             transmission angle (:mod:`linkage_sym.numeric.results.transmission`) over
                             the steps with positions (degrees)
 ``peak_driving``            per driver: largest ``|effort|`` over the ``ok`` steps (N m or N)
-``rms_driving``             per driver: root mean square of the effort over the ``ok`` steps
+``rms_driving``             per driver: root mean square of the effort over the cycle (the
+                            ``ok`` steps, a whole period's repeated end point once)
 ``peak_reaction``           per joint: largest reaction magnitude over the ``ok`` steps (N)
-``rms_shaking_force``       RMS over the ``ok`` steps of ``|sum m a_G|`` (N): the frame force
+``rms_shaking_force``       RMS over the cycle of ``|sum m a_G|`` (N): the frame force
                             with inertia as the only effect
 ``rms_shaking_moment``      RMS of the shaking moment about the origin, ``-dH_O/dt`` (N m)
 ``path``                    a traced point's ``x``, ``y`` at every step with positions: ``ok``
@@ -47,6 +48,12 @@ empty (NaN) only where the design has no step it is computed from: every metric
 but ``grashof`` and ``K_note`` of a design that cannot be assembled (``assemblable``
 0), the force, shaking and path metrics of a design without an ``ok`` step, ``K``
 for the reason ``K_note`` gives.
+
+The ``rms_*`` metrics are cycle averages
+(:func:`~linkage_sym.numeric.results.cycle_average.cycle_rms`): when the sweep is a whole period
+(:func:`~linkage_sym.numeric.results.cycle_average.whole_period`, e.g. 0 to 360 degrees) its last
+step repeats its first and is counted once; any other sweep is averaged over its steps as
+given.
 """
 
 from __future__ import annotations
@@ -57,6 +64,7 @@ import numpy as np
 
 from linkage_sym.design.errors import SweepError
 from linkage_sym.model import GROUND
+from linkage_sym.numeric.results.cycle_average import cycle_rms, whole_period
 from linkage_sym.numeric.results.transmission import rrr_dyads
 from linkage_sym.structure.grashof import classify, four_bar_loops
 from linkage_sym.structure.parameters import ParameterTable, evaluate
@@ -96,13 +104,6 @@ def _fmax(a):
 
 def _fmin(a):
     return np.fmin.reduce(a, axis=1) if a.shape[1] else np.full(len(a), np.nan)
-
-
-def _rms(v, ok):
-    cnt = ok.sum(axis=1)
-    s = np.where(ok, v * v, 0.0).sum(axis=1)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(cnt > 0, np.sqrt(s / np.maximum(cnt, 1)), np.nan)
 
 
 def refuse_meshes(scene) -> None:
@@ -254,6 +255,7 @@ class MetricPlan:
         """The metric columns (arrays of the chunk's designs) of a :class:`Solution`."""
         cols = {}
         ok = sol.ok
+        periodic = whole_period(self.scene)
         for m in self.metrics:
             if m == "assemblable":
                 cols[m] = ok.sum(axis=1) / sol.N
@@ -268,15 +270,15 @@ class MetricPlan:
                 for d in self.scene.drivers:
                     e = np.where(ok, sol.effort(d.joint), np.nan)
                     cols[f"{m}_{d.joint}"] = (_fmax(np.abs(e)) if m == "peak_driving"
-                                              else _rms(e, ok))
+                                              else cycle_rms(e, ok, periodic))
             elif m == "peak_reaction":
                 for j in self.scene.joints:
                     cols[f"peak_reaction_{j.name}"] = _fmax(np.where(ok, sol.reaction(j.name), np.nan))
             elif m in ("rms_shaking_force", "rms_shaking_moment"):
                 if "rms_shaking_force" not in cols:
                     fx, fy, mz = self._shaking(model, sol)
-                    cols["rms_shaking_force"] = _rms(np.hypot(fx, fy), ok)
-                    cols["rms_shaking_moment"] = _rms(mz, ok)
+                    cols["rms_shaking_force"] = cycle_rms(np.hypot(fx, fy), ok, periodic)
+                    cols["rms_shaking_moment"] = cycle_rms(mz, ok, periodic)
             elif m == "path":
                 cols.update(self._path(model, sol))
         return {c: cols[c] for c in self.columns(sol.N)}

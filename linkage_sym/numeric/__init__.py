@@ -8,7 +8,8 @@ import contract):
 ``results``
     ``result`` (``Analysis`` and its JSON), ``strict_json`` (non-finite values
     left out), ``accuracy`` (per-step relative accuracy), ``transmission``
-    (transmission angles), ``wording`` (how warnings name steps).
+    (transmission angles), ``cycle_average`` (averages over a sweep's cycle),
+    ``wording`` (how warnings name steps).
 ``continuation``
     The Newton continuation policy both runtimes call (this plan and
     :mod:`linkage_sym.codegen.runtime`): the walk along the path (the

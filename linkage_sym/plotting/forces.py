@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from linkage_sym.model import Scene
+from linkage_sym.numeric.results.cycle_average import cycle_rms, whole_period
 from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.plotting import style
 from linkage_sym.plotting.motion import driver_axis
@@ -67,13 +68,15 @@ def _finite(values) -> np.ndarray:
     return v[np.isfinite(v)]
 
 
-def _stats(values) -> tuple[float, float, int] | None:
-    """``(rms, signed peak, step of the peak)`` over the finite values, or None."""
+def _stats(values, periodic: bool) -> tuple[float, float, int] | None:
+    """``(rms, signed peak, step of the peak)`` over the finite values, or None; the RMS
+    over the cycle (``periodic``: the sweep is a whole period, its repeated end point
+    counted once, :mod:`linkage_sym.numeric.results.cycle_average`)."""
     v = np.asarray(values, dtype=float)
     good = np.isfinite(v)
     if not good.any():
         return None
-    rms = float(np.sqrt(np.mean(v[good] ** 2)))
+    rms = float(cycle_rms(v, good, periodic))
     k = int(np.nanargmax(np.where(good, np.abs(v), -np.inf)))
     return rms, float(v[k]), k
 
@@ -166,7 +169,7 @@ def driving_effort_figure(scene: Scene, analysis: Analysis):
                 between = f" ({on[0]} on {on[1]})"
             except KeyError:
                 between = ""
-            st = _stats(values)
+            st = _stats(values, whole_period(scene))
             if st is None:
                 label = f"{sym} at {name}{between}: no solved step"
             else:
@@ -365,7 +368,7 @@ def reaction_hodographs_figure(scene: Scene, analysis: Analysis, joints=None):
             head = name
         tail = f"peak |R| = {style.fmt_number(peak)} N" if peak is not None else "no solved step"
         if joint is not None and joint.type == "P" and name in forces.reaction_moments:
-            st = _stats(forces.reaction_moments[name])
+            st = _stats(forces.reaction_moments[name], whole_period(scene))
             if st is not None:
                 tail += f", |M| ≤ {style.fmt_number(abs(st[1]))} N·m"
         ax.set_title(f"{head}\n{tail}", fontsize=9, pad=10)
@@ -453,7 +456,7 @@ def frame_loads_figure(scene: Scene, analysis: Analysis):
                  bbox_to_anchor=(0.5, -0.08), ncols=2, fontsize=8, frameon=False)
 
     moment = np.asarray(forces.frame_moment, dtype=float)
-    st = _stats(moment)
+    st = _stats(moment, whole_period(scene))
     if st is None:
         label = f"{mword}: no solved step"
     else:

@@ -36,7 +36,10 @@ and slides) -- hand this module a :class:`~.roots.Problem` and get the same poli
   gap).  More than one such root is reported as an ambiguous assembly mode.
   The same happens where the continuation stops at a limit: if a root of the
   assembly sign exists past it, the group goes on there (the assembly mode is
-  the determinant sign, as for a closed-form dyad) and the jump is reported.
+  the determinant sign, as for a closed-form dyad) and the jump is reported,
+  once per limit: a search that only finds the last configuration continued
+  (its angles a whole turn off the representation the equations hold, after an
+  earlier search) is no jump, and is not reported (:func:`_turned_continuation`).
 
 **Many points at once.**  By default (:data:`BATCHED`) :func:`solve_path`
 hands continuous stretches and gaps to :mod:`linkage_sym.numeric.continuation.batched_path`,
@@ -58,9 +61,12 @@ searches), :mod:`~.batched_path` (many points at once) and :mod:`~.messages`
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from linkage_sym.numeric.continuation.roots import (  # noqa: F401 -- the policy's names, used by both runtimes
+    SAME_ROOT,
     TOL,
     Problem,
     Solution,
@@ -77,6 +83,50 @@ BATCHED = True
 (:mod:`linkage_sym.numeric.continuation.batched_path`: the same policy and the same results)
 or point after point.  The point-by-point walk stays for comparison and for
 problems without :meth:`Problem.evaluate_points`."""
+
+
+def _turned_continuation(problem: Problem, u_last, a, b, sign, u) -> bool:
+    """Whether the root ``u`` found at inputs ``b`` is the continuation of the solved point
+    ``u_last`` at inputs ``a``, up to whole turns of its angles.
+
+    A root search shifts each angle by whole turns to the value nearest the last solved
+    configuration (:func:`distinct_roots`); where the group's equations are not periodic
+    in every angle (a driver row on a relative angle) that representation does not solve
+    them, and a continuation from it converges to the same configuration a turn away and
+    is refused at once, at every point after such a search.  So when the continuation
+    could not take even its first sub-step, ``u_last`` is put back on its equations (one
+    angle turned by up to :data:`_TURNS` whole turns, the representation whose residual
+    at ``a`` is within :data:`TOL`) and continued again; if that reaches ``u`` up to whole
+    turns (within :data:`SAME_ROOT`), the group passed no limit or singular position in
+    the interval, and there is nothing to warn of.
+    """
+    u_last = np.array(u_last, dtype=float)
+    r, _ = problem.evaluate(u_last, a)
+    if not float(np.linalg.norm(r)) > TOL:
+        return False  # it solves its equations: the continuation failed for another reason
+    v = None
+    for i in np.flatnonzero(problem.angles):
+        for n in (1, -1, 2, -2)[:2 * _TURNS]:
+            w = u_last.copy()
+            w[i] += 2 * math.pi * n
+            rw, Jw = problem.evaluate(w, a)
+            if float(np.linalg.norm(rw)) <= TOL and det_sign(Jw) == sign:
+                v = w
+                break
+        if v is not None:
+            break
+    if v is None:
+        return False
+    w, _, t = continue_to(problem, v, a, b, sign)
+    if t is not None:
+        return False
+    d = np.asarray(u, dtype=float) - w
+    d[problem.angles] -= 2 * math.pi * np.round(d[problem.angles] / (2 * math.pi))
+    return bool(np.all(np.isfinite(d))) and float(np.max(np.abs(d), initial=0.0)) <= SAME_ROOT
+
+
+_TURNS = 2
+"""Whole turns (either way) tried on each angle by :func:`_turned_continuation`."""
 
 
 class Walk:
@@ -98,6 +148,7 @@ class Walk:
         self.before = None  # u at the point before ``last`` when consecutive with it
         self.stop = None  # the configuration where the continuation stopped (a limit)
         self.stretch = None  # first point of the continuous stretch that ends at ``last``
+        self.jumped = None  # the last point reached by a root search, not by continuation
 
     def last_inputs(self):
         i, u, ctx = self.last
@@ -145,7 +196,10 @@ class Walk:
             if same:
                 u, J = same[0]
                 ok = True
-                sol.notes.append((i, limit, len(same)))
+                self.jumped = i
+                if not (limit == 0.0 and _turned_continuation(problem, last[1], self.last_inputs(),
+                                                              ctx, sign, u)):
+                    sol.notes.append((i, limit, len(same)))
             elif limit is not None:
                 sol.failures[i] = ("limit", limit)
             else:
@@ -156,9 +210,7 @@ class Walk:
         sol.indicator[i] = indicator(J[None])[0]
         sol.u[i] = u
         # the predictor extrapolates only along a continuous stretch
-        continued = i > 0 and last is not None and last[0] == i - 1 and not (
-            sol.notes and sol.notes[-1][0] == i
-        )
+        continued = i > 0 and last is not None and last[0] == i - 1 and self.jumped != i
         self.before = last[1] if continued else None
         if not continued:
             self.stretch = i

@@ -2,6 +2,6 @@
 
 ``result`` (``Analysis`` and its JSON), ``strict_json`` (values that are not
 finite left out, and named), ``accuracy`` (per-step relative accuracy),
-``transmission`` (transmission angles), ``wording`` (how warnings name
-steps).  It imports nothing else of the numeric core.
+``transmission`` (transmission angles), ``cycle_average`` (averages over a
+sweep's cycle), ``wording`` (how warnings name steps).  It imports nothing else of the numeric core.
 """
