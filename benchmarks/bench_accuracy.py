@@ -64,7 +64,9 @@ import linkage_sym  # noqa: E402
 from bench_kinematics import steady_heap  # noqa: E402  (same folder)
 from linkage_sym.codegen.compile import compile_mechanism  # noqa: E402
 from linkage_sym.codegen.precision import PreciseMechanism  # noqa: E402
-from linkage_sym.numeric import accuracy, continuation  # noqa: E402
+from linkage_sym.numeric.results import accuracy  # noqa: E402
+from linkage_sym.numeric import continuation  # noqa: E402
+from linkage_sym.numeric.continuation import roots  # noqa: E402
 from linkage_sym.numeric.extremes import find_extremes  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 from linkage_sym.scene import load_scene  # noqa: E402
@@ -195,12 +197,12 @@ def with_tolerance(fn, tol):
     """``fn`` run with the Newton groups' convergence tolerance ``tol``."""
 
     def run():
-        saved = continuation.TOL
-        continuation.TOL = tol
+        saved = continuation.TOL  # the walk's first point reads it here, Newton in roots
+        continuation.TOL = roots.TOL = tol
         try:
             return fn()
         finally:
-            continuation.TOL = saved
+            continuation.TOL = roots.TOL = saved
 
     return run
 

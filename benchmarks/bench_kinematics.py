@@ -23,7 +23,7 @@ Three states are measured:
   (cold) call and the best of the following calls, with the minor page
   faults of the first and of a warm call, and the bytes a call allocates
   (tracemalloc: what the result keeps, and the peak).  ``compile_plan``
-  warms the memory a run takes (:func:`linkage_sym.numeric.block.warm`);
+  warms the memory a run takes (:func:`linkage_sym.numeric.engine.block.warm`);
   ``linkage_sym_unwarmed`` is the same plan compiled without that, so the
   compile time it adds and the first call it saves are measured in one run.  Whether glibc keeps the heap depends on
   its layout after the imports, which varies between interpreters, so each
@@ -51,7 +51,7 @@ Contenders:
 * six-bar (the shipped Watt six-bar), 3600 and 100,000 steps.
 * the class-III six-bar (a Newton group), 3600 steps, in both runtimes
   (``Plan.run`` and ``CompiledMechanism.run``): the batched continuation
-  (:mod:`linkage_sym.numeric.batched_path`) and the point-by-point walk, in
+  (:mod:`linkage_sym.numeric.continuation.batched_path`) and the point-by-point walk, in
   the same run, against the Watt six-bar in the same runtime (target: within
   10x of it);
 * the printing mechanism, the hydraulic boom and the planetary train (3600
@@ -82,7 +82,7 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 import linkage_sym  # noqa: E402
-from linkage_sym.numeric import block  # noqa: E402
+from linkage_sym.numeric.engine import block  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
@@ -247,7 +247,7 @@ def loop_versus_pose(name, steps=3600, repeats=5):
     group in loop-closure coordinates (angles and slides, the default) and in pose
     coordinates, against the Watt six-bar, kinematics, calls alternating, best of
     ``repeats``; the two formulations are checked to agree first."""
-    from linkage_sym.numeric import loop_closure
+    from linkage_sym.numeric.kinematics import loop_closure
 
     scene = with_outputs(linkage_sym.load_example(name), steps, ("kinematics",))
     six = compile_plan(with_outputs(linkage_sym.load_example("watt_sixbar"), steps,
@@ -301,7 +301,8 @@ def newton_gaps(repeats=2):
     """What unassemblable steps of a Newton group cost: the root searches of the knee
     linkage's gaps (time inside them over the number of unassemblable steps), batched and
     point by point, both runtimes; and the whole run."""
-    from linkage_sym.numeric import batched_path, continuation
+    from linkage_sym.numeric.continuation import batched_path
+    from linkage_sym.numeric import continuation
 
     scene = knee_scene()
     spent = {"search": 0.0}

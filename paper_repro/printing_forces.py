@@ -87,7 +87,7 @@ import printing_mechanism as pm  # noqa: E402
 
 import linkage_sym  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
-from linkage_sym.numeric.superposition import superposition_terms  # noqa: E402
+from linkage_sym.numeric.forces.superposition import superposition_terms  # noqa: E402
 
 COMPONENTS = ("R34n", "R34t", "R53n", "R53t")
 PRINTED_R = {k: pm.PRINTED["results"][k] for k in COMPONENTS}

@@ -54,9 +54,9 @@ import numpy as np
 
 from linkage_sym.balancing.counterweight import as_scene, check_counterweights
 from linkage_sym.model import OUTPUTS, Effects
-from linkage_sym.numeric.cycle_average import counted_steps, whole_period
+from linkage_sym.numeric.results.cycle_average import counted_steps, whole_period
 from linkage_sym.numeric.plan import compile_plan
-from linkage_sym.numeric.sweep import scene_sweep
+from linkage_sym.numeric.engine.sweep import scene_sweep
 from linkage_sym.structure.parameters import link_frames
 
 __all__ = ["TERMS", "CycleModel"]
@@ -101,13 +101,13 @@ class CycleModel:
         Steps solved at every stage.
     periodic : bool
         The sweep is a whole period
-        (:func:`~linkage_sym.numeric.cycle_average.whole_period`): its last
+        (:func:`~linkage_sym.numeric.results.cycle_average.whole_period`): its last
         step repeats its first.
     counted : ndarray of bool (N,)
         The steps every cycle average (:meth:`rms`, :meth:`mean_square_factors`,
         :attr:`gross`) counts: the ``ok`` ones, the repeated end point of a
         whole period once
-        (:func:`~linkage_sym.numeric.cycle_average.counted_steps`).
+        (:func:`~linkage_sym.numeric.results.cycle_average.counted_steps`).
     n_steps : int
         Number of steps of the sweep.
     n_excluded : int

@@ -112,6 +112,30 @@ class InstantCentres:
         sep = "" if len(self.links) < 10 else ","
         return f"P{num[a]}{sep}{num[b]}"
 
+    def columns(self) -> list:
+        """The columns of the ``instant_centres`` records
+        (:meth:`linkage_sym.numeric.results.result.Analysis.columns`).
+
+        Per pair ``a, b`` (in the records' order): ``instant_centres.a.b.position.x``, ``.y``
+        where the record has a ``position``, ``direction.x``, ``.y`` where it is ``at_infinity``
+        (both ``"finite"``: NaN wherever the record has no such number), and two flags at
+        every ``ok`` step, 1 or 0: ``undefined`` (the record says ``undefined``) and
+        ``from_velocities`` (its ``method`` is ``"velocity"``).
+        """
+        rates = np.asarray(self.rates, bool)
+        out = []
+        for k, (a, b) in enumerate(self.pairs):
+            und = self.undefined[:, k]
+            flags = {"undefined": und, "from_velocities": self.from_velocities[:, k] & ~und}
+            p = f"instant_centres.{a}.{b}"
+            out += [(f"{p}.position.x", self.position[:, k, 0], "finite"),
+                    (f"{p}.position.y", self.position[:, k, 1], "finite"),
+                    (f"{p}.direction.x", self.direction[:, k, 0], "finite"),
+                    (f"{p}.direction.y", self.direction[:, k, 1], "finite")]
+            out += [(f"{p}.{name}", np.where(rates, f.astype(float), np.nan), "ok")
+                    for name, f in flags.items()]
+        return out
+
     def records(self, i: int) -> list:
         """The ``instant_centres`` entry of step ``i`` of the result (empty without rates).
 

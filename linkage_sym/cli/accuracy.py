@@ -12,7 +12,7 @@ worst step's accuracy estimate in the summary.
   numeric solver); printed, and written to the result as ``"extremes"`` (an extension
   of the format).
 * the summary's ``accuracy`` line: the largest estimated relative error of any ok step,
-  per field (:mod:`linkage_sym.numeric.accuracy`), tallied over the chunks of the sweep.
+  per field (:mod:`linkage_sym.numeric.results.accuracy`), tallied over the chunks of the sweep.
 """
 
 from __future__ import annotations

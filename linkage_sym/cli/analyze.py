@@ -40,7 +40,7 @@ def summary(scene, analysis) -> list[str]:
     ``analysis``: an ``Analysis``, or the ``SweepStats`` of a sweep solved in
     chunks (``linkage_sym.output``).
     """
-    from linkage_sym.numeric.result import UNASSEMBLABLE
+    from linkage_sym.numeric.results.result import UNASSEMBLABLE
     from linkage_sym.output import SweepStats
     from linkage_sym.output.stats import ranges_text
 

@@ -40,7 +40,7 @@ def cmd_demo(args) -> int:
     _check_outputs(folders=[("-o/--output", args.output)])
     from linkage_sym.model import Effects
     from linkage_sym.numeric.plan import compile_plan
-    from linkage_sym.numeric.result import UNASSEMBLABLE
+    from linkage_sym.numeric.results.result import UNASSEMBLABLE
     from linkage_sym.output.stats import ranges_text, step_ranges
     from linkage_sym.plotting import frame_loads, plot_all
 

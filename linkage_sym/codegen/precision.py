@@ -41,7 +41,7 @@ float64's rounded driver value kept a tangency's width away) -- singular, positi
 only.  At the ``ok`` steps every value is then the
 mpmath value rounded once to float64 (traced points and link origins are computed in
 mpmath from the link's rotation too).  The result is the same
-:class:`~linkage_sym.numeric.result.Analysis` as every other method's, with
+:class:`~linkage_sym.numeric.results.result.Analysis` as every other method's, with
 ``forces.method == "mpmath"``; :class:`PreciseResult` keeps the unrounded values.
 
 The functions are the ones :func:`linkage_sym.codegen.compile.build_artifact` generates
@@ -62,10 +62,10 @@ from linkage_sym.codegen import cache
 from linkage_sym.codegen.compile import build_artifact, compile_mechanism
 from linkage_sym.codegen.runtime import CompiledMechanism
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric import accuracy
-from linkage_sym.numeric.loads import load_factor
-from linkage_sym.numeric.result import OK, SINGULAR, UNASSEMBLABLE, GroupForces
-from linkage_sym.numeric.sweep import SINGULAR_COND
+from linkage_sym.numeric.results import accuracy
+from linkage_sym.numeric.forces.loads import load_factor
+from linkage_sym.numeric.results.result import OK, SINGULAR, UNASSEMBLABLE, GroupForces
+from linkage_sym.numeric.engine.sweep import SINGULAR_COND
 from linkage_sym.structure.parameters import ident
 
 DOUBLE = "double"
@@ -186,7 +186,7 @@ def parameter_mp(scene: Scene, recipe: tuple, mframes):
 
 def _factor_mp(load, x, x_float: float | None = None):
     """A load's factor at the driver value ``x`` (mpf), as
-    :func:`linkage_sym.numeric.loads.load_factor` defines it, in mpmath.
+    :func:`linkage_sym.numeric.forces.loads.load_factor` defines it, in mpmath.
 
     ``x_float`` is the step's float64 driver value (``x`` rounded unless given): whether
     the step lies in the table and in the ``active`` range is decided on it, as the
@@ -639,7 +639,7 @@ class PreciseMechanism:
         """How much worse conditioned each ``ok`` step is at its exact driver value than the
         float64 run found it at the rounded one: the float64 runtime's indicator (the group
         blocks' smallest Hadamard ratio, to which the condition number is inversely
-        proportional, :mod:`linkage_sym.numeric.accuracy`) there over this run's here, at
+        proportional, :mod:`linkage_sym.numeric.results.accuracy`) there over this run's here, at
         least 1 (1 where there is no indicator).  Near a dead centre the two differ by the
         driver's rounding alone, a fraction of it; at a step that is exactly a dead centre,
         the float64 run's rounding kept it a tangency's width away (condition ~1e8, where
@@ -833,7 +833,7 @@ def run_precise(scene: Scene, digits, q=None, qd=None, qdd=None) -> PreciseResul
 
 
 def analyze_precise(scene: Scene, digits) -> object:
-    """The :class:`~linkage_sym.numeric.result.Analysis` of :func:`run_precise`."""
+    """The :class:`~linkage_sym.numeric.results.result.Analysis` of :func:`run_precise`."""
     return run_precise(scene, digits).analysis
 
 

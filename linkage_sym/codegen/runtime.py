@@ -12,18 +12,18 @@ A :class:`CompiledMechanism` holds the generated functions of one topology
 3. points and the force blocks ``A_g F_g = b_g - C_g F_later``, solved from
    the last group back; the frame loads from the ground's reactions.
 
-The result is the same :class:`~linkage_sym.numeric.result.Analysis` the
+The result is the same :class:`~linkage_sym.numeric.results.result.Analysis` the
 numeric solver returns, with ``forces.method == "symbolic"``.
 
 Made once, when the mechanism is bound to a scene (as ``compile_plan`` does
 for the numeric plan): the assembly modes, the accuracy calibration on the
 scene's own sweep, and the memory a run of that sweep takes, warmed
-(:mod:`linkage_sym.numeric.heap`); every run, the first one too, only solves.
+(:mod:`linkage_sym.numeric.engine.heap`); every run, the first one too, only solves.
 
 Size: about 700 lines: the run's three stages share the bound functions,
 the block structure and the coordinate layout of one compiled mechanism; the
-bookkeeping both runtimes share is in :mod:`linkage_sym.numeric.sweep` and
-:mod:`linkage_sym.numeric.block`.
+bookkeeping both runtimes share is in :mod:`linkage_sym.numeric.engine.sweep` and
+:mod:`linkage_sym.numeric.engine.block`.
 """
 
 from __future__ import annotations
@@ -35,16 +35,19 @@ import numpy as np
 
 from linkage_sym.codegen import cache
 from linkage_sym.errors import SceneError
-from linkage_sym.numeric import accuracy, continuation
-from linkage_sym.numeric.block import ResultLayout
-from linkage_sym.numeric.loads import load_factor
-from linkage_sym.numeric.constraints import jacobian, scene_constraints
-from linkage_sym.numeric.gears import pulling_note
-from linkage_sym.numeric.loci import clamp_tangent, coordinate_size
-from linkage_sym.numeric.state import LinkState
+from linkage_sym.numeric.results import accuracy
+from linkage_sym.numeric import continuation
+from linkage_sym.numeric.continuation import messages as continuation_messages
+from linkage_sym.numeric.engine.block import ResultLayout
+from linkage_sym.numeric.forces.loads import load_factor
+from linkage_sym.numeric.kinematics.constraints import jacobian
+from linkage_sym.numeric.kinematics.joint_rows import scene_constraints
+from linkage_sym.numeric.kinematics.gears import pulling_note
+from linkage_sym.numeric.kinematics.loci import clamp_tangent, coordinate_size
+from linkage_sym.numeric.kinematics.state import LinkState
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric.result import OK, Analysis, Forces, GroupForces
-from linkage_sym.numeric.sweep import (
+from linkage_sym.numeric.results.result import OK, Analysis, Forces, GroupForces
+from linkage_sym.numeric.engine.sweep import (
     _unwrap,
     Calibration,
     finish,
@@ -127,7 +130,7 @@ class _GroupProblem:
 def _tangent_sqrt(scale, *factors):
     """``sqrt`` of the product of ``factors``, a rounding-level miss of a tangency taken as
     the tangency (0) and a real miss as NaN: the numeric solver's rule
-    (:func:`~linkage_sym.numeric.loci.clamp_tangent`), for the generated code's
+    (:func:`~linkage_sym.numeric.kinematics.loci.clamp_tangent`), for the generated code's
     :func:`~linkage_sym.symbolic.tangent.tangent_sqrt`."""
     prod = factors[0]
     for f in factors[1:]:
@@ -458,14 +461,14 @@ class CompiledMechanism:
         qpath = dict(zip(self.art["q"], Qpath))
 
         def where(i):
-            return lambda t: continuation.driver_values_text(qpath, kinds, i, t)
+            return lambda t: continuation_messages.driver_values_text(qpath, kinds, i, t)
 
         for i, f in sol.failures.items():
             failed[i] = g
-            self.newton_messages[i] = continuation.failure_message(
+            self.newton_messages[i] = continuation_messages.failure_message(
                 group["label"], group["links"], f, where(i))
         self.newton_notes += [
-            (n[0], lambda step_text, n=n: continuation.note_message(
+            (n[0], lambda step_text, n=n: continuation_messages.note_message(
                 group["label"], group["links"], n, step_text, where(n[0])))
             for n in sol.notes
         ]
@@ -553,7 +556,7 @@ class CompiledMechanism:
     def _accuracy(self, res, indicator) -> dict | None:
         """Each ok step's relative accuracies (as the numeric plan's): ``K`` of the pose
         Jacobian where a block was screened, else ``G / indicator`` with ``G`` calibrated
-        once on the scene's own sweep (:class:`~linkage_sym.numeric.sweep.Calibration`)."""
+        once on the scene's own sweep (:class:`~linkage_sym.numeric.engine.sweep.Calibration`)."""
         ok = res.status == OK
         flagged = np.flatnonzero(ok & np.isfinite(res.condition))
         pose_k = np.full(len(ok), np.nan)
@@ -684,7 +687,7 @@ class CompiledMechanism:
         if self._decomposition is None:  # for the transmission angles, made once
             self._decomposition = decompose(self.scene)
         finish(res, self.scene, self.newton_notes, out, self._decomposition)
-        # accuracy (numeric.accuracy): K of the pose Jacobian (the numeric solver's), exact
+        # accuracy (numeric.results.accuracy): K of the pose Jacobian (the numeric solver's), exact
         # where a block was screened, else from the blocks' ratios calibrated on it
         indicator = np.full(N, np.inf)
         indicator[idx] = ratio_min
@@ -712,7 +715,7 @@ class CompiledMechanism:
     def _forces(self, pts, points, Xk, CS, rate_ok, idx, N):
         """Forces at the steps with rates.  A gear mesh's tooth load must press: solved with
         every flank +1, then again with the flanks the tooth loads show (as the numeric
-        solver does, :mod:`linkage_sym.numeric.kinetostatics`)."""
+        solver does, :mod:`linkage_sym.numeric.forces.kinetostatics`)."""
         art = self.art
         sel = rate_ok
         Kk = int(sel.sum())

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkage_sym.design.errors import SweepError
-from linkage_sym.numeric import heap
+from linkage_sym.numeric.engine import heap
 from linkage_sym.output import chunk_bounds, progress_bar
 
 __all__ = ["Spec", "evaluate_chunk", "run_chunks", "chunk_bounds"]
@@ -61,7 +61,7 @@ def settle_allocator() -> None:
     threshold, so every chunk faulted its pages in again (measured: 1.6 million page
     faults and half the time in the kernel for 10^5 four-bars).  Freeing a mapped block
     raises both thresholds (to the block's size and twice that), after which the arrays
-    come from the heap and stay there (:func:`linkage_sym.numeric.heap.settle`).
+    come from the heap and stay there (:func:`linkage_sym.numeric.engine.heap.settle`).
     """
     heap.settle(SETTLE_BYTES)
 

@@ -28,7 +28,7 @@
                             where it has no value, ``K_note`` says which of
                             :data:`K_NOTES` failed (empty where ``K`` has a value)
 ``min_transmission_deg``    the smallest ``min(gamma, 180 - gamma)`` of every RRR dyad's
-                            transmission angle (:mod:`linkage_sym.numeric.transmission`) over
+                            transmission angle (:mod:`linkage_sym.numeric.results.transmission`) over
                             the steps with positions (degrees)
 ``peak_driving``            per driver: largest ``|effort|`` over the ``ok`` steps (N m or N)
 ``rms_driving``             per driver: root mean square of the effort over the cycle (the
@@ -50,8 +50,8 @@ but ``grashof`` and ``K_note`` of a design that cannot be assembled (``assemblab
 for the reason ``K_note`` gives.
 
 The ``rms_*`` metrics are cycle averages
-(:func:`~linkage_sym.numeric.cycle_average.cycle_rms`): when the sweep is a whole period
-(:func:`~linkage_sym.numeric.cycle_average.whole_period`, e.g. 0 to 360 degrees) its last
+(:func:`~linkage_sym.numeric.results.cycle_average.cycle_rms`): when the sweep is a whole period
+(:func:`~linkage_sym.numeric.results.cycle_average.whole_period`, e.g. 0 to 360 degrees) its last
 step repeats its first and is counted once; any other sweep is averaged over its steps as
 given.
 """
@@ -65,8 +65,8 @@ import numpy as np
 from linkage_sym.design.errors import SweepError
 from linkage_sym.design.names import DEFAULT_METRICS, METRICS
 from linkage_sym.model import GROUND
-from linkage_sym.numeric.cycle_average import cycle_rms, whole_period
-from linkage_sym.numeric.transmission import rrr_dyads
+from linkage_sym.numeric.results.cycle_average import cycle_rms, whole_period
+from linkage_sym.numeric.results.transmission import rrr_dyads
 from linkage_sym.structure.grashof import classify, four_bar_loops
 from linkage_sym.structure.parameters import ParameterTable, evaluate
 

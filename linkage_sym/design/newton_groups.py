@@ -37,10 +37,10 @@ import dataclasses
 
 import numpy as np
 
-from linkage_sym.design.evaluate import Solution
+from linkage_sym.design.solution import Solution
 from linkage_sym.model import OUTPUTS
 from linkage_sym.numeric import continuation
-from linkage_sym.numeric.result import OK, UNASSEMBLABLE
+from linkage_sym.numeric.results.result import OK, UNASSEMBLABLE
 
 __all__ = ["ParameterContinuation", "PlanSolution", "solve_designs", "DEFAULT_CHUNK"]
 
@@ -125,7 +125,7 @@ class ParameterContinuation:
 @dataclasses.dataclass
 class PlanSolution(Solution):
     """A chunk's designs solved one at a time by the numeric plan: the arrays of a
-    :class:`~linkage_sym.design.evaluate.Solution` (angles only in ``X``, ``rate_t`` and
+    :class:`~linkage_sym.design.solution.Solution` (angles only in ``X``, ``rate_t`` and
     ``XDD``; slides are not read by any metric) and the plan's own forces and points."""
 
     runs: list = dataclasses.field(default_factory=list)  # per design: its result or None

@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from linkage_sym.design.errors import SweepError
-from linkage_sym.numeric import heap
+from linkage_sym.numeric.engine import heap
 from linkage_sym.errors import finite_number
 
 __all__ = ["Designs", "grid", "monte_carlo", "read_samples", "parse_axis", "parse_tolerance",

@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkage_sym.numeric.result import OK, UNASSEMBLABLE
+from linkage_sym.numeric.results.result import OK, UNASSEMBLABLE
 
 XTOL = 1e-11
 """Brent's tolerance on the location, in steps (kinematic rates)."""

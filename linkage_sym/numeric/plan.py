@@ -16,7 +16,7 @@ unwrapped along that path, so they are continuous and measured from the
 assembly configuration.  Velocities and accelerations are solved at the
 steps only.  The path, the singularity threshold and its message and the run's
 warnings are shared with the compiled symbolic mechanism
-(:mod:`linkage_sym.numeric.sweep`), as is the Newton continuation policy
+(:mod:`linkage_sym.numeric.engine.sweep`), as is the Newton continuation policy
 (:mod:`linkage_sym.numeric.continuation`).
 """
 
@@ -27,19 +27,21 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric import accuracy, loop_closure
-from linkage_sym.numeric.block import ResultLayout
-from linkage_sym.numeric.closed_form import DyadSolver, InputSolver
-from linkage_sym.numeric.cams import CamSolver, cam_records
-from linkage_sym.numeric.constraints import jacobian, scene_constraints
-from linkage_sym.numeric.gears import GearSolver
-from linkage_sym.numeric.kinetostatics import ForcePlan, check_method
-from linkage_sym.numeric.loop_closure import LoopClosureSolver
-from linkage_sym.numeric.newton import NewtonSolver
-from linkage_sym.numeric.result import Analysis
-from linkage_sym.numeric.solver import GroupSolver
-from linkage_sym.numeric.state import LinkState
-from linkage_sym.numeric.sweep import (
+from linkage_sym.numeric.results import accuracy
+from linkage_sym.numeric.kinematics import loop_closure
+from linkage_sym.numeric.engine.block import ResultLayout
+from linkage_sym.numeric.kinematics.closed_form import DyadSolver, InputSolver
+from linkage_sym.numeric.kinematics.cams import CamSolver, cam_records
+from linkage_sym.numeric.kinematics.constraints import jacobian
+from linkage_sym.numeric.kinematics.joint_rows import scene_constraints
+from linkage_sym.numeric.kinematics.gears import GearSolver
+from linkage_sym.numeric.forces.kinetostatics import ForcePlan, check_method
+from linkage_sym.numeric.kinematics.loop_closure import LoopClosureSolver
+from linkage_sym.numeric.kinematics.newton import NewtonSolver
+from linkage_sym.numeric.results.result import Analysis
+from linkage_sym.numeric.kinematics.solver import GroupSolver
+from linkage_sym.numeric.kinematics.state import LinkState
+from linkage_sym.numeric.engine.sweep import (
     SCREEN,
     Calibration,
     _unwrap,
@@ -116,7 +118,7 @@ class Plan:
         self._scene_sweep()
         self._calibration.ratio(self._sweep_values, lambda *d: self.run(*d, exact_condition=True))
         # and the memory a run of the scene's sweep takes, touched once here, so that the
-        # first run does not pay the first touch of fresh pages (numeric.block.warm)
+        # first run does not pay the first touch of fresh pages (numeric.engine.block.warm)
         self.layout.warm(len(next(iter(self._own_sweep[0].values()))), "numeric")
 
     # -- the sweep ---------------------------------------------------------
@@ -156,7 +158,7 @@ class Plan:
             Compute the exact dimensionless condition number at every step,
             not only where a group's indicator flags a near-singular step.
         method : {"dyad", "global"}
-            Force method (see :mod:`linkage_sym.numeric.kinetostatics`).
+            Force method (see :mod:`linkage_sym.numeric.forces.kinetostatics`).
         """
         check_method(method)  # before the kinematics, not after
         if q is None:
@@ -250,7 +252,7 @@ class Plan:
         if self._calibration.active:
             self._calibration.record(res.condition, ok, ind_min)
         else:
-            # each ok step's relative accuracies (numeric.accuracy): K exact where computed,
+            # each ok step's relative accuracies (numeric.results.accuracy): K exact where computed,
             # else from the indicators with the calibration ratio G
             G = self._calibration.ratio(
                 self._sweep_values, lambda *d: self.run(*d, exact_condition=True))
@@ -265,7 +267,7 @@ class Plan:
 
     def _across_gaps(self, S, valid, out, solved) -> None:
         """Each link's rotation after an interruption of the path: the value nearest the
-        last solved step (:func:`~linkage_sym.numeric.sweep.nearest_across_gaps`), except
+        last solved step (:func:`~linkage_sym.numeric.engine.sweep.nearest_across_gaps`), except
         a link turned by a driver on the ground, whose rotation is the driver's value."""
         broken = interrupted(valid, out, solved)
         if not broken.any():

@@ -55,8 +55,8 @@ from typing import Callable
 
 import numpy as np
 
-from linkage_sym.numeric.heap import available_memory
-from linkage_sym.numeric.result import Analysis
+from linkage_sym.numeric.engine.heap import available_memory
+from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.output.stats import Peak, SweepStats
 from linkage_sym.output.writers import (
     FORMATS,
@@ -158,8 +158,8 @@ def run_memory(scene, results: str = "whole", *, method: str = "dyad", fmt: str 
       own and its compiled mechanism's with that one's path, 4 -- measured: 137 bytes a
       step of a four-bar's model, 249 of the five-bar's, against 144 and 272 estimated);
     * ``solving path``: while it is built, the steps stacked, the path with its pieces and
-      temporaries and the steps' indices (:func:`~linkage_sym.numeric.sweep.solving_path`),
-      then the path kept (:func:`~linkage_sym.numeric.sweep.path_size` points, an upper bound);
+      temporaries and the steps' indices (:func:`~linkage_sym.numeric.engine.sweep.solving_path`),
+      then the path kept (:func:`~linkage_sym.numeric.engine.sweep.path_size` points, an upper bound);
     * ``results``: ``results`` (:data:`RESULTS`) steps at :func:`bytes_per_step` each, from
       the columns of a run of the scene at two steps, and :data:`FIXED_BYTES` (a chunk as
       :func:`chunk_steps` makes it with ``available`` bytes); none for ``"none"``.
@@ -177,7 +177,7 @@ def run_memory(scene, results: str = "whole", *, method: str = "dyad", fmt: str 
     import dataclasses
 
     from linkage_sym.numeric.plan import compile_plan
-    from linkage_sym.numeric.sweep import path_size
+    from linkage_sym.numeric.engine.sweep import path_size
 
     if results not in RESULTS:
         raise ValueError(f"results must be one of {', '.join(RESULTS)}, got {results!r}")
@@ -210,7 +210,7 @@ def check_run_memory(scene, results: str = "whole", *, method: str = "dyad",
     whose :func:`run_memory` exceeds what this process can still take
     (:func:`available_memory`); runs of up to :data:`SMALL_RUN` steps are not estimated."""
     from linkage_sym.errors import SceneError
-    from linkage_sym.numeric.heap import gib
+    from linkage_sym.numeric.engine.heap import gib
 
     N = scene.drivers[0].steps if scene.drivers else 0
     if N <= SMALL_RUN:
@@ -268,7 +268,7 @@ class Sweep:
     (``"triad (b1, t, b2, b3)"``), in the order a run lists their warnings.
     ``q0`` is each driver's value in the assembly configuration and
     ``limits`` its largest increment along a solving path (see
-    :func:`linkage_sym.numeric.sweep.solving_path`): with them,
+    :func:`linkage_sym.numeric.engine.sweep.solving_path`): with them,
     :meth:`waypoints` lets a chunk's path take the whole sweep's route.
     """
 
@@ -336,7 +336,7 @@ class Sweep:
 
 
 def _limits(scene, L) -> dict:
-    from linkage_sym.numeric.sweep import MAX_ANGLE_STEP, MAX_SLIDE_STEP
+    from linkage_sym.numeric.engine.sweep import MAX_ANGLE_STEP, MAX_SLIDE_STEP
 
     return {d.joint: MAX_ANGLE_STEP if scene.joint(d.joint).type == "R" else MAX_SLIDE_STEP * L
             for d in scene.drivers}
@@ -344,7 +344,7 @@ def _limits(scene, L) -> dict:
 
 def plan_sweep(plan, method: str = "dyad") -> Sweep:
     """The scene's sweep solved by a numeric plan (``compile_plan``) with a force method."""
-    from linkage_sym.numeric.newton import NewtonSolver
+    from linkage_sym.numeric.kinematics.newton import NewtonSolver
 
     q, qd, qdd = plan.sweep()
     heads = [f"{sv.group.label} ({', '.join(sv.links)})" for sv in plan.solvers

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
-from linkage_sym.numeric.result import Analysis
+from linkage_sym.numeric.results.result import Analysis
 
 if TYPE_CHECKING:
     from linkage_sym.output.stats import SweepStats

@@ -3,7 +3,7 @@
 Figures are made with :class:`matplotlib.figure.Figure` and written with
 ``savefig``, so importing this package changes no global Matplotlib state and
 works without a display.  The plotting layer only reads results
-(:class:`~linkage_sym.numeric.result.Analysis`) and scenes
+(:class:`~linkage_sym.numeric.results.result.Analysis`) and scenes
 (:class:`~linkage_sym.model.Scene`); it solves nothing.
 
 Functions

@@ -53,7 +53,7 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Rectangle
 
-from linkage_sym.numeric.cycle_average import cycle_rms, whole_turns
+from linkage_sym.numeric.results.cycle_average import cycle_rms, whole_turns
 from linkage_sym.plotting import style
 
 __all__ = [
@@ -470,7 +470,7 @@ def _moment_label(s: _Series, zero: bool, driver_kind: str, in_zoom: bool) -> st
     if pk is None:
         return f"{s.label}: no solved step{_gap_note(s)}"
     peak, k = pk
-    # over the cycle: a whole turn's repeated end point counted once (numeric.cycle_average)
+    # over the cycle: a whole turn's repeated end point counted once (numeric.results.cycle_average)
     rms = float(cycle_rms(s.values, s.ok, whole_turns(s.q, driver_kind)))
     if zero:
         return (f"{s.label}: numerically zero (peak |M| = {style.fmt_number(peak)} N·m, "

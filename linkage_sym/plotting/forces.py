@@ -13,8 +13,8 @@ Three figures of a force analysis:
   *shaking moment* and are labelled so.
 
 This module only draws results: it reads
-:attr:`Analysis.forces <linkage_sym.numeric.result.Analysis.forces>` (a
-:class:`~linkage_sym.numeric.result.Forces`) and never solves anything.
+:attr:`Analysis.forces <linkage_sym.numeric.results.result.Analysis.forces>` (a
+:class:`~linkage_sym.numeric.results.result.Forces`) and never solves anything.
 Steps that are not ``ok`` are NaN in the results: they break the curves, and
 on plots against the driver they are also shaded and labelled.
 """
@@ -27,8 +27,8 @@ from pathlib import Path
 import numpy as np
 
 from linkage_sym.model import Scene
-from linkage_sym.numeric.cycle_average import cycle_rms, whole_period
-from linkage_sym.numeric.result import Analysis
+from linkage_sym.numeric.results.cycle_average import cycle_rms, whole_period
+from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.plotting import style
 from linkage_sym.plotting.motion import driver_axis
 
@@ -71,7 +71,7 @@ def _finite(values) -> np.ndarray:
 def _stats(values, periodic: bool) -> tuple[float, float, int] | None:
     """``(rms, signed peak, step of the peak)`` over the finite values, or None; the RMS
     over the cycle (``periodic``: the sweep is a whole period, its repeated end point
-    counted once, :mod:`linkage_sym.numeric.cycle_average`)."""
+    counted once, :mod:`linkage_sym.numeric.results.cycle_average`)."""
     v = np.asarray(values, dtype=float)
     good = np.isfinite(v)
     if not good.any():
@@ -136,7 +136,7 @@ def driving_effort_figure(scene: Scene, analysis: Analysis):
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.forces` set.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.forces` set.
 
     Returns
     -------
@@ -216,7 +216,7 @@ def driving_effort(scene: Scene, analysis: Analysis, path) -> Path:
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.forces` set.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.forces` set.
     path : str or os.PathLike
         PNG file to write; its folder is created if needed.
 
@@ -323,7 +323,7 @@ def reaction_hodographs_figure(scene: Scene, analysis: Analysis, joints=None):
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.forces` set.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.forces` set.
     joints : sequence of str, optional
         Joints to draw, in this order; default every joint with a reaction,
         in scene order.
@@ -403,7 +403,7 @@ def reaction_hodographs(scene: Scene, analysis: Analysis, path, joints=None) -> 
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.forces` set.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.forces` set.
     path : str or os.PathLike
         PNG file to write; its folder is created if needed.
     joints : sequence of str, optional
@@ -427,7 +427,7 @@ def frame_loads_figure(scene: Scene, analysis: Analysis):
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.forces` set.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.forces` set.
 
     Returns
     -------
@@ -503,7 +503,7 @@ def frame_loads(scene: Scene, analysis: Analysis, path) -> Path:
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.forces` set.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.forces` set.
     path : str or os.PathLike
         PNG file to write; its folder is created if needed.
 

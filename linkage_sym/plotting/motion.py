@@ -7,7 +7,7 @@ angular velocity or angular acceleration; a lower panel, drawn when the
 mechanism has sliders on the ground, holds the sliders' displacement,
 velocity or acceleration along their axes.
 
-This module only draws results: it reads an :class:`~linkage_sym.numeric.result.Analysis`
+This module only draws results: it reads an :class:`~linkage_sym.numeric.results.result.Analysis`
 and never solves anything.  Steps that are not ``ok`` are NaN in the results,
 which breaks the curves; they are also shaded and labelled.
 """
@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric.result import Analysis
+from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.plotting import style
 
 QUANTITIES = ("position", "velocity", "acceleration")

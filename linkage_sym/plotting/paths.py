@@ -2,11 +2,11 @@
 
 A link is drawn from its joints' points: the point of a joint at a step is the
 link's point whose assembly position is the joint's ``at``
-(:meth:`~linkage_sym.numeric.result.LinkKinematics.point`); points on the ground
+(:meth:`~linkage_sym.numeric.results.result.LinkKinematics.point`); points on the ground
 do not move.  Two points make a bar, more make the convex polygon of them.
 Ground pivots are small hatched triangles, sliding pairs a slot along the axis
 with a block on it.  A cam is its profile (the closed curve of its ``cam``
-joint, :class:`~linkage_sym.numeric.cam_profile.CamProfile`, in the cam's
+joint, :class:`~linkage_sym.numeric.kinematics.cam_profile.CamProfile`, in the cam's
 frame) turning with it; the follower's element is drawn on the follower: a
 roller's circle, a flat face's straight edge (a knife is its bar's end).
 
@@ -23,8 +23,8 @@ from matplotlib.colors import to_rgb, to_rgba
 from matplotlib.patches import Circle, Polygon
 
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric.cam_profile import CamProfile
-from linkage_sym.numeric.result import Analysis
+from linkage_sym.numeric.kinematics.cam_profile import CamProfile
+from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.plotting import style
 
 PROFILE_SAMPLES = 721

@@ -16,7 +16,7 @@ from matplotlib.patches import Patch
 from matplotlib.transforms import blended_transform_factory
 
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric.result import OK, SINGULAR, UNASSEMBLABLE
+from linkage_sym.numeric.results.result import OK, SINGULAR, UNASSEMBLABLE
 
 PALETTE = (
     "#1f77b4",

@@ -1,7 +1,7 @@
 """Transmission angles against the driver, the minimum marked.
 
 One figure: the transmission angle of every RRR dyad
-(:attr:`Analysis.transmission_angles <linkage_sym.numeric.result.Analysis.transmission_angles>`,
+(:attr:`Analysis.transmission_angles <linkage_sym.numeric.results.result.Analysis.transmission_angles>`,
 the angle between the dyad's two links at its inner joint, 0..180 degrees)
 against the first driver's coordinate, with 90 degrees (the best) and the
 minimum of ``min(gamma, 180 - gamma)`` -- the *minimum transmission angle* of
@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from linkage_sym.model import Scene
-from linkage_sym.numeric.result import Analysis
+from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.plotting import style
 from linkage_sym.plotting.motion import driver_axis
 
@@ -117,7 +117,7 @@ def transmission_angles(scene: Scene, analysis: Analysis, path) -> Path:
     ----------
     scene : Scene
     analysis : Analysis
-        With :attr:`~linkage_sym.numeric.result.Analysis.transmission_angles`.
+        With :attr:`~linkage_sym.numeric.results.result.Analysis.transmission_angles`.
     path : str or os.PathLike
         PNG file to write; its folder is created if needed.
 

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from linkage_sym.model.scene import CamSpec, Point
-from linkage_sym.numeric.cam_profile import CamProfile, self_intersection
+from linkage_sym.numeric.kinematics.cam_profile import CamProfile, self_intersection
 from linkage_sym.scene.fields import FieldReader, _show, _suggest
 
 CAM_KEYS = ("profile", "follower")

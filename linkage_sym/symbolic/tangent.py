@@ -6,7 +6,7 @@ circle and a line's ``sqrt((r - delta)(r + delta))`` -- which vanishes at a
 limit (dead-centre) position.  There, in floating point, rounding of the
 coordinates may leave a factor a few ulps below zero.  The numeric solver takes
 such a miss as the tangency it is
-(:func:`linkage_sym.numeric.loci.clamp_tangent`); :func:`tangent_sqrt` lets the
+(:func:`linkage_sym.numeric.kinematics.loci.clamp_tangent`); :func:`tangent_sqrt` lets the
 generated NumPy code do the same, so both runtimes call the step singular
 instead of one of them calling it unassemblable.
 

@@ -379,7 +379,7 @@ def test_a_run_whose_peak_does_not_fit_is_refused_in_every_command(
     import dataclasses
 
     from linkage_sym import output
-    from linkage_sym.numeric.heap import gib
+    from linkage_sym.numeric.engine.heap import gib
 
     available = 100 * 2**20
     monkeypatch.setattr(output, "available_memory", lambda: available)

@@ -20,7 +20,7 @@ from linkage_sym.design import SweepError, sweep
 from linkage_sym.design.metrics import K_NOTES
 from linkage_sym.model import OUTPUTS, Effects
 from linkage_sym.numeric.extremes import find_extremes
-from linkage_sym.numeric.transmission import transmission_angles
+from linkage_sym.numeric.results.transmission import transmission_angles
 from linkage_sym.synthesis import fourbar
 
 TOL = 1e-12

@@ -45,7 +45,7 @@ from linkage_sym.codegen.precision import run_precise  # noqa: E402
 from linkage_sym.errors import SceneError  # noqa: E402
 from linkage_sym.examples import example_names, load_example  # noqa: E402
 from tests.support.example_sets import symbolic_examples  # noqa: E402
-from linkage_sym.numeric import accuracy  # noqa: E402
+from linkage_sym.numeric.results import accuracy  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 from linkage_sym.scene import load_scene  # noqa: E402
 

@@ -1,6 +1,6 @@
 """Newton groups solved many path points at once: the same results as point by point.
 
-:mod:`linkage_sym.numeric.batched_path` walks the continuation policy of
+:mod:`linkage_sym.numeric.continuation.batched_path` walks the continuation policy of
 :mod:`linkage_sym.numeric.continuation` on blocks of points; the point-by-point
 walk stays (``continuation.BATCHED = False``).  Checked here, on the shipped
 examples with Newton groups (the class-III six-bar, the printing mechanism of
@@ -55,8 +55,11 @@ import linkage_sym  # noqa: E402
 from linkage_sym.errors import SceneError  # noqa: E402
 from tests.support.example_sets import symbolic_examples  # noqa: E402
 from linkage_sym.examples import example_path  # noqa: E402
-from linkage_sym.numeric import batched_path, continuation, newton  # noqa: E402
-from linkage_sym.numeric.newton import NewtonSolver  # noqa: E402
+from linkage_sym.numeric.continuation import batched_path  # noqa: E402
+from linkage_sym.numeric import continuation  # noqa: E402
+from linkage_sym.numeric.continuation import roots  # noqa: E402
+from linkage_sym.numeric.kinematics import newton  # noqa: E402
+from linkage_sym.numeric.kinematics.newton import NewtonSolver  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 
 TOL = 1e-10
@@ -310,9 +313,9 @@ def test_the_root_search_reaches_the_same_roots_from_seeds_moved_by_rounding(cas
     for k, search in enumerate(searches[:: max(1, len(searches) // 12)]):
         assert flips(*search) == 0, (case, k)
     if case == "near-degenerate triad":
-        monkeypatch.setattr(continuation, "SEARCH_STEP", math.inf)
-        monkeypatch.setattr(continuation, "SEARCH_ITER", 30)
-        monkeypatch.setattr(continuation, "TURNED_SEEDS", 16)
+        monkeypatch.setattr(roots, "SEARCH_STEP", math.inf)
+        monkeypatch.setattr(roots, "SEARCH_ITER", 30)
+        monkeypatch.setattr(roots, "TURNED_SEEDS", 16)
         assert flips(*searches[0], repeats=20) > 0
 
 

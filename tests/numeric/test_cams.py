@@ -369,7 +369,7 @@ def test_replacement_rates_agree_with_the_direct_contact_solution(follower, pivo
 
 def load_scene_snapped(d, follower):
     """The scene, with ``at`` moved onto the profile (the scene reader's tolerance is 1e-6)."""
-    from linkage_sym.numeric.cam_profile import CamProfile
+    from linkage_sym.numeric.kinematics.cam_profile import CamProfile
 
     prof = d["joints"][2]["profile"]
     kind, data = profile_args(prof)
@@ -468,7 +468,7 @@ def test_a_follower_accelerated_away_loses_contact_and_is_warned():
 def test_a_roller_too_big_for_a_concave_part_is_reported_per_step():
     """A peanut-shaped profile, concave at its waist (phi = 90 and 270 deg), and a roller
     sliding along the x axis whose radius exceeds the waist's radius of curvature."""
-    from linkage_sym.numeric.cam_profile import CamProfile
+    from linkage_sym.numeric.kinematics.cam_profile import CamProfile
 
     phi = np.arange(0, 360, 10.0)
     r = 0.034 + 0.012 * np.cos(2 * np.radians(phi))

@@ -33,7 +33,7 @@ import pytest
 
 from linkage_sym.balancing import CycleModel, optimize_counterweights
 from linkage_sym.design import sweep
-from linkage_sym.numeric.cycle_average import counted_steps, whole_period
+from linkage_sym.numeric.results.cycle_average import counted_steps, whole_period
 from linkage_sym.scene import load_scene
 
 R_CRANK = 9.0  # in

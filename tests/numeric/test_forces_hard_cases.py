@@ -57,7 +57,7 @@ import pytest
 import linkage_sym
 from linkage_sym.examples import example_dict
 from linkage_sym.numeric.plan import compile_plan
-from linkage_sym.numeric.superposition import AMPLIFICATION_LIMIT
+from linkage_sym.numeric.forces.superposition import AMPLIFICATION_LIMIT
 
 from tests.support import scenes  # noqa: E402
 

@@ -321,7 +321,7 @@ def test_kennedy_takes_a_mesh_s_pitch_point_as_its_centre():
 def test_a_flank_that_never_settles_is_a_warning(monkeypatch):
     """Were the tooth load to pull with either flank (a solve that does not settle), the run
     says so at those steps instead of reporting the force as if the teeth carried it."""
-    from linkage_sym.numeric import kinetostatics
+    from linkage_sym.numeric.forces import kinetostatics
 
     scene = load_scene(example_dict("planetary_train"))
     plan = compile_plan(scene)

@@ -303,7 +303,7 @@ def test_ill_conditioned_ok_step_is_warned():
 def test_tangency_tolerance_is_rounding_only():
     """circle_circle: centres one ulp beyond the reach give the tangent point;
     1e-12 relative beyond it (far above rounding) give NaN."""
-    from linkage_sym.numeric.loci import circle_circle
+    from linkage_sym.numeric.kinematics.loci import circle_circle
 
     r1, r2 = 0.1, 0.2
     reach = r1 + r2

@@ -29,7 +29,7 @@ from linkage_sym.codegen.precision import _factor_mp
 from linkage_sym.errors import SceneError
 from linkage_sym.examples import example_dict, load_example
 from linkage_sym.model import Load, LoadTable
-from linkage_sym.numeric.loads import load_factor
+from linkage_sym.numeric.forces.loads import load_factor
 from linkage_sym.numeric.plan import compile_plan
 from linkage_sym.scene import dump_scene, load_scene
 

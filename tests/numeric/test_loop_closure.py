@@ -1,7 +1,7 @@
-"""Newton groups of R and P joints in loop-closure coordinates (:mod:`linkage_sym.numeric.loop_closure`).
+"""Newton groups of R and P joints in loop-closure coordinates (:mod:`linkage_sym.numeric.kinematics.loop_closure`).
 
 The class-III triad is solved in its four links' angles with four loop rows
-(the pose formulation, :class:`~linkage_sym.numeric.newton.NewtonSolver`,
+(the pose formulation, :class:`~linkage_sym.numeric.kinematics.newton.NewtonSolver`,
 has twelve of each), the printing mechanism's triad (Dang and Zhang's
 example) in its four angles and its slide.  Checked against what shares no
 code with it:
@@ -10,7 +10,7 @@ code with it:
   differences of the rows themselves (step ``1e-6``: truncation ``~1e-12``,
   rounding ``~1e-10``; ``1e-8`` of the Jacobian's scale);
 * **the positions and rates** against the pose formulation (the group solved
-  in poses, the constraint rows of :mod:`~linkage_sym.numeric.constraints`),
+  in poses, the constraint rows of :mod:`~linkage_sym.numeric.kinematics.constraints`),
   also for driven groups (the hydraulic boom's actuator, random knees):
   the same status at every step and every value within ``1e-10`` of its
   family's scale (positions: the mechanism's size), on the shipped class-III
@@ -42,11 +42,12 @@ from tests.numeric.test_batched_continuation import _knee_from, _load, _triad_fr
 
 import linkage_sym  # noqa: E402
 from linkage_sym.examples import example_names, example_path  # noqa: E402
-from linkage_sym.numeric import continuation, loop_closure  # noqa: E402
-from linkage_sym.numeric.loop_closure import LoopClosureSolver  # noqa: E402
-from linkage_sym.numeric.newton import NewtonSolver  # noqa: E402
+from linkage_sym.numeric import continuation  # noqa: E402
+from linkage_sym.numeric.kinematics import loop_closure  # noqa: E402
+from linkage_sym.numeric.kinematics.loop_closure import LoopClosureSolver  # noqa: E402
+from linkage_sym.numeric.kinematics.newton import NewtonSolver  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
-from linkage_sym.numeric.state import LinkState  # noqa: E402
+from linkage_sym.numeric.kinematics.state import LinkState  # noqa: E402
 
 SETTINGS = dict(max_examples=8, deadline=None, derandomize=True, database=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])

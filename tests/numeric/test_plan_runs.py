@@ -15,7 +15,7 @@ tests check what that must not change:
   1e-12 of the mechanism's size (rates: of the sweep's largest value),
   and nothing but a failed step holds NaN;
 * compiling a plan, or loading a compiled symbolic mechanism, warms the memory
-  a run takes (``numeric.heap.warm``): in a fresh interpreter the first run of
+  a run takes (``numeric.engine.heap.warm``): in a fresh interpreter the first run of
   a four-bar over 3600 steps touches no fresh page, where without the warming
   it touches hundreds (counted by the kernel's minor page faults, not timed:
   the time is the benchmark's).
@@ -34,7 +34,7 @@ import pytest
 
 import linkage_sym
 from linkage_sym.examples import example_names
-from linkage_sym.numeric import heap
+from linkage_sym.numeric.engine import heap
 from linkage_sym.numeric.plan import compile_plan
 
 NAMES = example_names()
@@ -161,7 +161,7 @@ FIRST_RUN = """
 import dataclasses, json, resource, sys
 import linkage_sym
 from linkage_sym.codegen.runtime import load_compiled
-from linkage_sym.numeric import block
+from linkage_sym.numeric.engine import block
 from linkage_sym.numeric.plan import compile_plan
 if sys.argv[1] == "cold":
     block.ResultLayout.warm = lambda self, n, runtime: 0

@@ -12,7 +12,7 @@ import pytest
 import linkage_sym
 from linkage_sym.examples import example_dict
 from linkage_sym.numeric.plan import compile_plan
-from linkage_sym.numeric.superposition import superposition_terms
+from linkage_sym.numeric.forces.superposition import superposition_terms
 from linkage_sym.structure.disconnection import usable_disconnections
 
 REL = 1e-9

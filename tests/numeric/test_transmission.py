@@ -1,4 +1,4 @@
-"""Transmission angles of RRR dyads (``linkage_sym.numeric.transmission``, the result's
+"""Transmission angles of RRR dyads (``linkage_sym.numeric.results.transmission``, the result's
 ``transmission_angles`` extension, and its plot).
 
 Checked against formulas written here that share no code with the function:
@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 import linkage_sym
 from linkage_sym.cli import main
 from linkage_sym.examples import example_dict, example_path
-from linkage_sym.numeric.transmission import rrr_dyads, transmission_angles
+from linkage_sym.numeric.results.transmission import rrr_dyads, transmission_angles
 from linkage_sym.plotting.transmission import minimum, transmission_angles as plot_angles
 from linkage_sym.synthesis import builders
 

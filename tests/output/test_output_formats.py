@@ -30,8 +30,8 @@ from linkage_sym import output
 from linkage_sym.cli import main
 from linkage_sym.examples import example_dict, example_names
 from linkage_sym.numeric.plan import compile_plan
-from linkage_sym.numeric.sweep import run_warnings
-from linkage_sym.numeric.result import Analysis
+from linkage_sym.numeric.engine.sweep import run_warnings
+from linkage_sym.numeric.results.result import Analysis
 
 from tests.support import scenes  # the tests' scene builders (tests/support/scenes.py)
 
@@ -253,7 +253,7 @@ def assert_same_as_whole(whole: Analysis, got: dict, what: str, newton: bool = F
     """Columns ``got`` (name -> array, as read back from a file) equal the whole run's.
 
     ``newton``: a Newton group's continuation solves a chunk's points in other blocks than
-    the whole run's (``numeric/batched_path.py``), so their roots agree to rounding, not bit
+    the whole run's (``numeric/continuation/batched_path.py``), so their roots agree to rounding, not bit
     for bit, and an ill-conditioned step amplifies that; there a value may differ by the
     whole run's own accuracy estimate of the step, where that is larger than ``REL``
     (the triad's step 69, condition 3e3: 3e-11 of the largest reaction, estimate 9e-10),

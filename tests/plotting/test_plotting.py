@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from linkage_sym.model import Driver, Joint, Link, Scene  # noqa: E402
-from linkage_sym.numeric.result import (  # noqa: E402
+from linkage_sym.numeric.results.result import (  # noqa: E402
     OK,
     SINGULAR,
     UNASSEMBLABLE,

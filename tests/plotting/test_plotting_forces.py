@@ -1,7 +1,7 @@
 """The force plots write readable PNGs from kinematics plus hand-made forces.
 
 The force solver is not used: the kinematics come from the real solving plan,
-the :class:`~linkage_sym.numeric.result.Forces` are built here (the shaking
+the :class:`~linkage_sym.numeric.results.result.Forces` are built here (the shaking
 force and moment from the links' inertia, the reactions and efforts made up),
 with a few steps marked not ``ok`` and NaN like the result contract says.
 """
@@ -17,7 +17,7 @@ import pytest
 import linkage_sym
 from linkage_sym.model import Driver, Effects, Joint, Link, Scene
 from linkage_sym.numeric.plan import compile_plan
-from linkage_sym.numeric.result import (
+from linkage_sym.numeric.results.result import (
     OK,
     SINGULAR,
     UNASSEMBLABLE,

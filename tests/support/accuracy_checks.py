@@ -1,5 +1,5 @@
 """Measured errors of a step against the 50-digit reference (``mp_reference``), in the
-scales the accuracy estimate speaks of (``linkage_sym.numeric.accuracy``).
+scales the accuracy estimate speaks of (``linkage_sym.numeric.results.accuracy``).
 
 * position: joint, traced-point and centre-of-mass coordinates over the mechanism's
   size ``L``; link rotations in radians;

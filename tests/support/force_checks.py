@@ -1,6 +1,6 @@
 """Independent checks of a kinetostatic result, written without the solver's code.
 
-Every function here reads an :class:`~linkage_sym.numeric.result.Analysis`
+Every function here reads an :class:`~linkage_sym.numeric.results.result.Analysis`
 (kinematics and forces as arrays) and the scene, and rebuilds a physical
 identity from the scene-format conventions alone:
 

@@ -8,20 +8,20 @@ Methods
 ``"dyad"`` (default)
     From the last group back to the drivers, each group's reactions from
     its own equilibrium: closed forms for input links and dyads
-    (:mod:`~linkage_sym.numeric.statics`), Dang and Zhang's disconnection and
+    (:mod:`~linkage_sym.numeric.forces.statics`), Dang and Zhang's disconnection and
     superposition for class-III and other complex groups
-    (:mod:`~linkage_sym.numeric.superposition`); the reactions of a solved
+    (:mod:`~linkage_sym.numeric.forces.superposition`); the reactions of a solved
     group are then loads on the links it hangs from.
 ``"global"``
     Every link's equilibrium in one sparse system
-    (:mod:`~linkage_sym.numeric.global_statics`), the check of the former.
+    (:mod:`~linkage_sym.numeric.forces.global_statics`), the check of the former.
 
 Gear meshes
 -----------
-A gear on its pivot is solved in closed form (:class:`~linkage_sym.numeric.gears.GearForces`),
+A gear on its pivot is solved in closed form (:class:`~linkage_sym.numeric.kinematics.gears.GearForces`),
 a group of several links with meshes as one dense system.  A mesh's force
 lies on the line of action of the flank the tangential force presses on
-(:mod:`~linkage_sym.numeric.gears`); the flank is not known before the
+(:mod:`~linkage_sym.numeric.kinematics.gears`); the flank is not known before the
 solve, so a scene with meshes is solved with every flank +1, then again
 with the flanks the tangential forces show, until no tooth load is negative
 (two solves unless the flank of one mesh changes another's tangential force).
@@ -35,13 +35,13 @@ from typing import Protocol
 import numpy as np
 
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric.gears import GearForces, pulling_note
-from linkage_sym.numeric.global_statics import frame_wrench, solve_dense, solve_global
-from linkage_sym.numeric.loads import applied_wrenches
-from linkage_sym.numeric.result import Forces, GroupForces
-from linkage_sym.numeric.sweep import steps_text
-from linkage_sym.numeric.statics import DyadForces, Geometry, InputForces, push
-from linkage_sym.numeric.superposition import SuperpositionForces
+from linkage_sym.numeric.kinematics.gears import GearForces, pulling_note
+from linkage_sym.numeric.forces.global_statics import frame_wrench, solve_dense, solve_global
+from linkage_sym.numeric.forces.loads import applied_wrenches
+from linkage_sym.numeric.results.result import Forces, GroupForces
+from linkage_sym.numeric.results.wording import steps_text
+from linkage_sym.numeric.forces.statics import DyadForces, Geometry, InputForces, push
+from linkage_sym.numeric.forces.superposition import SuperpositionForces
 from linkage_sym.structure.disconnection import usable_disconnections
 from linkage_sym.structure import Decomposition, Group
 
@@ -161,7 +161,7 @@ class ForcePlan:
     disconnection : int or dict, optional
         Disconnection to prefer for complex groups: one index for every such
         group, or ``{group index: choice index}``; default
-        :func:`~linkage_sym.numeric.superposition.default_choice`.
+        :func:`~linkage_sym.numeric.forces.superposition.default_choice`.
     """
 
     def __init__(self, scene: Scene, decomposition: Decomposition, L: float, disconnection=None):

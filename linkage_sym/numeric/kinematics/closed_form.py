@@ -1,7 +1,7 @@
 """Closed-form solvers of input links and of the five dyad types.
 
 Every solver works on whole sweeps at once (NumPy arrays over the steps) and
-fills the :class:`~linkage_sym.numeric.state.LinkState` of its links in three
+fills the :class:`~linkage_sym.numeric.kinematics.state.LinkState` of its links in three
 calls: ``position``, ``velocity``, ``acceleration``.  ``position`` returns a
 *conditioning indicator* per step: a dimensionless number that vanishes
 where the group's own Jacobian is singular (sine of the transmission angle,
@@ -22,7 +22,7 @@ import numpy as np
 
 from linkage_sym.errors import SceneError
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric.loci import (
+from linkage_sym.numeric.kinematics.loci import (
     Circle,
     Line,
     clamp_tangent,

@@ -15,7 +15,7 @@ assembly configuration), every gear mesh its rolling row (linear in the
 angles; a mesh places no link) and every driver its row (``theta_b -
 theta_a + phi0 - q`` for R, ``s - q`` for P).  For the triad that is 4
 unknowns and 4 rows where pose coordinates have 12
-(:class:`linkage_sym.numeric.newton.NewtonSolver`, kept for groups with a
+(:class:`linkage_sym.numeric.kinematics.newton.NewtonSolver`, kept for groups with a
 cam contact or any other row).  The symbolic layer writes a mesh's row among
 the loops, in joint order; here the meshes follow the P joints' angle rows,
 so the two runtimes' rows are the same up to that order.
@@ -41,9 +41,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from linkage_sym.numeric import continuation
-from linkage_sym.numeric.constraints import GMesh, PJoint, RJoint
-from linkage_sym.numeric.newton import SINGULAR_IND, NewtonSolver, _PoseProblem
+from linkage_sym.numeric.continuation.roots import indicator, inverses
+from linkage_sym.numeric.kinematics.constraints import GMesh, PJoint, RJoint
+from linkage_sym.numeric.kinematics.newton import SINGULAR_IND, NewtonSolver, _PoseProblem
 
 
 def applies(scene, group, constraints) -> bool:
@@ -296,8 +296,8 @@ class LoopClosureSolver(NewtonSolver):
         finite = np.isfinite(J).all(axis=(1, 2))
         if not finite.all():
             J = np.where(finite[:, None, None], J, np.eye(self.nvar))
-        inv = continuation.inverses(J)
-        solvable = finite & (continuation.indicator(J, inv) > SINGULAR_IND)
+        inv = inverses(J)
+        solvable = finite & (indicator(J, inv) > SINGULAR_IND)
         block = (E, s, G, inv, solvable)
         self._rates_cache = (th, block)
         return block

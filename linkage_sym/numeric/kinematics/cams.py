@@ -3,7 +3,7 @@
 A cam contact keeps a follower element on link ``links[1]`` -- a knife-edge
 point, a roller's centre at the roller's radius from the profile, or a flat
 face tangent to it -- in contact with the profile ``C(u)`` of the cam
-``links[0]`` (:class:`~linkage_sym.numeric.cam_profile.CamProfile`, in the
+``links[0]`` (:class:`~linkage_sym.numeric.kinematics.cam_profile.CamProfile`, in the
 cam's frame).  It is a higher pair: one equation.
 
 Positions
@@ -55,8 +55,8 @@ import numpy as np
 
 from linkage_sym.errors import SceneError
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric.cam_profile import GRID, TWO_PI, CamProfile
-from linkage_sym.numeric.constraints import Constraint
+from linkage_sym.numeric.kinematics.cam_profile import GRID, TWO_PI, CamProfile
+from linkage_sym.numeric.kinematics.constraints import Constraint
 from linkage_sym.structure import Group
 
 STRAIGHT = 1e-9

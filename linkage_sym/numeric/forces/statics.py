@@ -14,7 +14,7 @@ A driver's effort (torque of an ``R`` driver, axial force of a ``P`` driver
 along the slide, applied at the reference point) is separate.
 
 Each routine solves its group's own equilibrium (three equations per link)
-under the known wrenches of its links (:class:`~linkage_sym.numeric.loads.Wrench`:
+under the known wrenches of its links (:class:`~linkage_sym.numeric.forces.loads.Wrench`:
 applied loads plus the reactions of the groups solved after it), with no
 linear-algebra call: every dyad type reduces to one 2x2 Cramer solve whose
 determinant is, up to a length, the group's kinematic Jacobian determinant
@@ -33,8 +33,8 @@ import math
 import numpy as np
 
 from linkage_sym.model import Scene
-from linkage_sym.numeric.cams import cam_geometry
-from linkage_sym.numeric.gears import mesh_direction
+from linkage_sym.numeric.kinematics.cams import cam_geometry
+from linkage_sym.numeric.kinematics.gears import mesh_direction
 from linkage_sym.structure import Group
 
 
@@ -80,7 +80,7 @@ class Geometry:
 
     def line_of_action(self, name):
         """Unit direction ``(ux, uy)`` of the force gear ``links[0]`` exerts on ``links[1]``
-        of mesh ``name`` (:func:`~linkage_sym.numeric.gears.mesh_direction`)."""
+        of mesh ``name`` (:func:`~linkage_sym.numeric.kinematics.gears.mesh_direction`)."""
         n = self._n.get(name)
         if n is None:
             j = self.joint[name]

@@ -35,10 +35,10 @@ import numpy as np
 
 from linkage_sym.errors import SceneError
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric.global_statics import assemble, dense_system, unpack
-from linkage_sym.numeric.loads import Wrench, applied_wrenches
-from linkage_sym.numeric.state import LinkState
-from linkage_sym.numeric.statics import DyadForces, Geometry, InputForces, push
+from linkage_sym.numeric.forces.global_statics import assemble, dense_system, unpack
+from linkage_sym.numeric.forces.loads import Wrench, applied_wrenches
+from linkage_sym.numeric.kinematics.state import LinkState
+from linkage_sym.numeric.forces.statics import DyadForces, Geometry, InputForces, push
 from linkage_sym.structure import Group
 from linkage_sym.structure.disconnection import Disconnection, default_choice, usable_disconnections
 

@@ -6,9 +6,8 @@ of :meth:`Analysis.to_dict` (the contract's JSON), so no NaN is ever passed
 off as a result.  A ``"singular"`` step keeps its positions (the velocity
 problem has no unique solution there, the position problem does).
 
-The JSON is strict: any other value that is not finite (a NaN or an infinity
-that a solver let through) is left out as well, and a ``warnings`` entry says
-which; :meth:`Analysis.to_json` writes with ``allow_nan=False``.
+The JSON is strict: any other value that is not finite is left out as well,
+and a ``warnings`` entry says which (:mod:`~linkage_sym.numeric.results.strict_json`).
 
 Size: about 600 lines, of which the JSON layout of the scene format (one
 record per step, every field named) is most: it is the contract, kept in one
@@ -18,10 +17,11 @@ place beside the classes it writes.
 from __future__ import annotations
 
 import json
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from linkage_sym.numeric.results.strict_json import LEFT_OUT, LeftOut, finite_only
 
 OK = "ok"
 UNASSEMBLABLE = "unassemblable"
@@ -195,7 +195,7 @@ class Analysis:
         Exact dimensionless condition number of the full constraint
         Jacobian (lengths divided by the mechanism's size) at the steps
         where it was computed: where a group's cheap indicator fell below
-        ``linkage_sym.numeric.sweep.SCREEN``, or at every step with
+        ``linkage_sym.numeric.engine.sweep.SCREEN``, or at every step with
         ``Plan.run(exact_condition=True)``.  NaN at the other steps (well
         conditioned by their indicators) and at unassemblable steps.
     outputs : tuple of str
@@ -215,13 +215,13 @@ class Analysis:
     transmission_angles : dict
         The transmission angle (rad, 0..pi) of every RRR dyad at every step,
         by its inner joint (an extension of the format, written with the
-        kinematics; see :mod:`linkage_sym.numeric.transmission`), NaN where a
+        kinematics; see :mod:`linkage_sym.numeric.results.transmission`), NaN where a
         step has no positions.
     accuracy : dict or None
         Estimated relative accuracy of each ``ok`` step (an extension of the
         format): ``{"position", "velocity", "acceleration", "forces"}`` (those
         of the stages that ran), arrays (N,), NaN at the other steps; bounds
-        from the condition numbers (see :mod:`linkage_sym.numeric.accuracy`).
+        from the condition numbers (see :mod:`linkage_sym.numeric.results.accuracy`).
     extremes : dict or None
         The sweep's located extremes (``analyze --extremes``; an extension of
         the format, see :mod:`linkage_sym.numeric.extremes`), written after
@@ -273,7 +273,7 @@ class Analysis:
                      dropped: "LeftOut | None" = None):
         """The JSON records of steps ``start`` to ``stop`` (a generator of dicts).
 
-        Values that are not finite are left out (see :func:`_finite_only`) and
+        Values that are not finite are left out (see :func:`~linkage_sym.numeric.results.strict_json.finite_only`) and
         named in ``dropped`` as ``steps[k]...``, ``k`` counted from
         ``number_from`` (default ``start``: the step's own index; a chunk of a
         longer sweep passes its offset in that sweep).  The arrays are turned
@@ -336,7 +336,7 @@ class Analysis:
                 rec["acceleration"] = acc[i]
             return rec
 
-        # extension: each ok step's estimated relative accuracy (numeric.accuracy)
+        # extension: each ok step's estimated relative accuracy (numeric.results.accuracy)
         accuracy = {k: rows(v) for k, v in self.accuracy.items()} if self.accuracy else None
         centres = self.instant_centres if "instant_centres" in self.outputs else None
         # only these records can hold a value of a column to leave out; keys of a record
@@ -395,11 +395,11 @@ class Analysis:
             if rates and centres is not None:  # extension: every pair's instant centre
                 step["instant_centres"] = centres.records(a + i)
             if suspect[i]:
-                yield _finite_only(step, f"steps[{number_from + i}]", dropped)
+                yield finite_only(step, f"steps[{number_from + i}]", dropped)
                 continue
             for key in [k for k in step if k not in covered]:
-                kept = _finite_only(step[key], f"steps[{number_from + i}].{key}", dropped)
-                if kept is _LEFT_OUT:
+                kept = finite_only(step[key], f"steps[{number_from + i}].{key}", dropped)
+                if kept is LEFT_OUT:
                     del step[key]
                 else:
                     step[key] = kept
@@ -511,7 +511,8 @@ class Analysis:
         ``"always"``, ``"positions"`` (``ok`` and ``singular`` steps),
         ``"ok"``, or ``"finite"`` (wherever the value is finite: an instant
         centre's position or direction, of which a record has one or neither;
-        ``instant_centres.a.b.*`` last, see :func:`_centre_columns`).  The same
+        ``instant_centres.a.b.*`` last, see
+        :meth:`linkage_sym.centres.table.InstantCentres.columns`).  The same
         columns exist whatever the steps' statuses, so every chunk of a sweep
         has them.
         """
@@ -575,94 +576,9 @@ class Analysis:
             out += [(f"accuracy.{k}", v, "ok") for k, v in self.accuracy.items()]
         centres = self.instant_centres if "instant_centres" in self.outputs else None
         if centres is not None:  # extension: every pair's instant centre, at the ok steps
-            out += _centre_columns(centres)
+            out += centres.columns()
         return out
-
-
-def _centre_columns(centres) -> list:
-    """The columns of the ``instant_centres`` records (:meth:`Analysis.columns`).
-
-    Per pair ``a, b`` (in the records' order): ``instant_centres.a.b.position.x``, ``.y``
-    where the record has a ``position``, ``direction.x``, ``.y`` where it is ``at_infinity``
-    (both ``"finite"``: NaN wherever the record has no such number), and two flags at
-    every ``ok`` step, 1 or 0: ``undefined`` (the record says ``undefined``) and
-    ``from_velocities`` (its ``method`` is ``"velocity"``).
-    """
-    rates = np.asarray(centres.rates, bool)
-    out = []
-    for k, (a, b) in enumerate(centres.pairs):
-        und = centres.undefined[:, k]
-        flags = {"undefined": und, "from_velocities": centres.from_velocities[:, k] & ~und}
-        p = f"instant_centres.{a}.{b}"
-        out += [(f"{p}.position.x", centres.position[:, k, 0], "finite"),
-                (f"{p}.position.y", centres.position[:, k, 1], "finite"),
-                (f"{p}.direction.x", centres.direction[:, k, 0], "finite"),
-                (f"{p}.direction.y", centres.direction[:, k, 1], "finite")]
-        out += [(f"{p}.{name}", np.where(rates, f.astype(float), np.nan), "ok")
-                for name, f in flags.items()]
-    return out
 
 
 _RECORD_BLOCK = 1024
 """Steps whose arrays :meth:`Analysis.step_records` turns into Python numbers at once."""
-
-
-class LeftOut:
-    """Values left out of a result because they are not finite: how many, and the first paths."""
-
-    SHOWN = 3
-
-    def __init__(self):
-        self.count = 0
-        self.paths: list[str] = []
-
-    def append(self, path: str) -> None:
-        self.count += 1
-        if len(self.paths) < self.SHOWN:
-            self.paths.append(path)
-
-    def warning(self) -> str:
-        """The sentence added to the result's ``warnings``."""
-        n = self.count
-        shown = ", ".join(self.paths) + (f" and {n - self.SHOWN} more" if n > self.SHOWN else "")
-        return (
-            f"{n} computed value{'s are' if n != 1 else ' is'} not finite "
-            f"(NaN or infinite) and left out of the result: {shown}"
-        )
-
-
-def _vec(v) -> list:
-    return [float(v[0]), float(v[1])]
-
-
-_LEFT_OUT = object()
-"""What :func:`_finite_only` returns for a value that is left out."""
-
-
-def _finite_only(value, path: str, dropped: list):
-    """``value`` (a step record) without its non-finite numbers; their paths go to ``dropped``.
-
-    A vector ``[x, y]`` with a non-finite component is left out whole; a record
-    keeps its other fields.
-    """
-    if isinstance(value, float):
-        if math.isfinite(value):
-            return value
-        dropped.append(path)
-        return _LEFT_OUT
-    if isinstance(value, dict):
-        out = {}
-        for key, item in value.items():
-            kept = _finite_only(item, f"{path}.{key}", dropped)
-            if kept is not _LEFT_OUT:
-                out[key] = kept
-        return out
-    if isinstance(value, list):
-        if all(isinstance(x, float) and math.isfinite(x) for x in value):
-            return value
-        if all(isinstance(x, (float, int)) for x in value):  # a vector: whole or not at all
-            dropped.append(path)
-            return _LEFT_OUT
-        return [x for x in (_finite_only(x, f"{path}[{k}]", dropped) for k, x in enumerate(value))
-                if x is not _LEFT_OUT]
-    return value

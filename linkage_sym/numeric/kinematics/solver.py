@@ -2,11 +2,11 @@
 
 :class:`GroupSolver` is the contract of the position and rate solvers of the
 groups -- input links and dyads in closed form
-(:mod:`~linkage_sym.numeric.closed_form`), gears on their pivots
-(:mod:`~linkage_sym.numeric.gears`), every other group by Newton's method
-(:mod:`~linkage_sym.numeric.newton`) -- so a new kind of group adds a class
+(:mod:`~linkage_sym.numeric.kinematics.closed_form`), gears on their pivots
+(:mod:`~linkage_sym.numeric.kinematics.gears`), every other group by Newton's method
+(:mod:`~linkage_sym.numeric.kinematics.newton`) -- so a new kind of group adds a class
 that meets it, not a branch in :class:`~linkage_sym.numeric.plan.Plan`.
-The force routines have theirs in :mod:`~linkage_sym.numeric.kinetostatics`
+The force routines have theirs in :mod:`~linkage_sym.numeric.forces.kinetostatics`
 (``ForceRoutine``).
 """
 
@@ -26,7 +26,7 @@ class GroupSolver(Protocol):
     assembly configuration (Newton, gears) or an input turning on the ground does not."""
     notes: Sequence[Any]
     """Assembly-mode jumps and ambiguous re-entries of the last ``position`` call, for the
-    run's warnings (:func:`~linkage_sym.numeric.continuation.step_warnings`)."""
+    run's warnings (:func:`~linkage_sym.numeric.continuation.messages.step_warnings`)."""
 
     def position(self, S: dict, q: dict) -> np.ndarray | None:
         """Poses of the group's links at every path point, written into ``S``; returns the

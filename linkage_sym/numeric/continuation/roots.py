@@ -1,57 +1,15 @@
-"""The one continuation policy of groups solved by Newton's method (NumPy only).
+"""Newton's iteration of one group at one path point, its constants, and the root searches.
 
-Class-III triads, driven (actuator) groups and every other group without a
-closed form are solved by Newton's method on their own loop equations, step
-after step along the solving path.  Both runtimes -- the numeric plan
-(:mod:`linkage_sym.numeric.newton`, pose coordinates) and the compiled
-symbolic mechanism (:mod:`linkage_sym.codegen.runtime`, the derived angles
-and slides) -- hand this module a :class:`Problem` and get the same policy:
-
-* **Continuity.**  A path point is reached from the previous solved one by
-  natural-parameter continuation: a predictor (linear from the two previous
-  points, when they are consecutive), damped Newton to a scaled residual of
-  :data:`TOL`, and the solution is *accepted* only if it keeps the assembly
-  configuration's Jacobian-determinant sign and lies within
-  :data:`MAX_CORRECTION` (dimensionless: radians, lengths over the
-  mechanism's size) of the predictor.  Otherwise the interval is bisected
-  (adaptive sub-steps, down to :data:`MIN_FRACTION` of it).  A solution is
-  therefore the one reached continuously from the assembly configuration,
-  whatever the number of steps of the sweep: a step's result does not depend
-  on its neighbours.
-* **Limits.**  When the continuation cannot go on (the group reaches a fold:
-  a limit position beyond which it cannot be assembled, or a singular
-  position where it would change assembly mode), the point is reported with
-  the fraction of the interval where that happens, so the caller can name the
-  driver value.
-* **Re-entry after a gap.**  After points that could not be solved there is
-  no continuous path.  The roots of the group are searched from seeds around
-  the last solved configuration (that configuration, the one where the
-  continuation stopped, the assembly configuration, and the last solved one
-  with its angles turned by fixed offsets, each with its lengths fitted to
-  its angles): Newton with a bounded step (:data:`SEARCH_STEP`) from each.
-  The roots with the assembly
-  configuration's determinant sign are kept, and the one whose angles are
-  nearest to the last solved configuration is taken (angles shifted by whole
-  turns to the nearest value, as the scene format asks of rotations across a
-  gap).  More than one such root is reported as an ambiguous assembly mode.
-  The same happens where the continuation stops at a limit: if a root of the
-  assembly sign exists past it, the group goes on there (the assembly mode is
-  the determinant sign, as for a closed-form dyad) and the jump is reported,
-  once per limit: a search that only finds the last configuration continued
-  (its angles a whole turn off the representation the equations hold, after an
-  earlier search) is no jump, and is not reported (:func:`_turned_continuation`).
-
-**Many points at once.**  By default (:data:`BATCHED`) :func:`solve_path`
-hands continuous stretches and gaps to :mod:`linkage_sym.numeric.batched_path`,
-which evaluates this policy on blocks of points (the same predictors, the
-same Newton iteration, the same acceptance test and root searches) and
-leaves every point where the direct step is not taken to :meth:`Walk.step`:
-the results are the point-by-point walk's (tested against it).
-
-Everything is dimensionless: a :class:`Problem` evaluates the scaled
-residual (length rows over the mechanism size ``L``) and its Jacobian with
-respect to the scaled unknowns ``u`` (lengths over ``L``, angles as they
-are).
+The pieces of the continuation policy (:mod:`linkage_sym.numeric.continuation`)
+that the point-by-point walk and the batched walk
+(:mod:`linkage_sym.numeric.continuation.batched_path`) both use: what a
+runtime hands the policy (:class:`Problem`) and gets back (:class:`Solution`),
+damped Newton to a scaled residual of :data:`TOL` (:func:`newton`), the
+continuation of one interval with its acceptance test and bisection
+(:func:`continue_to`), the conditioning indicator (:func:`indicator`) and the
+re-entry search from seeds around the known configurations
+(:func:`roots_near`).  Everything is dimensionless (see the policy's
+docstring).
 """
 
 from __future__ import annotations
@@ -144,7 +102,7 @@ class Problem(Protocol):
         """Residual (k, n) and Jacobian (k, n, n) of row ``U[j]`` at path point ``idx[j]``.
 
         Row ``j`` equals ``evaluate(U[j], at(idx[j]))``; used by the batched walk
-        (:mod:`linkage_sym.numeric.batched_path`).  Optional: a problem without it
+        (:mod:`linkage_sym.numeric.continuation.batched_path`).  Optional: a problem without it
         is solved point by point.
         """
 
@@ -168,7 +126,7 @@ class Solution:
     """(path point, number of roots with the assembly sign) of ambiguous re-entries."""
 
 
-def _det_sign(J) -> float:
+def det_sign(J) -> float:
     return float(np.sign(np.linalg.det(J)))
 
 
@@ -194,7 +152,7 @@ def indicator(J: np.ndarray, inverse: np.ndarray | None = None) -> np.ndarray:
     ``|J^-1|_F`` in ``[1, sqrt(n)] / sigma_min``, so the indicator lies in
     ``[r / n, r]``: never above ``r`` (a screen on it flags every step the
     exact ratio would), and its scale is calibrated against the exact condition
-    number (:mod:`linkage_sym.numeric.accuracy`).  An inverse and two norms: a
+    number (:mod:`linkage_sym.numeric.results.accuracy`).  An inverse and two norms: a
     third of the singular values' cost on the small blocks of a group.  ``0``
     where ``J`` is singular, NaN where it is not finite; ``inverse``: ``J^-1`` if
     the caller has it.
@@ -319,7 +277,7 @@ def _newton_search(problem: Problem, U: np.ndarray, ctx):
 def _accept(res, J, sign, u, seed) -> bool:
     return (
         res <= TOL
-        and _det_sign(J) == sign
+        and det_sign(J) == sign
         and float(np.max(np.abs(u - seed))) <= MAX_CORRECTION
     )
 
@@ -360,50 +318,6 @@ def _nearest_turns(u, ref, angles):
     out = u.copy()
     out[angles] -= 2 * math.pi * np.round((u[angles] - ref[angles]) / (2 * math.pi))
     return out
-
-
-def _turned_continuation(problem: Problem, u_last, a, b, sign, u) -> bool:
-    """Whether the root ``u`` found at inputs ``b`` is the continuation of the solved point
-    ``u_last`` at inputs ``a``, up to whole turns of its angles.
-
-    A root search shifts each angle by whole turns to the value nearest the last solved
-    configuration (:func:`distinct_roots`); where the group's equations are not periodic
-    in every angle (a driver row on a relative angle) that representation does not solve
-    them, and a continuation from it converges to the same configuration a turn away and
-    is refused at once, at every point after such a search.  So when the continuation
-    could not take even its first sub-step, ``u_last`` is put back on its equations (one
-    angle turned by up to :data:`_TURNS` whole turns, the representation whose residual
-    at ``a`` is within :data:`TOL`) and continued again; if that reaches ``u`` up to whole
-    turns (within :data:`SAME_ROOT`), the group passed no limit or singular position in
-    the interval, and there is nothing to warn of.
-    """
-    u_last = np.array(u_last, dtype=float)
-    r, _ = problem.evaluate(u_last, a)
-    if not float(np.linalg.norm(r)) > TOL:
-        return False  # it solves its equations: the continuation failed for another reason
-    v = None
-    for i in np.flatnonzero(problem.angles):
-        for n in (1, -1, 2, -2)[:2 * _TURNS]:
-            w = u_last.copy()
-            w[i] += 2 * math.pi * n
-            rw, Jw = problem.evaluate(w, a)
-            if float(np.linalg.norm(rw)) <= TOL and _det_sign(Jw) == sign:
-                v = w
-                break
-        if v is not None:
-            break
-    if v is None:
-        return False
-    w, _, t = continue_to(problem, v, a, b, sign)
-    if t is not None:
-        return False
-    d = np.asarray(u, dtype=float) - w
-    d[problem.angles] -= 2 * math.pi * np.round(d[problem.angles] / (2 * math.pi))
-    return bool(np.all(np.isfinite(d))) and float(np.max(np.abs(d), initial=0.0)) <= SAME_ROOT
-
-
-_TURNS = 2
-"""Whole turns (either way) tried on each angle by :func:`_turned_continuation`."""
 
 
 def _turned_seeds(u, angles, count=None):
@@ -466,8 +380,8 @@ def distinct_roots(roots, ref, angles, sign):
             found.append((u, J))
     found.sort(key=lambda p: (round(_angle_distance(p[0], ref, angles), 9),
                               float(np.max(np.abs(p[0] - ref)))))
-    same = [(u, J) for u, J in found if _det_sign(J) == sign]
-    other = [(u, J) for u, J in found if _det_sign(J) != sign]
+    same = [(u, J) for u, J in found if det_sign(J) == sign]
+    other = [(u, J) for u, J in found if det_sign(J) != sign]
     return same, other
 
 
@@ -485,205 +399,3 @@ def roots_near(problem: Problem, ctx, ref, others, sign):
     """
     seeds = [_project(problem, v, ctx) for v in search_seeds(ref, others, problem.angles)]
     return distinct_roots(_newton_search(problem, np.array(seeds), ctx), ref, problem.angles, sign)
-
-
-BATCHED = True
-"""Whether :func:`solve_path` solves continuous stretches many points at once
-(:mod:`linkage_sym.numeric.batched_path`: the same policy and the same results)
-or point after point.  The point-by-point walk stays for comparison and for
-problems without :meth:`Problem.evaluate_points`."""
-
-
-class Walk:
-    """The walk along the path: the state of the continuation and one point's step.
-
-    :meth:`step` is the policy at one path point (continuation from the last
-    solved point, else the root search); :meth:`accept` records points the
-    batched walk solved at once, exactly as :meth:`step` would have.
-    """
-
-    def __init__(self, problem: Problem, n_points: int, u_assembly: np.ndarray):
-        n = len(u_assembly)
-        self.problem = problem
-        self.u_assembly = u_assembly
-        self.sol = Solution(np.full((n_points, n), np.nan), np.full(n_points, np.nan))
-        _, J = problem.evaluate(u_assembly, problem.at(0))
-        self.sign = _det_sign(J)
-        self.last = None  # (point index, u, inputs or None until needed) of the last solved point
-        self.before = None  # u at the point before ``last`` when consecutive with it
-        self.stop = None  # the configuration where the continuation stopped (a limit)
-        self.stretch = None  # first point of the continuous stretch that ends at ``last``
-        self.jumped = None  # the last point reached by a root search, not by continuation
-
-    def last_inputs(self):
-        i, u, ctx = self.last
-        if ctx is None:
-            ctx = self.problem.at(i)
-            self.last = (i, u, ctx)
-        return ctx
-
-    def search_from(self):
-        """``(ref, others)`` of a root search now: the configuration where the branch
-        ended (resolution-independent up to the bisection), else the last solved
-        one, else the assembly; and the last solved one and the assembly."""
-        last = self.last
-        ref = self.stop if self.stop is not None else (
-            last[1] if last is not None else self.u_assembly)
-        others = ([last[1]] if last is not None else []) + [self.u_assembly]
-        return ref, others
-
-    def fail(self, i: int, failure) -> None:
-        """Record that point ``i`` has no solution in the assembly mode."""
-        self.sol.failures[i] = failure
-        self.before = None
-
-    def step(self, i: int) -> None:
-        """Solve path point ``i`` by the policy, from the state left by point ``i - 1``."""
-        problem, sol, last, sign = self.problem, self.sol, self.last, self.sign
-        ctx = problem.at(i)
-        if ctx is None:  # an upstream group failed here; reported there
-            return
-        limit = None
-        ok = False
-        if i == 0:
-            u, res, J = newton(problem, self.u_assembly.copy(), ctx)
-            ok = res <= TOL and _det_sign(J) == sign
-        elif last is not None and last[0] == i - 1:
-            u, J, limit = continue_to(problem, last[1], self.last_inputs(), ctx, sign, self.before)
-            ok = limit is None
-            self.stop = None if ok else u
-        if not ok:
-            # no continuous path from the last solved point (a gap, or a limit or
-            # singular position passed in this interval): every root near the known
-            # configurations, in the assembly mode's determinant sign
-            ref, others = self.search_from()
-            same, other = roots_near(problem, ctx, ref, others, sign)
-            if same:
-                u, J = same[0]
-                ok = True
-                self.jumped = i
-                if not (limit == 0.0 and _turned_continuation(problem, last[1], self.last_inputs(),
-                                                              ctx, sign, u)):
-                    sol.notes.append((i, limit, len(same)))
-            elif limit is not None:
-                sol.failures[i] = ("limit", limit)
-            else:
-                sol.failures[i] = ("other_mode", len(other)) if other else ("no_root", None)
-        if not ok:
-            self.before = None
-            return
-        sol.indicator[i] = indicator(J[None])[0]
-        sol.u[i] = u
-        # the predictor extrapolates only along a continuous stretch
-        continued = i > 0 and last is not None and last[0] == i - 1 and self.jumped != i
-        self.before = last[1] if continued else None
-        if not continued:
-            self.stretch = i
-        self.last = (i, u, ctx)
-
-    def accept(self, idx: np.ndarray, U: np.ndarray, ind: np.ndarray) -> None:
-        """Record the consecutive points ``idx`` (the first one after ``last``), each
-        reached from the one before it by :func:`continue_to`'s direct step, with its
-        indicator."""
-        self.sol.u[idx] = U
-        self.sol.indicator[idx] = ind
-        self.before = U[-2] if len(idx) > 1 else self.last[1]
-        self.last = (int(idx[-1]), U[-1], None)
-        self.stop = None
-
-
-def solve_path(problem: Problem, n_points: int, u_assembly: np.ndarray,
-               batched: bool | None = None) -> Solution:
-    """Solve the group at every path point (point 0 is the assembly configuration's inputs).
-
-    Raises nothing for points without a solution: they are listed in
-    ``Solution.failures``; jumps after a limit or a gap are listed in
-    ``Solution.notes``; the caller words the messages.
-
-    ``batched`` (default :data:`BATCHED`): solve continuous stretches many
-    points at once (:func:`linkage_sym.numeric.batched_path.walk_path`), with the
-    same results as the point-by-point walk; ``False`` walks point by point.
-    """
-    walk = Walk(problem, n_points, u_assembly)
-    if batched is None:
-        batched = BATCHED
-    if batched and hasattr(problem, "evaluate_points"):
-        from linkage_sym.numeric import batched_path  # it builds on this module
-
-        batched_path.walk_path(walk, n_points)
-    else:
-        for i in range(n_points):
-            walk.step(i)
-    return walk.sol
-
-
-def failure_message(label: str, links, failure, where) -> str:
-    """The message of a path point the continuation could not solve (both runtimes).
-
-    ``where(t)`` words the driver values a fraction ``t`` of the way from the
-    previous path point to this one (e.g. ``"A = 123.45 deg"``).
-    """
-    head = f"{label} ({', '.join(links)})"
-    kind, detail = failure
-    if kind == "limit":
-        return (
-            f"{head}: reaches a limit or singular position at {where(detail)} and no solution "
-            "in the assembly mode exists past it: the group cannot be assembled here"
-        )
-    if kind == "other_mode":
-        return (
-            f"{head}: the only solution(s) found ({detail}) are in the other assembly mode "
-            "(determinant sign of the group's Jacobian); not accepted"
-        )
-    return f"{head}: Newton on the group's loop equations finds no solution: the group cannot be assembled here"
-
-
-def note_message(label: str, links, note, step_text: str, where) -> str:
-    """The warning of a point reached without a continuous path (both runtimes)."""
-    _, limit, n_same = note
-    head = f"{label} ({', '.join(links)})"
-    how = (
-        f"passes a limit or singular position at {where(limit)}"
-        if limit is not None
-        else "re-enters after steps that cannot be assembled"
-    )
-    text = (
-        f"{head} {how}; at {step_text} it continues in the assembly mode (determinant sign), "
-        "nearest to the last solved configuration"
-    )
-    if n_same > 1:
-        text += f": the assembly mode is ambiguous there ({n_same} solutions with that sign)"
-    return text
-
-
-def driver_values_text(q: dict, kinds: dict, i: int, t: float | None = None) -> str:
-    """Driver values at path point ``i`` (or a fraction ``t`` of the way from ``i - 1``), worded.
-
-    ``q`` maps each driven joint to its values along the path, ``kinds`` to
-    ``"R"`` (an angle, printed in degrees) or ``"P"`` (a slide, in metres).
-    """
-    parts = []
-    for name, v in q.items():
-        x = float(v[i]) if t is None or i == 0 else float(v[i - 1] + t * (v[i] - v[i - 1]))
-        parts.append(f"{name} = {math.degrees(x):.6g} deg" if kinds[name] == "R" else f"{name} = {x:.6g} m")
-    return ", ".join(parts)
-
-
-def step_warnings(notes, step_points) -> list[str]:
-    """Warnings of the Newton groups' jumps (a limit passed, a re-entry after a gap).
-
-    ``notes`` are ``(path point, text(step))`` pairs; ``step_points`` the path
-    point of every step, increasing.  A jump between two steps is reported at
-    the step after it.
-    """
-    out = []
-    step_points = np.asarray(step_points)
-    for p, text in notes:
-        k = int(np.searchsorted(step_points, p))
-        if k >= len(step_points):
-            continue  # on the way to the first step only: no step sees it
-        where = f"step {k}" if step_points[k] == p else f"step {k} (reached from step {k - 1})"
-        if k == 0 and step_points[0] != p:
-            where = "step 0 (reached from the assembly configuration)"
-        out.append(text(where))
-    return out

@@ -18,9 +18,11 @@ import numpy as np
 
 from linkage_sym.errors import SceneError
 from linkage_sym.model import GROUND
-from linkage_sym.numeric import batched_path, continuation
-from linkage_sym.numeric.constraints import jacobian, stack_rows
-from linkage_sym.numeric.state import LinkState
+from linkage_sym.numeric import continuation
+from linkage_sym.numeric.continuation import batched_path
+from linkage_sym.numeric.continuation import messages as continuation_messages
+from linkage_sym.numeric.kinematics.constraints import jacobian, stack_rows
+from linkage_sym.numeric.kinematics.state import LinkState
 
 SINGULAR_IND = 1e-14
 """Indicator (reciprocal condition of the group block) below which no rate is solved."""
@@ -33,7 +35,7 @@ def above_ratio(J: np.ndarray, threshold: float) -> np.ndarray:
     ``sigma_min / sigma_max >= |det J| / |J|_F^n``: where that bound clears
     twice the threshold (every step but nearly singular ones) the matrix is
     above it without its singular values; the others are decided by
-    :func:`~linkage_sym.numeric.batched_path.singular_value_ratio`.  (The
+    :func:`~linkage_sym.numeric.continuation.batched_path.singular_value_ratio`.  (The
     rate stages' screen: a determinant costs a fifth of the eigenvalues.)
     """
     sign, logdet = np.linalg.slogdet(J)
@@ -92,13 +94,13 @@ class NewtonSolver:
         problem = self._problem(S, q)
         sol = continuation.solve_path(problem, n_steps, np.zeros(self.nvar))
         kinds = {k: self.driver_kinds.get(k, "R") for k in q}
-        where = lambda i: lambda t: continuation.driver_values_text(q, kinds, i, t)  # noqa: E731
+        where = lambda i: lambda t: continuation_messages.driver_values_text(q, kinds, i, t)  # noqa: E731
         self.messages = {
-            i: continuation.failure_message(self.group.label, self.links, f, where(i))
+            i: continuation_messages.failure_message(self.group.label, self.links, f, where(i))
             for i, f in sol.failures.items()
         }
         self.notes = [
-            (i, lambda step, n=n, i=i: continuation.note_message(
+            (i, lambda step, n=n, i=i: continuation_messages.note_message(
                 self.group.label, self.links, n, step, where(i)))
             for n in sol.notes
             for i in [n[0]]

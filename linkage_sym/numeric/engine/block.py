@@ -4,14 +4,14 @@ Both runtimes -- the numeric plan (:mod:`linkage_sym.numeric.plan`) and the
 compiled symbolic mechanism (:mod:`linkage_sym.codegen.runtime`) -- write
 their positions, rates and points into the rows of one ``(n_rows, N)``
 block laid out by :class:`ResultLayout`, hand out the
-:class:`~linkage_sym.numeric.result.LinkKinematics` and
-:class:`~linkage_sym.numeric.result.JointKinematics` records as views of it
+:class:`~linkage_sym.numeric.results.result.LinkKinematics` and
+:class:`~linkage_sym.numeric.results.result.JointKinematics` records as views of it
 (:meth:`ResultLayout.records`), and blank the steps without a solution by
 one rule (:meth:`ResultLayout.invalidate`).
 
 A run's block and its temporaries take a few megabytes; :meth:`ResultLayout.warm`
 touches them once, when a plan is compiled, so that a fresh process's first run does
-not fault them in page by page (:mod:`linkage_sym.numeric.heap`;
+not fault them in page by page (:mod:`linkage_sym.numeric.engine.heap`;
 ``benchmarks/bench_kinematics.py``, case ``fourbar_3600_fresh``, measures the first
 call and the compile time this adds).
 """
@@ -21,8 +21,8 @@ from __future__ import annotations
 import numpy as np
 
 from linkage_sym.model import Scene
-from linkage_sym.numeric import heap
-from linkage_sym.numeric.result import OK, SINGULAR, JointKinematics, LinkKinematics
+from linkage_sym.numeric.engine import heap
+from linkage_sym.numeric.results.result import OK, SINGULAR, JointKinematics, LinkKinematics
 
 
 WARM_FACTOR = {"numeric": (2.0, 2.5), "symbolic": (2.5, 3.0)}

@@ -23,18 +23,18 @@ of points (:func:`walk_path`):
    point's root of step 1 (one full step from the predictor lands within
    ``1e-3`` of the predictor's distance of it, the root is well conditioned,
    has the assembly sign and lies well within
-   :data:`~linkage_sym.numeric.continuation.MAX_CORRECTION`), that root is
+   :data:`~linkage_sym.numeric.continuation.roots.MAX_CORRECTION`), that root is
    taken after the walk's last polishing step from it: two evaluations and a
    solve per point instead of the walk's four and three.  Everywhere else
    :func:`newton_points` runs *the same damped Newton iteration* as
-   :func:`~linkage_sym.numeric.continuation.newton` from the predictor: same
+   :func:`~linkage_sym.numeric.continuation.roots.newton` from the predictor: same
    steps, same step halving, same stopping rules, row by row, and the point is
    taken only if that iteration passes the walk's acceptance test (scaled
-   residual :data:`~linkage_sym.numeric.continuation.TOL`, the assembly
+   residual :data:`~linkage_sym.numeric.continuation.roots.TOL`, the assembly
    configuration's determinant sign, within
-   :data:`~linkage_sym.numeric.continuation.MAX_CORRECTION` of its predictor).
+   :data:`~linkage_sym.numeric.continuation.roots.MAX_CORRECTION` of its predictor).
    For every point but the last of a block, the point taken must also be the
-   root of step 1 (within :data:`~linkage_sym.numeric.continuation.SAME_ROOT`)
+   root of step 1 (within :data:`~linkage_sym.numeric.continuation.roots.SAME_ROOT`)
    that the next points' predictors were made from.  By induction along the
    block, every point taken is the point the walk would have computed (to
    rounding), from the same predictor (to rounding).
@@ -53,7 +53,7 @@ of points (:func:`walk_path`):
    first one with such a root is left to :meth:`~.continuation.Walk.step`.
 
 The conditioning indicator of each point taken is the walk's
-(:func:`~linkage_sym.numeric.continuation.indicator`).  Block sizes
+(:func:`~linkage_sym.numeric.continuation.roots.indicator`).  Block sizes
 adapt: doubled after a block taken whole (up to :data:`MAX_BLOCK`), halved
 after one whose guesses did not reach its end, back to :data:`MIN_BLOCK`
 after a point the walk had to take itself.
@@ -61,9 +61,11 @@ after a point the walk had to take itself.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from linkage_sym.numeric.continuation import (
+from linkage_sym.numeric.continuation.roots import (
     MAX_CORRECTION,
     MAX_ITER,
     MAX_POLISH,
@@ -71,13 +73,15 @@ from linkage_sym.numeric.continuation import (
     SAME_ROOT,
     STALL_ITER,
     TOL,
-    Walk,
     indicator,
     inverses,
     distinct_roots,
     search_newton,
     search_seeds,
 )
+
+if TYPE_CHECKING:  # the walk whose points this module solves (it calls walk_path)
+    from linkage_sym.numeric.continuation import Walk
 
 MIN_BLOCK = 64
 """Smallest block of points solved at once (and the first one after a stop)."""
@@ -107,7 +111,7 @@ def singular_value_ratio(J: np.ndarray) -> np.ndarray:
     half the cost of the SVD of small matrices) where the ratio ``r`` is at
     least :data:`GRAM_RATIO`: their rounding (``~n eps lambda_max``) moves it by
     about ``n eps / (2 r^2)`` relative, below ``1e-11`` there (an indicator: it
-    decides the rate stages' screen, :func:`linkage_sym.numeric.newton.above_ratio`).
+    decides the rate stages' screen, :func:`linkage_sym.numeric.kinematics.newton.above_ratio`).
     The others, and any non-finite one, by the SVD itself (``eps / r`` relative).
     """
     J = np.asarray(J, dtype=float)
@@ -136,7 +140,7 @@ def _writable(*arrays):
 def _solve_rows(J, R):
     """``J[j]^-1 R[j]`` for every row, and which rows have none (singular or not finite).
 
-    The rows :func:`continuation.newton` would give up on (``LinAlgError`` or
+    The rows :func:`roots.newton` would give up on (``LinAlgError`` or
     a non-finite step) are marked ``bad``.
     """
     try:
@@ -155,15 +159,15 @@ def _solve_rows(J, R):
 
 
 def newton_points(problem, U, idx):
-    """:func:`continuation.newton` from every row of ``U`` at its path point ``idx[j]``.
+    """:func:`roots.newton` from every row of ``U`` at its path point ``idx[j]``.
 
     Row by row the same iteration: the full Newton step, halved while it does
     not decrease the residual (down to a step of 1e-4), stopped when the
-    residual stalls over :data:`continuation.STALL_ITER` iterations, polishing
-    steps after reaching :data:`continuation.TOL` while the last one's
-    correction exceeds :data:`continuation.POLISH_FLOOR` (at most
-    :data:`continuation.MAX_POLISH`; each kept only if it does not make the
-    residual worse), at most :data:`continuation.MAX_ITER`
+    residual stalls over :data:`roots.STALL_ITER` iterations, polishing
+    steps after reaching :data:`roots.TOL` while the last one's
+    correction exceeds :data:`roots.POLISH_FLOOR` (at most
+    :data:`roots.MAX_POLISH`; each kept only if it does not make the
+    residual worse), at most :data:`roots.MAX_ITER`
     iterations; a singular Jacobian or a non-finite step gives an infinite
     residual.  Returns ``(U, res, J)``: each row's last iterate, its residual
     norm and its Jacobian there.
@@ -195,10 +199,10 @@ def newton_points(problem, U, idx):
             break
         history[it] = res
         if it >= STALL_ITER:
-            # no root here: the residual stalls (continuation.newton's history[-STALL_ITER])
+            # no root here: the residual stalls (roots.newton's history[-STALL_ITER])
             keep(~((res > TOL) & (res > 0.5 * history[it - STALL_ITER + 1])))
         conv = res <= TOL
-        # converged and polished: done (continuation.newton's rule)
+        # converged and polished: done (roots.newton's rule)
         keep(~(conv & (polished > 0) & ((last <= POLISH_FLOOR) | (polished >= MAX_POLISH))))
         if not len(act):
             break
@@ -245,7 +249,7 @@ def newton_guesses(problem, U, idx):
 
     A row stops when its full step does not decrease its residual (no root near
     this guess), and after :data:`ROOT_ITER` iterations; a row whose residual is
-    within :data:`continuation.TOL` takes one more step without evaluating the
+    within :data:`roots.TOL` takes one more step without evaluating the
     residual after it.  Returns ``(U, res)``: each row's last iterate and its
     residual before that last step (``res <= TOL``: a root).  Guesses only: what
     the walk takes is decided by its own iteration or :func:`certified`.
@@ -412,10 +416,10 @@ def certified(problem, P, A, idx, sign):
     """Which points' walk would end on their root of step 1; and those roots.
 
     The walk's damped Newton from the predictor ``P`` of a point ends, to
-    rounding, on the root ``A`` (a residual within :data:`continuation.TOL`) if
+    rounding, on the root ``A`` (a residual within :data:`roots.TOL`) if
     (i) ``A``'s Jacobian has the assembly sign and a reciprocal condition
     number of at least :data:`CERTIFY_RATIO`, (ii) ``A`` is within half
-    :data:`continuation.MAX_CORRECTION` of ``P`` and (iii) the full Newton step
+    :data:`roots.MAX_CORRECTION` of ``P`` and (iii) the full Newton step
     from ``P`` lands within ``1e-3 |P - A| + 1e-14`` of ``A``.  Then that step
     decreases the residual (by (i), at least tenfold: no halving), Newton
     converges quadratically from where it lands, the polishing ends on ``A``
@@ -457,20 +461,20 @@ def certified(problem, P, A, idx, sign):
 
 
 def roots_near_points(problem, idx, ref, others, sign):
-    """:func:`continuation.roots_near` at each of the path points ``idx``, all at once.
+    """:func:`roots.roots_near` at each of the path points ``idx``, all at once.
 
     The same seeds around ``ref``, each with its lengths fitted to its angles
     at its point (the same least-squares call), the same bounded-step Newton row by
-    row (:func:`continuation.search_newton`), the converged ones polished by
+    row (:func:`roots.search_newton`), the converged ones polished by
     :func:`newton_points`, and each point's roots sorted and split by
-    :func:`continuation.distinct_roots`.  Returns one ``(same, other)`` per point.
+    :func:`roots.distinct_roots`.  Returns one ``(same, other)`` per point.
     """
     angles = problem.angles
     base = search_seeds(ref, others, angles)
     rows = np.repeat(np.asarray(idx), len(base))
     seeds = np.tile(base, (len(idx), 1))
     lin = ~angles
-    if lin.any():  # continuation._project, row by row
+    if lin.any():  # roots._project, row by row
         R, J = problem.evaluate_points(seeds, rows)
         for j in range(len(seeds)):
             d = np.linalg.lstsq(J[j][:, lin], -R[j], rcond=None)[0]

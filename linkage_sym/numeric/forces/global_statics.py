@@ -5,10 +5,10 @@ equations of every moving link, with every joint reaction and driver effort
 as unknowns, and solve them all at once.  Here the systems of all the steps
 of a sweep form one block-diagonal sparse matrix, factorised once by
 SuperLU (:func:`scipy.sparse.linalg.spsolve`).  It shares no solving code
-with the closed-form group routines of :mod:`~linkage_sym.numeric.statics`,
+with the closed-form group routines of :mod:`~linkage_sym.numeric.forces.statics`,
 which it checks.  Its assembly (:func:`assemble`) also serves, restricted to
 a few links, the split of a removed link's reactions in
-:mod:`~linkage_sym.numeric.superposition` (other than two revolutes) and the
+:mod:`~linkage_sym.numeric.forces.superposition` (other than two revolutes) and the
 dense solve of a group no disconnection reduces to dyads; those paths are
 checked by the equilibrium and power-balance tests, which share no code
 with it.

@@ -30,10 +30,13 @@ import numpy as np
 
 from linkage_sym.errors import SceneError
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric import accuracy, continuation, heap
-from linkage_sym.numeric.result import OK, SINGULAR, UNASSEMBLABLE, Analysis
-from linkage_sym.numeric.superposition import AMPLIFICATION_LIMIT
-from linkage_sym.numeric.transmission import transmission_angles
+from linkage_sym.numeric.results import accuracy
+from linkage_sym.numeric.continuation.messages import step_warnings
+from linkage_sym.numeric.engine import heap
+from linkage_sym.numeric.results.result import OK, SINGULAR, UNASSEMBLABLE, Analysis
+from linkage_sym.numeric.forces.superposition import AMPLIFICATION_LIMIT
+from linkage_sym.numeric.results.transmission import transmission_angles
+from linkage_sym.numeric.results.wording import steps_text
 
 SINGULAR_COND = 1e10
 """Spec: a step is singular when the dimensionless condition number exceeds this."""
@@ -115,11 +118,11 @@ def finish(res: Analysis, scene: Scene, notes, step_points, decomposition=None) 
     """What every run adds to its result, whichever runtime solved it.
 
     The warnings (assembly-mode jumps and ambiguous modes of Newton groups
-    from their ``notes``, see :func:`continuation.step_warnings`; then
+    from their ``notes``, see :func:`~linkage_sym.numeric.continuation.messages.step_warnings`; then
     :func:`run_warnings`), the transmission angles, and the instant centres
     when the scene asks for them.
     """
-    res.warnings.extend(continuation.step_warnings(notes, step_points))
+    res.warnings.extend(step_warnings(notes, step_points))
     if res.forces is not None:
         res.warnings.extend(res.forces.notes)
     res.warnings.extend(run_warnings(res))
@@ -132,7 +135,7 @@ def finish(res: Analysis, scene: Scene, notes, step_points, decomposition=None) 
 
 
 class Calibration:
-    """The accuracy calibration of one runtime (see :mod:`linkage_sym.numeric.accuracy`).
+    """The accuracy calibration of one runtime (see :mod:`linkage_sym.numeric.results.accuracy`).
 
     The ratio ``G`` of the exact condition number to a runtime's cheap
     indicator is measured once, by a run of the scene's own sweep at
@@ -391,12 +394,6 @@ def needed_stages(scene: Scene) -> tuple[str, ...]:
     if forces:
         stages.append("forces")
     return tuple(stages)
-
-
-def steps_text(first, count: int) -> str:
-    """The steps of a warning: the first five, and how many more."""
-    return ", ".join(str(int(i)) for i in list(first)[:5]) + (
-        f" and {count - 5} more" if count > 5 else "")
 
 
 def ill_conditioned_warning(count: int, first, worst: float, worst_step: int) -> str:

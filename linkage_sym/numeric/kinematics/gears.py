@@ -8,7 +8,7 @@ one-link group (kind ``"gear"``): its rotation is linear in the known angles
 and its pose follows from its pivot, in closed form (:class:`GearSolver`).
 Groups of several links with meshes (a planet and its carrier driven through
 the sun) are solved by the Newton solver on the mesh rows of
-:class:`~linkage_sym.numeric.constraints.GMesh`.
+:class:`~linkage_sym.numeric.kinematics.constraints.GMesh`.
 
 Forces
 ------
@@ -32,6 +32,7 @@ import math
 import numpy as np
 
 from linkage_sym.model import Scene
+from linkage_sym.numeric.results.wording import steps_text
 from linkage_sym.structure import Group
 
 
@@ -46,8 +47,6 @@ def mesh_axes(scene: Scene, mesh):
 def pulling_note(name: str, steps, solves: int) -> str:
     """The warning of a mesh whose tooth load still pulls at ``steps`` after ``solves``
     force solves with either flank (both runtimes)."""
-    from linkage_sym.numeric.sweep import steps_text
-
     return (f"gear mesh {name}: the tooth load still pulls at {len(steps)} step(s) (steps "
             f"{steps_text(steps, len(steps))}) after {solves} force solves with either flank: "
             "the mesh force reported there is not one its teeth can carry")

@@ -1,0 +1,85 @@
+"""The continuation's messages, worded alike by both runtimes (NumPy only).
+
+A path point the policy could not solve (:func:`failure_message`), a point
+reached without a continuous path (:func:`note_message`), the driver values
+they name (:func:`driver_values_text`), and the run's warnings of those jumps
+at the steps that see them (:func:`step_warnings`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+def failure_message(label: str, links, failure, where) -> str:
+    """The message of a path point the continuation could not solve (both runtimes).
+
+    ``where(t)`` words the driver values a fraction ``t`` of the way from the
+    previous path point to this one (e.g. ``"A = 123.45 deg"``).
+    """
+    head = f"{label} ({', '.join(links)})"
+    kind, detail = failure
+    if kind == "limit":
+        return (
+            f"{head}: reaches a limit or singular position at {where(detail)} and no solution "
+            "in the assembly mode exists past it: the group cannot be assembled here"
+        )
+    if kind == "other_mode":
+        return (
+            f"{head}: the only solution(s) found ({detail}) are in the other assembly mode "
+            "(determinant sign of the group's Jacobian); not accepted"
+        )
+    return f"{head}: Newton on the group's loop equations finds no solution: the group cannot be assembled here"
+
+
+def note_message(label: str, links, note, step_text: str, where) -> str:
+    """The warning of a point reached without a continuous path (both runtimes)."""
+    _, limit, n_same = note
+    head = f"{label} ({', '.join(links)})"
+    how = (
+        f"passes a limit or singular position at {where(limit)}"
+        if limit is not None
+        else "re-enters after steps that cannot be assembled"
+    )
+    text = (
+        f"{head} {how}; at {step_text} it continues in the assembly mode (determinant sign), "
+        "nearest to the last solved configuration"
+    )
+    if n_same > 1:
+        text += f": the assembly mode is ambiguous there ({n_same} solutions with that sign)"
+    return text
+
+
+def driver_values_text(q: dict, kinds: dict, i: int, t: float | None = None) -> str:
+    """Driver values at path point ``i`` (or a fraction ``t`` of the way from ``i - 1``), worded.
+
+    ``q`` maps each driven joint to its values along the path, ``kinds`` to
+    ``"R"`` (an angle, printed in degrees) or ``"P"`` (a slide, in metres).
+    """
+    parts = []
+    for name, v in q.items():
+        x = float(v[i]) if t is None or i == 0 else float(v[i - 1] + t * (v[i] - v[i - 1]))
+        parts.append(f"{name} = {math.degrees(x):.6g} deg" if kinds[name] == "R" else f"{name} = {x:.6g} m")
+    return ", ".join(parts)
+
+
+def step_warnings(notes, step_points) -> list[str]:
+    """Warnings of the Newton groups' jumps (a limit passed, a re-entry after a gap).
+
+    ``notes`` are ``(path point, text(step))`` pairs; ``step_points`` the path
+    point of every step, increasing.  A jump between two steps is reported at
+    the step after it.
+    """
+    out = []
+    step_points = np.asarray(step_points)
+    for p, text in notes:
+        k = int(np.searchsorted(step_points, p))
+        if k >= len(step_points):
+            continue  # on the way to the first step only: no step sees it
+        where = f"step {k}" if step_points[k] == p else f"step {k} (reached from step {k - 1})"
+        if k == 0 and step_points[0] != p:
+            where = "step 0 (reached from the assembly configuration)"
+        out.append(text(where))
+    return out
