@@ -80,7 +80,8 @@ assert hp.accuracy["velocity"].max() < 1e-15
 # on the $x$ axis, `C` is an intersection of the circles of radius $l_2$ about `B` and $l_3$
 # about `D`, and eq. 3-13 of the kinematics textbook chapter gives the rocker's
 # $\omega_3 = \omega_1 l_1 \sin(\theta_1-\theta_2) / (l_3 \sin(\theta_3-\theta_2))$.
-# The lengths are those of the scene's binary64 coordinates.
+# The lengths are those of the scene's binary64 coordinates, the crank angle the step's exact
+# value from the scene's degrees.
 
 # %%
 mp.mp.dps = 40
@@ -91,7 +92,12 @@ L2 = mp.hypot(J["C"][0] - J["B"][0], J["C"][1] - J["B"][1])
 L3 = mp.hypot(J["C"][0] - J["D"][0], J["C"][1] - J["D"][1])
 L4 = J["D"][0]
 i = res.n_steps - 1
-th1, w1 = mp.mpf(float(res.drivers["A"]["q"][i])), mp.mpf(float(res.drivers["A"]["qd"][i]))
+# the step's exact crank angle from the scene's degrees, as the 30-digit run takes it (the
+# float64 run's radians are its rounding, which the limit 0.01 deg away amplifies)
+drv = design.scene["drivers"][0]
+n = drv["steps"]
+th1 = (mp.mpf(drv["start_deg"]) * (n - 1 - i) + mp.mpf(drv["stop_deg"]) * i) / (n - 1) * mp.pi / 180
+w1 = mp.mpf(float(res.drivers["A"]["qd"][i]))
 Bx, By = L1 * mp.cos(th1), L1 * mp.sin(th1)
 dx, dy = L4 - Bx, -By
 e = mp.hypot(dx, dy)
