@@ -25,9 +25,9 @@ Separately: the rocker's largest rotation from the largest of 36, 360 and 3600 s
 against ``find_extremes`` (``--extremes``).
 
 Error: every value of every ok step against a 50-digit reference computed by
-``tests/mp_reference.py`` -- the scene format's own equations solved in mpmath, sharing no
+``tests/support/mp_reference.py`` -- the scene format's own equations solved in mpmath, sharing no
 code with any method timed here -- in the scales of the accuracy estimate
-(``tests/accuracy_checks.py``: positions over the size, rotations in rad, rates over the
+(``tests/support/accuracy_checks.py``: positions over the size, rotations in rad, rates over the
 step's largest speed or acceleration, forces over its largest reaction); a point's error is
 the largest over steps and fields (the fields are in the JSON).  The extremes' reference is
 the closed form's rate root (``tests/reference_kinematics.fourbar_mp``, 50 digits).

@@ -15,7 +15,7 @@
 # %% [markdown]
 # # What accuracy costs: the per-step estimate and the precision knob
 #
-# Kept as text (jupytext py:percent); `tests/test_notebooks.py` executes it.
+# Kept as text (jupytext py:percent); `tests/paper/test_notebooks.py` executes it.
 #
 # Every `ok` step of an analysis carries an estimate of its relative error
 # (`res.accuracy`, the JSON's `steps[i].accuracy`; README "What accuracy costs"): about

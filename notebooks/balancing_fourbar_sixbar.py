@@ -14,7 +14,7 @@
 # %% [markdown]
 # # Balancing the four-bar and Song and Wang's (1992) six-bar
 #
-# Kept as text (jupytext py:percent); `tests/test_notebooks.py` executes it.
+# Kept as text (jupytext py:percent); `tests/paper/test_notebooks.py` executes it.
 #
 # Song Liqun and Wang Bingle (1992; README, Sources [3]) write the inertia moment of one
 # link about the origin as $M_0 = -\sum_{i=1}^4 M_{uvi} D_{uvi}$: mass
@@ -133,6 +133,6 @@ assert not b6.pin_residuals
 
 # %% [markdown]
 # The conditions are *sufficient*. Song and Wang's three designs are simulated in
-# `paper_repro/song_wang_designs.py` (and `tests/test_song_wang_designs.py`): the
+# `paper_repro/song_wang_designs.py` (and `tests/paper/test_song_wang_designs.py`): the
 # two designs built on parallelograms cancel the moment between their change
 # points, and the third leaves the residual the paper itself states.

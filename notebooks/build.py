@@ -6,7 +6,7 @@
 Needs the ``notebooks`` extra (``pip install '.[notebooks]'``: jupytext, nbclient, ipykernel).
 The notebooks are kept as text (jupytext ``py:percent``) so that they diff and review like
 code; the ``.ipynb`` files, with their plots and rendered equations, are generated and not
-kept in the repository.  ``tests/test_notebooks.py`` executes every notebook the same way.
+kept in the repository.  ``tests/paper/test_notebooks.py`` executes every notebook the same way.
 """
 
 from __future__ import annotations

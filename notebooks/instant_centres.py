@@ -15,7 +15,7 @@
 # %% [markdown]
 # # Instant centres of a crank-rocker, checked by hand
 #
-# Kept as text (jupytext py:percent); `tests/test_notebooks.py` executes it.
+# Kept as text (jupytext py:percent); `tests/paper/test_notebooks.py` executes it.
 #
 # The kinematics textbook chapter (README, Sources [4], section 3-2) finds velocities by
 # instant centres: a mechanism of $N$ links has $N(N-1)/2$ of them (eq. 3-5), the primary

@@ -14,7 +14,7 @@
 # %% [markdown]
 # # Kinematics of a crank-rocker, checked two ways
 #
-# Kept as text (jupytext py:percent); `tests/test_notebooks.py` executes it.
+# Kept as text (jupytext py:percent); `tests/paper/test_notebooks.py` executes it.
 # Open it in Jupyter with `jupytext --to notebook kinematics_fourbar.py`.
 #
 # We solve the crank-rocker of the scene-format spec with linkage_sym's dyad

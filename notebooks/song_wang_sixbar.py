@@ -14,7 +14,7 @@
 # %% [markdown]
 # # Song and Wang's six-bar, derived step by step, with the errata
 #
-# Kept as text (jupytext py:percent); `tests/test_notebooks.py` executes it.
+# Kept as text (jupytext py:percent); `tests/paper/test_notebooks.py` executes it.
 #
 # Song Liqun and Wang Bingle, *Mass and acceleration parameter equations of the inertia moment
 # of planar hinged linkages, and a module "assembly" balancing algorithm*, Journal of Chongqing

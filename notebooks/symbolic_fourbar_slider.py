@@ -14,7 +14,7 @@
 # %% [markdown]
 # # The crank-rocker and the offset slider-crank, derived with SymPy
 #
-# Kept as text (jupytext py:percent); `tests/test_notebooks.py` executes it.
+# Kept as text (jupytext py:percent); `tests/paper/test_notebooks.py` executes it.
 #
 # `linkage_sym.derive` writes each mechanism's closed vector loop in the
 # kinematics textbook chapter's complex form (README, Sources [4]) (eq. 3-8), its projections (3-9), the explicit dyad

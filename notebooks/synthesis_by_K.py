@@ -15,7 +15,7 @@
 # %% [markdown]
 # # A crank-rocker designed by its stroke-time ratio K
 #
-# Kept as text (jupytext py:percent); `tests/test_notebooks.py` executes it.
+# Kept as text (jupytext py:percent); `tests/paper/test_notebooks.py` executes it.
 #
 # The four-bar design textbook section (README, Sources [2]) designs a crank-rocker with
 # quick return from the stroke-time ratio $K$, the rocker's length and its swing $\psi$:

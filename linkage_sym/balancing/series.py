@@ -5,7 +5,7 @@ The assembled expressions (:mod:`~.assembly`: the shaking force
 lambdified once, with ``cse``, into one NumPy function; the pins' positions
 and accelerations come from the numeric kinematics of the scene's sweep (no
 force solver).  The kinetostatic solver's frame force and moment are the
-independent check (``tests/test_balancing.py``).
+independent check (``tests/balancing/test_balancing.py``).
 
 Examples
 --------

@@ -93,7 +93,7 @@ shorter) fits in the memory available."""
 PEAK_FACTOR = {"dyad": 3.0, "global": 8.0, "symbolic": 4.0}
 """Peak memory of a run, per step, in units of its result's numbers (8 bytes each).
 
-Measured with tracemalloc on the shipped examples (tests/test_output_formats.py
+Measured with tracemalloc on the shipped examples (tests/output/test_output_formats.py
 holds every example's measured peak under the estimate): a run's result block
 plus its temporaries peak at 1.8 (dyad), 5.5 (global: the sparse systems),
 2.3 (symbolic) times the result."""

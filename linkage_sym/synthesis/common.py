@@ -29,7 +29,7 @@ whose assembly mode the solver cannot tell (the plan would refuse it)."""
 
 # The scene format's limits (linkage_sym.scene.fields and linkage_sym.scene.validate), which
 # every written scene must meet.  Repeated here, not imported: importing linkage_sym.scene loads
-# SciPy, and the synthesis is NumPy only; tests/test_synthesis_cli.py checks they are equal.
+# SciPy, and the synthesis is NumPy only; tests/synthesis/test_synthesis_cli.py checks they are equal.
 
 MAX_LENGTH = 1e30
 """Largest length or coordinate (m) of a request or a design: the scene format's

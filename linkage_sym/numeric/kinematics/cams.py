@@ -32,7 +32,7 @@ follower parallel to the face at ``1/kappa`` from it.  The replacement's
 velocity and acceleration rows (:class:`CamContact`) are those of that
 binary link (a distance row) or slider (a ``P`` joint's offset row), so the
 follower's rates are those of the replacement four-bar or slider mechanism.
-They are checked in ``tests/test_cams.py`` against an independent solve of
+They are checked in ``tests/numeric/test_cams.py`` against an independent solve of
 the direct contact equations (implicit differentiation) and closed forms.
 
 Reported per step

@@ -28,7 +28,7 @@ Why ``K^2`` for rates: the positions carry ``eps K``, and near a dead centre the
 rates' sensitivity to the configuration grows like ``K`` too (the computed
 configuration is an exact one of a mechanism off by ``eps`` in its lengths; the
 rates of that one differ by ``eps K^2`` relative).  Measured against 50-digit references
-(``tests/test_accuracy.py``: every step of the shipped examples, four-bars from 0.1 to
+(``tests/numeric/test_accuracy.py``: every step of the shipped examples, four-bars from 0.1 to
 1e-10 degrees of a dead centre with ``K`` up to 7e6, the change-point four-bar, random
 crank-rockers, slider-cranks and class-III triads with masses, for the numeric solver
 with both force methods and the compiled symbolic runtime) no error exceeded 0.54 of its
