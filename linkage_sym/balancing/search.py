@@ -275,6 +275,12 @@ def _relaxation(prob: _Problem, smooth: bool):
         # trust-constr's quasi-Newton updates warn when a step leaves the gradient unchanged
         # (a linear stretch of the objective); harmless here, and the only warning meant
         warnings.filterwarnings("ignore", message="delta_grad == 0.0", category=UserWarning)
+        # a counterweight whose mass goes to 0 leaves its cone row with a zero gradient (its
+        # point undetermined), so the constraints' Jacobian is rank-deficient there and
+        # trust-constr factorises it by SVD instead of QR, saying so: the right method, and
+        # the result's convergence test below still judges the outcome
+        warnings.filterwarnings("ignore", message="Singular Jacobian matrix",
+                                category=UserWarning)
         res = _opt.minimize(
             fun, y0, jac=True, hess=hess, method="trust-constr",
             bounds=_opt.Bounds(np.tile([0.0, -1.0, -1.0, 0.0], n), np.tile([1.0, 1.0, 1.0, 2.0], n)),
