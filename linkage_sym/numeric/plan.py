@@ -272,10 +272,9 @@ class Plan:
         broken = interrupted(valid, out, solved)
         if not broken.any():
             return
-        driven = ground_driven(self.scene)
-        for n in self.scene.link_names:
+        for n in self.unwrapped:  # every link but those turned by a driver on the ground
             st = S[n]
-            if n not in driven and np.shape(st.th) == solved.shape:
+            if np.shape(st.th) == solved.shape:
                 st.th = nearest_across_gaps(st.th, solved, broken)
 
     def condition_numbers(self, S, idx) -> np.ndarray:
