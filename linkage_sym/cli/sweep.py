@@ -154,22 +154,8 @@ def _sweep(args) -> int:
         _require_pyarrow()
     scene = load(args.scene)
     check_run_memory(scene, "path", copies=4)  # the model, and a design along its path
-    axes = None
-    if args.vary:
-        axes = {}
-        for text in args.vary:
-            name, values = parse_axis(text)
-            if name in axes:
-                raise OptionError(f"--vary: {name!r} given twice")
-            axes[name] = values
-    tol = None
-    if args.tolerance:
-        tol = {}
-        for text in args.tolerance:
-            name, sigma = parse_tolerance(text)
-            if name in tol:
-                raise OptionError(f"--tolerance: {name!r} given twice")
-            tol[name] = sigma
+    axes = _by_name(args.vary, parse_axis, "--vary")
+    tol = _by_name(args.tolerance, parse_tolerance, "--tolerance")
     metrics = None
     if args.metrics:
         metrics = [m.strip() for m in args.metrics.split(",") if m.strip()]
@@ -210,6 +196,20 @@ def _sweep(args) -> int:
     for w in written:
         print(f"wrote {w}", file=out)
     return 0
+
+
+def _by_name(texts, parse, option: str):
+    """``{name: value}`` of an option given once per parameter (``parse`` reads one
+    ``NAME=...``), ``None`` when it is not given; a name given twice is refused."""
+    if not texts:
+        return None
+    out = {}
+    for text in texts:
+        name, value = parse(text)
+        if name in out:
+            raise OptionError(f"{option}: {name!r} given twice")
+        out[name] = value
+    return out
 
 
 def parse_rows(text: str) -> list:
