@@ -47,6 +47,17 @@ class BalanceError(ValueError):
         super().__init__(f"cannot balance: {field + ': ' if field else ''}{reason}")
 
 
+POINTERS = {
+    "parameters": "linkage_sym.design.scene_parameters(scene) lists them with their values",
+    "analyze": "linkage_sym.analyze solves one design",
+    "builders": "linkage_sym.synthesis.builders",
+    "disconnections": "linkage_sym.structure.structure_report lists them",
+}
+"""Where a message sends its reader for more, as the library's user gets there (a function
+to call), by topic.  Messages use these texts whole, so that the command line can put its
+own command for each (``linkage_sym.cli.common.COMMAND_POINTERS``)."""
+
+
 def finite_number(field: str, value, error: type) -> float:
     """``value`` as a finite float, else ``error(field, reason)``.
 
@@ -81,8 +92,39 @@ SYMBOLIC_LACKS = {"cam": "cam contacts"}
 """Joint types the symbolic layer does not derive yet, with their plural names."""
 
 
+class SymbolicUnsupportedError(SceneError):
+    """Joints of a scene that the symbolic layer does not derive yet (:data:`SYMBOLIC_LACKS`).
+
+    ``joints``: ``(index, name, type)`` of each; ``field``: the argument that picks a
+    method that does support them (``method`` of :func:`linkage_sym.analyze`).  The
+    problems name it as the library takes it; :meth:`problems_naming` words them with
+    another name for that choice (the command line's option).
+
+    Examples
+    --------
+    >>> err = SymbolicUnsupportedError([(1, "K", "cam")])
+    >>> err.problems
+    ["joints[1]: the symbolic method does not support cam contacts yet (joint 'K' is of type cam); the numeric methods do (method 'dyad' or 'global')"]
+    >>> err.problems_naming("another method")[0][-19:]
+    'do (another method)'
+    """
+
+    field = "method"
+
+    def __init__(self, joints):
+        self.joints = [tuple(j) for j in joints]
+        super().__init__(self.problems_naming(f"{self.field} 'dyad' or 'global'"))
+
+    def problems_naming(self, choice: str) -> list[str]:
+        """The problems, ``choice`` saying how to pick a numeric method."""
+        return [f"joints[{i}]: the symbolic method does not support {SYMBOLIC_LACKS[t]} yet "
+                f"(joint '{name}' is of type {t}); the numeric methods do ({choice})"
+                for i, name, t in self.joints]
+
+
 def refuse_symbolic_unsupported(scene) -> None:
-    """Raise :class:`SceneError` if ``scene`` has joints the symbolic layer does not derive.
+    """Raise :class:`SymbolicUnsupportedError` if ``scene`` has joints the symbolic layer
+    does not derive.
 
     The symbolic method (derived equations, their compiled and arbitrary-precision
     runs, and what builds on them: LaTeX, balancing conditions, design sweeps)
@@ -96,14 +138,9 @@ def refuse_symbolic_unsupported(scene) -> None:
     >>> refuse_symbolic_unsupported(NS(joints=[NS(name="A", type="R"), NS(name="K", type="cam")]))
     Traceback (most recent call last):
     ...
-    linkage_sym.errors.SceneError: invalid scene (1 problem):
-      joints[1]: the symbolic method does not support cam contacts yet (joint 'K' is of type cam); the numeric methods do (--method dyad or global)
+    linkage_sym.errors.SymbolicUnsupportedError: invalid scene (1 problem):
+      joints[1]: the symbolic method does not support cam contacts yet (joint 'K' is of type cam); the numeric methods do (method 'dyad' or 'global')
     """
-    problems = [
-        f"joints[{i}]: the symbolic method does not support {SYMBOLIC_LACKS[j.type]} yet "
-        f"(joint '{j.name}' is of type {j.type}); the numeric methods do (--method dyad or global)"
-        for i, j in enumerate(scene.joints)
-        if j.type in SYMBOLIC_LACKS
-    ]
-    if problems:
-        raise SceneError(problems)
+    joints = [(i, j.name, j.type) for i, j in enumerate(scene.joints) if j.type in SYMBOLIC_LACKS]
+    if joints:
+        raise SymbolicUnsupportedError(joints)

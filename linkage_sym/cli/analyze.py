@@ -18,6 +18,7 @@ import sys
 
 from linkage_sym.cli import accuracy as cli_accuracy
 from linkage_sym.cli.common import EXIT_STATUS, NO_STEP_ASSEMBLED, OptionError, driver_kinds
+from linkage_sym.cli.common import command_words, option_error
 from linkage_sym.cli.common import check_outputs as _check_outputs, load as _load
 from linkage_sym.errors import SceneError
 
@@ -101,7 +102,7 @@ def cmd_analyze(args) -> int:
         if fmt == "parquet" and args.output is not None:
             output.require_pyarrow()
     except output.OutputError as err:
-        raise OptionError(err.problems) from err
+        raise option_error(err, "analyze") from err
     scene = _load(args.scene)
     # the whole run's peak (two copies of the driver values, the path, a chunk or, for
     # --plots, every step), before any of it is made
@@ -119,7 +120,7 @@ def cmd_analyze(args) -> int:
         except SceneError as err:
             if args.disconnection is not None and all(
                     p.startswith("disconnection:") for p in err.problems):
-                raise OptionError([f"--{p}" for p in err.problems]) from err
+                raise OptionError([f"--{command_words(p)}" for p in err.problems]) from err
             raise
         if args.disconnection is not None and not any(
             g.kind not in ("input", "dyad") for g in plan.decomposition.groups
@@ -134,7 +135,7 @@ def cmd_analyze(args) -> int:
             indent=1 if args.pretty else None, stream=sys.stdout if to_stdout else None,
             progress=True, keep=bool(args.plots))
     except output.OutputError as err:
-        raise OptionError(err.problems) from err
+        raise option_error(err, "analyze") from err
     except (MemoryError, output.ChunkError) as err:
         what = "out of memory" if isinstance(err, MemoryError) else str(err)
         print(f"linkage-sym analyze: {what}; nothing written", file=sys.stderr)

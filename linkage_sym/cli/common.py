@@ -15,8 +15,9 @@ import os
 import sys
 from pathlib import Path
 
-__all__ = ["BROKEN_PIPE", "EXIT_STATUS", "NO_STEP_ASSEMBLED", "OPTIONS", "CommandParser",
-           "OptionError", "option_of", "option_error", "error_text", "load", "check_outputs",
+__all__ = ["BROKEN_PIPE", "EXIT_STATUS", "NO_STEP_ASSEMBLED", "OPTIONS", "COMMAND_POINTERS",
+           "CommandParser", "OptionError", "option_of", "option_error", "error_text",
+           "command_words", "load", "check_outputs",
            "write", "emit", "stem", "driver_kinds", "closed_streams_to_devnull"]
 
 NO_STEP_ASSEMBLED = 3  # analyze: the result file is written, but no step could be assembled
@@ -77,8 +78,41 @@ SWEEP_OPTIONS = {"parameters": "--vary", "output": "--output-link", "trace": "--
 axis ``l_AB`` of ``--vary``); a field not listed is printed as it is
 (``parameters['l_AB']``)."""
 
-OPTIONS = {"sweep": SWEEP_OPTIONS}
+ANALYZE_OPTIONS = {"format": "--format", "keep": "--plots", "path": "-o/--output",
+                   "method": "--method", "disconnection": "--disconnection"}
+"""The arguments of :func:`linkage_sym.output.write_sweep` (the ``field`` of an
+``OutputError``: ``keep`` is the whole sweep kept for the plots) and of
+:func:`linkage_sym.analyze`, and the options of ``analyze`` that fill them."""
+
+OPTIONS = {"sweep": SWEEP_OPTIONS, "analyze": ANALYZE_OPTIONS}
 """Each command whose options are not its library parameters with dashes: its table."""
+
+
+COMMAND_POINTERS = {
+    "parameters": "`linkage-sym sweep SCENE --list` prints them with their values",
+    "analyze": "`linkage-sym analyze` solves one design",
+    "builders": "'linkage-sym new'",
+    "disconnections": "`linkage-sym structure` lists them",
+}
+"""What the command line says for each of the library's pointers
+(:data:`linkage_sym.errors.POINTERS`: a function to call) in a message: its command."""
+
+
+def command_words(text: str) -> str:
+    """A library message with each of its pointers (:data:`linkage_sym.errors.POINTERS`)
+    replaced by the command that does the same (:data:`COMMAND_POINTERS`).
+
+    Examples
+    --------
+    >>> from linkage_sym.errors import POINTERS
+    >>> command_words(f"unknown parameter 'l_XY' ({POINTERS['parameters']})")
+    "unknown parameter 'l_XY' (`linkage-sym sweep SCENE --list` prints them with their values)"
+    """
+    from linkage_sym.errors import POINTERS
+
+    for key, said in COMMAND_POINTERS.items():
+        text = text.replace(POINTERS[key], said)
+    return text
 
 
 def option_of(field: str, command: str | None = None) -> str:
@@ -106,37 +140,50 @@ def option_of(field: str, command: str | None = None) -> str:
 
 def option_error(err, command: str | None = None) -> OptionError:
     """A library error about a command's parameters as the :class:`OptionError` that names
-    the options: ``err.field`` and ``err.reason`` (``SweepError``, ``SynthesisError``), or
-    ``err.problems`` of ``(field, reason)`` (the balancing's ``OptionsError``).
+    the options: ``err.field`` and ``err.reason`` (``SweepError``, ``SynthesisError``,
+    ``OutputError``, whose ``field`` may be None: the reason alone), or ``err.problems`` of
+    ``(field, reason)`` (the balancing's ``OptionsError``).
 
     Examples
     --------
     >>> from linkage_sym.design.errors import SweepError
     >>> option_error(SweepError("parameters", "no parameter to vary"), "sweep").problems
     ['--vary: no parameter to vary']
+    >>> from linkage_sym.output import OutputError
+    >>> option_error(OutputError("not enough memory: ...", field="keep"), "analyze").problems
+    ['--plots: not enough memory: ...']
     """
     if hasattr(err, "field"):
-        return OptionError(f"{option_of(err.field, command)}: {err.reason}")
-    return OptionError([f"{option_of(field, command)}: {why}" for field, why in err.problems])
+        if err.field is None:
+            return OptionError(command_words(err.reason))
+        return OptionError(f"{option_of(err.field, command)}: {command_words(err.reason)}")
+    return OptionError([f"{option_of(field, command)}: {command_words(why)}"
+                        for field, why in err.problems])
 
 
 def error_text(err, command: str | None = None) -> str:
     """What the command line prints of a library error it does not turn into an
     :class:`OptionError` (an invalid scene, a balancing that cannot be met): its text, the
-    parameter it names (``BalanceError.field``) given as the option.
+    parameter it names (``BalanceError.field``, ``SymbolicUnsupportedError.field``) given as
+    the option.
 
     Examples
     --------
     >>> from linkage_sym.errors import BalanceError
     >>> error_text(BalanceError("no step could be assembled", field="optimize"), "balance")
     'cannot balance: --optimize: no step could be assembled'
+    >>> from linkage_sym.errors import SymbolicUnsupportedError
+    >>> error_text(SymbolicUnsupportedError([(1, "K", "cam")]), "derive")[-50:]
+    '; the numeric methods do (--method dyad or global)'
     """
-    from linkage_sym.errors import BalanceError
+    from linkage_sym.errors import BalanceError, SceneError, SymbolicUnsupportedError
 
+    if isinstance(err, SymbolicUnsupportedError):  # the choice of method: analyze's option
+        return str(SceneError(err.problems_naming(f"{option_of(err.field)} dyad or global")))
     field = getattr(err, "field", None) if isinstance(err, BalanceError) else None
     if field is None:
-        return str(err)
-    return f"cannot balance: {option_of(field, command)}: {err.reason}"
+        return command_words(str(err))
+    return f"cannot balance: {option_of(field, command)}: {command_words(err.reason)}"
 
 
 def closed_streams_to_devnull() -> None:

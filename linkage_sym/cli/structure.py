@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from linkage_sym.cli.common import load as _load
+from linkage_sym.cli.common import load as _load, option_of
 
 __all__ = ["cmd_structure", "register"]
 
@@ -11,7 +11,7 @@ def cmd_structure(args) -> int:
     from linkage_sym.structure import decompose, structure_report
 
     scene = _load(args.scene)
-    print(structure_report(scene, decompose(scene)))
+    print(structure_report(scene, decompose(scene), pick=f"{option_of('disconnection')} K"))
     return 0
 
 

@@ -64,6 +64,7 @@ import numpy as np
 
 from linkage_sym.design.errors import SweepError
 from linkage_sym.design.names import DEFAULT_METRICS, METRICS
+from linkage_sym.errors import POINTERS
 from linkage_sym.model import GROUND
 from linkage_sym.numeric.results.cycle_average import cycle_rms, whole_period
 from linkage_sym.numeric.results.transmission import rrr_dyads
@@ -109,13 +110,12 @@ def refuse_meshes(scene) -> None:
                                   f"({', '.join(j.name for j in scene.meshes)}): design sweeps "
                                   "do not take them yet (a design's radii and pivots must keep "
                                   "each mesh's centre distance, and each step's flank is chosen "
-                                  "from its tooth load); `linkage-sym analyze` solves one design")
+                                  f"from its tooth load); {POINTERS['analyze']}")
     if scene.cams:
         raise SweepError("scene", f"scene {scene.name!r} has cam contacts "
                                   f"({', '.join(j.name for j in scene.cams)}): design sweeps "
                                   "do not take them yet (they run on the symbolic layer's "
-                                  "functions, which do not derive cams); `linkage-sym analyze` "
-                                  "solves one design")
+                                  f"functions, which do not derive cams); {POINTERS['analyze']}")
 
 
 def check_choices(scene, output=None, trace=None) -> None:

@@ -35,7 +35,7 @@ import numpy as np
 
 from linkage_sym.design.errors import SweepError
 from linkage_sym.numeric.engine import heap
-from linkage_sym.errors import finite_number
+from linkage_sym.errors import POINTERS, finite_number
 
 __all__ = ["Designs", "grid", "monte_carlo", "read_samples", "parse_axis", "parse_tolerance",
            "check_names", "parameter_list", "design_problems", "refuse_invalid"]
@@ -236,8 +236,7 @@ def check_names(designs: Designs, valid, field_name: str = "parameters") -> None
                                          "assembly, so it cannot be varied")
         if n not in valid:
             raise SweepError(field_name, f"unknown parameter {n!r}; the scene's parameters are "
-                                         f"{', '.join(valid)} (`linkage-sym sweep SCENE --list` "
-                                         "prints them with their values)")
+                                         f"{', '.join(valid)} ({POINTERS['parameters']})")
 
 
 def _field(scene, name: str, recipe: tuple):

@@ -247,14 +247,27 @@ def chunk_steps(n_steps: int, per_step: int, available: int | None, newton: bool
     return size
 
 
-def check_whole(n_steps: int, per_step: int, available: int | None, why: str) -> None:
-    """Refuse (:class:`OutputError`) a whole sweep held in memory at once that would not fit."""
+def check_whole(n_steps: int, per_step: int, available: int | None, field: str) -> None:
+    """Refuse (:class:`OutputError`) a whole sweep held in memory at once that would not fit.
+
+    ``field``: the argument that asks for the whole sweep (``keep`` of :func:`write_sweep`),
+    named by the error.
+
+    Examples
+    --------
+    >>> check_whole(10, 100, None, "keep")  # memory unknown: no check
+    >>> try:
+    ...     check_whole(10**6, 1000, FIXED_BYTES + 10**6, "keep")
+    ... except OutputError as err:
+    ...     print(err.field, "|", err.reason[:55])
+    keep | not enough memory: the whole sweep in memory takes abou
+    """
     need = n_steps * per_step + FIXED_BYTES
     if available is not None and need > available:
         raise OutputError(
-            f"not enough memory: {why} needs the whole sweep in memory, about {_size(need)} for "
+            f"not enough memory: the whole sweep in memory takes about {_size(need)} for "
             f"{n_steps} steps ({_size(per_step)} a step), and the machine has {_size(available)} "
-            "available; nothing written (fewer steps, or leave it out)")
+            "available; nothing written (fewer steps, or leave it out)", field=field)
 
 
 # ------------------------------------------------------------------ the sweep
@@ -508,7 +521,7 @@ def write_sweep(sweep: Sweep, path=None, fmt: str = "json", *, indent: int | Non
         Before anything is written: not enough memory, or pyarrow missing.
     """
     if fmt not in FORMATS:
-        raise OutputError(f"--format: {fmt!r} is not one of {', '.join(FORMATS)}")
+        raise OutputError(f"{fmt!r} is not one of {', '.join(FORMATS)}", field="format")
     if fmt == "parquet" and (path is not None or stream is not None):
         require_pyarrow()
     N = sweep.n_steps
@@ -518,7 +531,7 @@ def write_sweep(sweep: Sweep, path=None, fmt: str = "json", *, indent: int | Non
                               _centre_pairs(template))
     available = available_memory() if memory == "probe" else memory
     if keep:
-        check_whole(N, per_step, available, "--plots")
+        check_whole(N, per_step, available, "keep")
         size = N
     else:
         size = chunk or chunk_steps(N, per_step, available, bool(sweep.heads),
@@ -528,8 +541,8 @@ def write_sweep(sweep: Sweep, path=None, fmt: str = "json", *, indent: int | Non
         # a symbolic link: the file it names is replaced, not the link
         target = Path(os.path.realpath(path)) if os.path.islink(path) else Path(path)
         if target.exists() and not target.is_file():  # checked by the command line before
-            raise OutputError([f"{path!r} is not a regular file (a device, pipe or socket): "
-                               "the result is written to a new file that replaces it"])
+            raise OutputError(f"{path!r} is not a regular file (a device, pipe or socket): "
+                              "the result is written to a new file that replaces it", field="path")
         target.parent.mkdir(parents=True, exist_ok=True)
         tmp = target.with_name(f".{target.name}.{os.getpid()}.partial")
     with _signals_unwind():  # a kill or Ctrl-C removes the partial file, as an error does
@@ -553,7 +566,8 @@ def _write(sweep, path, fmt, indent, stream, progress, keep, N, size, stats, tar
                 fh = open(tmp, "w", encoding="utf-8", newline="")
             writer = JsonWriter(fh, indent) if fmt == "json" else CsvWriter(fh)
         elif stream is not None:
-            raise OutputError(f"--format {fmt}: a binary file; give -o FILE, not standard output")
+            raise OutputError(f"{fmt} is a binary format: give a path, not a text stream",
+                              field="format")
         elif fmt == "npz":
             writer = NpzWriter(tmp)
         else:

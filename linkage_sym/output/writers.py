@@ -28,19 +28,30 @@ SUFFIXES = {".json": "json", ".csv": "csv", ".npz": "npz", ".parquet": "parquet"
 class OutputError(Exception):
     """A result file that will not be written: refused before anything is computed or written.
 
-    ``problems``: one sentence each (the command line exits with status 2).
+    ``reason`` says why; ``field``, when given, names the argument that cannot be used
+    (``format``, ``keep``, ``path`` of :func:`~linkage_sym.output.write_sweep`), so that a
+    caller can name its own option for it.  ``problems``: the one sentence,
+    ``"field: reason"`` (the command line exits with status 2).
+
+    Examples
+    --------
+    >>> err = OutputError("'xml' is not one of json, csv", field="format")
+    >>> err.problems, err.field
+    (["format: 'xml' is not one of json, csv"], 'format')
     """
 
-    def __init__(self, problems):
-        self.problems = [problems] if isinstance(problems, str) else list(problems)
-        super().__init__("; ".join(self.problems))
+    def __init__(self, reason: str, field: str | None = None):
+        self.reason = reason
+        self.field = field
+        self.problems = [f"{field}: {reason}" if field else reason]
+        super().__init__(self.problems[0])
 
 
 def output_format(path: str | None, given: str | None = None) -> str:
     """The format of a result file: ``given``, else from the suffix of ``path``, else ``json``."""
     if given is not None:
         if given not in FORMATS:
-            raise OutputError(f"--format: {given!r} is not one of {', '.join(FORMATS)}")
+            raise OutputError(f"{given!r} is not one of {', '.join(FORMATS)}", field="format")
         return given
     if path is None or path == "-":
         return "json"
@@ -53,9 +64,8 @@ def require_pyarrow():
         import pyarrow as pa
         import pyarrow.parquet as pq
     except ImportError as err:
-        raise OutputError(
-            "--format parquet needs pyarrow, which is not installed: "
-            "pip install 'linkage_sym[parquet]'") from err
+        raise OutputError("parquet needs pyarrow, which is not installed: "
+                          "pip install 'linkage_sym[parquet]'", field="format") from err
     return pa, pq
 
 

@@ -8,9 +8,13 @@ from linkage_sym.structure.grashof import grashof_lines
 from linkage_sym.structure.groups import Decomposition
 
 
-def structure_report(scene: Scene, dec: Decomposition) -> str:
+def structure_report(scene: Scene, dec: Decomposition, pick: str = "disconnection=K") -> str:
     """Describe drivers and Assur groups in solving order, with disconnection choices,
     and the Grashof class of every four-bar loop (:mod:`linkage_sym.structure.grashof`).
+
+    ``pick``: how the reader picks choice ``K`` of a complex group, named after the list
+    (the ``disconnection`` argument of :func:`linkage_sym.analyze` and
+    :func:`linkage_sym.compile_plan`; the command line gives its option).
 
     Examples
     --------
@@ -67,7 +71,7 @@ def structure_report(scene: Scene, dec: Decomposition) -> str:
             if choices:
                 lines.append(
                     "     disconnection choices (Dang and Zhang's virtual pure-dyad mechanism; "
-                    "pick one with --disconnection K):"
+                    f"pick one with {pick}):"
                 )
                 best = default_choice(choices)
                 for k, c in enumerate(choices):

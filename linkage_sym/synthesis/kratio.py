@@ -73,6 +73,7 @@ from fractions import Fraction
 
 import numpy as np
 
+from linkage_sym.errors import POINTERS
 from linkage_sym.synthesis import builders
 from linkage_sym.synthesis.common import (
     COINCIDENCE,
@@ -133,7 +134,7 @@ def extreme_position_angle(K) -> float:
         raise SynthesisError("K", "K = 1 means no quick return (theta = 0): the auxiliary circle "
                                   "degenerates into the line C1C2 and fixes no crank pivot; build "
                                   "a linkage without quick return from its dimensions "
-                                  "('linkage-sym new')")
+                                  f"({POINTERS['builders']})")
     theta = PI * ((K - 1.0) / (K + 1.0))  # the ratio first: PI * (K - 1) overflows for K near 1e308
     if not theta < PI:
         raise SynthesisError("K", f"K = {K:g} is too large: θ = 180°·(K - 1)/(K + 1) rounds to 180° "

@@ -811,7 +811,7 @@ def test_too_large_runs_are_refused_before_anything_is_written(tmp_path, capsys,
     monkeypatch.setattr(output, "available_memory", lambda: output.FIXED_BYTES + 4 * 2**20)
     assert main(["analyze", str(scene), "-o", str(tmp_path / "r.json"),
                  "--plots", str(tmp_path / "p")]) == 2
-    assert "--plots needs the whole sweep in memory" in capsys.readouterr().err
+    assert "--plots: not enough memory: the whole sweep in memory" in capsys.readouterr().err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.json"]
     assert main(["analyze", str(scene), "-o", str(tmp_path / "r.json")]) == 0  # in chunks: fits
 

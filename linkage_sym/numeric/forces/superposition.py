@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from linkage_sym.errors import SceneError
+from linkage_sym.errors import POINTERS, SceneError
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.forces.global_statics import assemble, dense_system, unpack
 from linkage_sym.numeric.forces.loads import Wrench, applied_wrenches
@@ -342,7 +342,7 @@ class SuperpositionForces:
                 [
                     f"disconnection: choice {preferred} of group {', '.join(group.links)} does "
                     f"not exist (it has {len(choices)}: 0 to {len(choices) - 1}, in the order "
-                    "`linkage-sym structure` lists them)"
+                    f"{POINTERS['disconnections']})"
                 ]
             )
 
