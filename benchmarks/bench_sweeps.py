@@ -15,9 +15,9 @@ the sweep, the limit positions located by Newton on the output's rate):
   scenes built beforehand, so only the solves are timed; the run computes kinematics and
   transmission angles but no limit positions, so the ratio favours the loop); the target is
   ``in_process`` >= 20x the loop, per design;
-* ``workers_2``: ``workers=2`` against ``in_process`` on a grid of ``--parallel-designs`` (default 10^6;
+* ``workers_2``: ``Execution(workers=2)`` against ``in_process`` on a grid of ``--parallel-designs`` (default 10^6;
   target >= 1.7x);
-* ``dask_local_2``: ``dask="local"`` (a LocalCluster of 2 processes) against ``workers_2``
+* ``dask_local_2``: ``Execution(workers=2, dask="local")`` (a LocalCluster of 2 processes) against ``workers_2``
   on that grid (target: within 1.3x).
 
 Process start-up (spawned interpreters, the LocalCluster) is inside the timed calls of the
@@ -45,6 +45,7 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 import linkage_sym  # noqa: E402
+from linkage_sym.design import Execution  # noqa: E402
 from linkage_sym.design.evaluate import Model  # noqa: E402
 from linkage_sym.design.scenes import design_scene  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
@@ -124,9 +125,11 @@ def main():
     pax = grid(a.parallel_designs)
     pn = len(pax["l_AB"]) * len(pax["l_BC"])
     t_p1, r1 = best(lambda: linkage_sym.sweep(scene, pax, METRICS), a.repeats)
-    t_w2, r2 = best(lambda: linkage_sym.sweep(scene, pax, METRICS, workers=2), a.repeats)
+    two = Execution(workers=2)
+    t_w2, r2 = best(lambda: linkage_sym.sweep(scene, pax, METRICS, execution=two), a.repeats)
     loads["after_workers_2"] = load()
-    t_d2, r3 = best(lambda: linkage_sym.sweep(scene, pax, METRICS, workers=2, dask="local"), a.repeats)
+    cluster = Execution(workers=2, dask="local")
+    t_d2, r3 = best(lambda: linkage_sym.sweep(scene, pax, METRICS, execution=cluster), a.repeats)
     loads["after_dask_local_2"] = load()
     same = all(_same(r1[c], r2[c]) and _same(r1[c], r3[c]) for c in r1.columns)
     out = {

@@ -112,7 +112,7 @@ def compile_mechanism(scene, use_cache=True):
     return _compile(scene, use_cache)
 
 
-def sweep(scene, parameters=None, metrics=None, **options):
+def sweep(scene, parameters, metrics=None, **options):
     """Evaluate many designs of a scene at once (a grid, samples, a Monte Carlo spread).
 
     See :func:`linkage_sym.design.api.sweep`.

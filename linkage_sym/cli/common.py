@@ -69,14 +69,15 @@ class OptionError(Exception):
 
 SWEEP_OPTIONS = {"parameters": "--vary", "output": "--output-link", "trace": "--trace",
                  "metrics": "--metrics", "chunk_designs": "--chunk-designs", "scene": "scene",
-                 "scene_rows": "--scene-rows", "workers": "--workers", "tolerance": "--tolerance",
+                 "rows": "--scene-rows", "workers": "--workers", "tolerance": "--tolerance",
                  "samples": "--samples", "monte_carlo": "--monte-carlo",
                  "random_state": "--random-state", "dask": "--dask", "path": "-o/--output"}
-"""The parameters of :func:`linkage_sym.design.sweep` (the ``field`` of a ``SweepError``;
+"""The parameters of :func:`linkage_sym.design.sweep` and the attributes of its
+``MonteCarlo``, ``Execution`` and ``SceneFiles`` (the ``field`` of a ``SweepError``;
 ``path``: the table's file) and the options of ``sweep`` that fill them, named apart
-(``parameters``: ``--vary``).  A field's first word is looked up (``parameters l_AB``: the
-axis ``l_AB`` of ``--vary``); a field not listed is printed as it is
-(``parameters['l_AB']``)."""
+(``parameters``: ``--vary``; ``rows``, of ``SceneFiles``: ``--scene-rows``).  A field's
+first word is looked up (``parameters l_AB``: the axis ``l_AB`` of ``--vary``); a field not
+listed is printed as it is (``parameters['l_AB']``)."""
 
 ANALYZE_OPTIONS = {"format": "--format", "keep": "--plots", "path": "-o/--output",
                    "method": "--method", "disconnection": "--disconnection"}

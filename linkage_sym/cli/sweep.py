@@ -119,7 +119,9 @@ def cmd_sweep(args) -> int:
 
 def _sweep(args) -> int:
     from linkage_sym.design.api import scene_parameters, sweep
-    from linkage_sym.design.parameters import parse_axis, parse_tolerance
+    from linkage_sym.design.execute import Execution
+    from linkage_sym.design.parameters import MonteCarlo, parse_axis, parse_tolerance
+    from linkage_sym.design.scenes import SceneFiles
     from linkage_sym.design.table import table_format
     from linkage_sym.output import check_run_memory
 
@@ -159,12 +161,13 @@ def _sweep(args) -> int:
     metrics = None
     if args.metrics:
         metrics = [m.strip() for m in args.metrics.split(",") if m.strip()]
-    res = sweep(scene, axes, metrics, samples=args.samples, monte_carlo=args.monte_carlo,
-                tolerance=tol, random_state=args.random_state, output=args.output_link,
-                trace=args.trace, workers=args.workers, dask=args.dask,
-                chunk_designs=args.chunk_designs, write_scenes=args.write_scenes,
-                scene_rows=rows,
-                progress=True)
+    if args.monte_carlo is not None:
+        designs = MonteCarlo(args.monte_carlo, tol, args.random_state)
+    else:
+        designs = axes if args.vary is not None else args.samples
+    res = sweep(scene, designs, metrics, output=args.output_link, trace=args.trace,
+                scenes=None if args.write_scenes is None else SceneFiles(args.write_scenes, rows),
+                execution=Execution(args.workers, args.dask, args.chunk_designs, progress=True))
     out = sys.stdout if args.output != "-" else sys.stderr
     if args.output == "-":
         sys.stdout.write(res.to_csv())

@@ -4,19 +4,21 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import os
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
 
 from linkage_sym.design.errors import SweepError
-from linkage_sym.design.execute import TARGET_ENTRIES, Spec, run_chunks
+from linkage_sym.design.execute import TARGET_ENTRIES, Execution, Spec, compiled_state, run_chunks
 from linkage_sym.design.metrics import DEFAULT_METRICS, MetricPlan, check_choices, refuse_meshes
 from linkage_sym.design.newton_groups import DEFAULT_CHUNK as ONE_AT_A_TIME_CHUNK
-from linkage_sym.design.parameters import Designs, check_names, grid, monte_carlo as _mc
+from linkage_sym.design.parameters import Designs, MonteCarlo, check_names, grid
 from linkage_sym.design.parameters import design_problems, read_samples, refuse_invalid
 from linkage_sym.design.table import SweepResult
 
-__all__ = ["sweep", "scene_parameters"]
+__all__ = ["sweep", "scene_parameters", "default_metrics"]
 
 
 def _as_scene(scene):
@@ -52,9 +54,8 @@ def _has_forces(scene) -> bool:
     return any(lk.mass > 0 or lk.inertia > 0 for lk in scene.links) or bool(scene.loads)
 
 
-def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=None,
-          tolerance=None, random_state=0, output=None, trace=None, workers=None, dask=None,
-          chunk_designs=None, write_scenes=None, scene_rows=None, progress=False) -> SweepResult:
+def sweep(scene, parameters, metrics=None, *, output=None, trace=None, scenes=None,
+          execution=None) -> SweepResult:
     """Evaluate many designs of a scene: a grid, samples or a Monte Carlo spread.
 
     Every design is the scene with some named parameters (the symbolic layer's
@@ -71,8 +72,14 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     Parameters
     ----------
     scene : Scene, dict or path
-    parameters : mapping of str to sequence, or Designs, optional
-        A grid: the product of these axes of values (the first varies slowest).
+    parameters : mapping of str to sequence, Designs, MonteCarlo, or path
+        The designs: a mapping is a grid, the product of these axes of values (the
+        first varies slowest); :class:`~linkage_sym.design.parameters.Designs` are
+        given designs (:func:`~linkage_sym.design.parameters.grid`,
+        :func:`~linkage_sym.design.parameters.read_samples`); a
+        :class:`~linkage_sym.design.parameters.MonteCarlo` is a spread drawn about the
+        scene's values; a path (``str`` or ``os.PathLike``) is a CSV file of designs
+        (a header of parameter names).
     metrics : sequence of str, optional
         Default: those of :data:`~linkage_sym.design.metrics.DEFAULT_METRICS` the scene
         has (``assemblable``, ``grashof``, ``K``, ``swing``, ``min_transmission_deg``).
@@ -80,36 +87,18 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
         in that module): ``assemblable``, ``grashof``, ``K``, ``swing``,
         ``min_transmission_deg``, ``peak_driving``, ``rms_driving``,
         ``peak_reaction``, ``rms_shaking_force``, ``rms_shaking_moment``, ``path``.
-    samples : path, optional
-        A CSV file of designs (a header of parameter names) instead of a grid.
-    monte_carlo : int, optional
-        That many designs with the ``tolerance`` parameters (``name -> sigma``)
-        drawn from normal distributions about the scene's values
-        (``numpy.random.default_rng(random_state)``: reproducible).
     output : str, optional
-        The link of ``K`` and ``swing`` (default: the last link pivoted on the
-        ground that is not driven).
+        The link of the metrics ``K`` and ``swing`` (default: the last link pivoted on
+        the ground that is not driven).
     trace : str or sequence of str, optional
-        The traced points of ``path`` (default: all the scene's).
-    workers : int, optional
-        Local processes (default: this process only).
-    dask : str or dask.distributed.Client, optional
-        A scheduler address, ``"local"`` (a LocalCluster of ``workers`` processes)
-        or a client: the chunks run there.
-    chunk_designs : int, optional
-        Designs per chunk (default: about 65,000 design-steps a chunk; 8 designs when
-        they run one at a time).
-    write_scenes : path, optional
-        A folder: each design's own scene is written there as
-        ``design_<i>.json`` (:mod:`linkage_sym.design.scenes`); a design that cannot
-        be assembled has none (the result's ``no_scene`` lists them), nor has one that
-        breaks the scene's rules (``bad_scene``, with the rule: the invalid designs, and
-        any whose scene the scene reader refuses).
-    scene_rows : sequence of int, optional
-        Only these designs' scenes (their ``design`` numbers, rows of the table);
-        default every design's.
-    progress : bool
-        A progress bar on a terminal (tqdm).
+        The traced points of the metric ``path`` (default: all the scene's).
+    scenes : SceneFiles, optional
+        Write each design's own scene too (:class:`~linkage_sym.design.scenes.SceneFiles`:
+        a folder, and optionally only some designs'); default none.
+    execution : Execution, optional
+        Where the chunks run (:class:`~linkage_sym.design.execute.Execution`: local
+        processes, Dask, the designs per chunk, a progress bar); default in this
+        process, without a progress bar.
 
     Every design is checked by the scene's rules
     (:func:`~linkage_sym.design.parameters.design_problems`: each varied parameter held
@@ -126,13 +115,14 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     Raises
     ------
     SweepError
-        Input it cannot use, naming the argument (an unknown parameter lists the
-        valid ones); designs none of which is valid (naming a grid axis none of whose
+        Input it cannot use, naming the argument or attribute (an unknown parameter lists
+        the valid ones); designs none of which is valid (naming a grid axis none of whose
         values is, with the rule).
 
     Examples
     --------
     >>> import linkage_sym
+    >>> from linkage_sym.design import Execution, MonteCarlo
     >>> scene = linkage_sym.load_example("crank_rocker")
     >>> res = linkage_sym.sweep(scene, {"l_AB": [0.02, 0.024], "l_BC": [0.06, 0.065]},
     ...                         ["grashof", "K", "min_transmission_deg"])
@@ -142,31 +132,34 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     ['crank-rocker', 'crank-rocker', 'crank-rocker', 'crank-rocker']
     >>> [round(float(k), 4) for k in res["K"]]
     [1.0503, 1.0071, 1.0945, 1.0082]
+    >>> spread = linkage_sym.sweep(scene, MonteCarlo(4, {"l_AB": 5e-5}, random_state=1), ["K"],
+    ...                            execution=Execution(chunk_designs=2))
+    >>> spread.kind, len(spread), bool(abs(spread["l_AB"] - 0.024).max() < 5e-4)
+    ('monte-carlo', 4, True)
     """
     scene = _as_scene(scene)
+    execution = Execution() if execution is None else execution
     refuse_meshes(scene)
-    designs = _designs(scene, parameters, samples, monte_carlo, tolerance, random_state)
+    designs = _designs(scene, parameters)
     check_choices(scene, output, trace)
     if metrics is None:
         metrics = default_metrics(scene, output)
     metrics = [metrics] if isinstance(metrics, str) else list(metrics)
     plan = MetricPlan(scene, metrics, output, trace)
-    from linkage_sym.design.execute import _state
-
-    spec = Spec(scene, tuple(designs.names), tuple(plan.metrics), plan.__dict__.get("output"),
+    spec = Spec(scene, tuple(designs.names), tuple(plan.metrics), plan.output,
                 None if trace is None else tuple([trace] if isinstance(trace, str) else trace))
-    model, _ = _state(spec)
-    if write_scenes is not None or any(n not in model.names for n in designs.names):
+    model, _ = compiled_state(spec)
+    if scenes is not None or any(n not in model.names for n in designs.names):
         # a mass, inertia or load is a parameter of the force blocks only
         spec = dataclasses.replace(spec, forces=True)
-        model, _ = _state(spec)
-    field_name = ("tolerance" if monte_carlo is not None
-                  else "samples" if samples is not None else "parameters")
+        model, _ = compiled_state(spec)
+    field_name = _FIELD_OF_KIND[designs.kind]
     check_names(designs, model.names, field_name)
     recipes = {model.names[i]: r for r, i in model.recipes.items()}
     problems = design_problems(scene, designs, recipes)
     refuse_invalid(scene, designs, recipes, problems, field_name)
     valid = problems == ""
+    workers, chunk_designs = execution.workers, execution.chunk_designs
     if workers is not None:
         if not isinstance(workers, int) or isinstance(workers, bool) or workers < 1:
             raise SweepError("workers", f"at least 1 process, got {workers!r}")
@@ -176,15 +169,13 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
     elif not isinstance(chunk_designs, int) or chunk_designs < 1:
         raise SweepError("chunk_designs", f"at least 1 design, got {chunk_designs!r}")
     files, no_scene, bad_scene = [], [], []
-    if scene_rows is not None:
-        if write_scenes is None:
-            raise SweepError("scene_rows", "used only with write_scenes (a folder)")
-        scene_rows = _rows(scene_rows, len(designs))
-    if write_scenes is not None:
-        files, no_scene, bad_scene = _write_scenes(model, designs, Path(write_scenes),
-                                                   chunk_designs, scene_rows, problems)
+    if scenes is not None:
+        rows = None if scenes.rows is None else _rows(scenes.rows, len(designs))
+        files, no_scene, bad_scene = _write_scenes(model, designs, Path(scenes.folder),
+                                                   chunk_designs, rows, problems)
     # an invalid design is not solved: its metrics are left blank
-    parts = run_chunks(spec, designs.values[valid], chunk_designs, workers, dask, progress)
+    parts = run_chunks(spec, designs.values[valid], chunk_designs, workers, execution.dask,
+                       execution.progress)
     columns = {"design": np.arange(len(designs))}
     for k, n in enumerate(designs.names):
         columns[n] = designs.values[:, k].copy()
@@ -201,6 +192,11 @@ def sweep(scene, parameters=None, metrics=None, *, samples=None, monte_carlo=Non
                        tuple(bad_scene))
 
 
+_FIELD_OF_KIND = {"grid": "parameters", "samples": "samples", "monte-carlo": "tolerance"}
+"""The argument a problem of the designs' names is laid to, by the kind of designs: a grid's
+axes, a CSV file's header, a Monte Carlo spread's ``tolerance``."""
+
+
 def default_metrics(scene, output=None) -> list:
     """The metrics of :data:`DEFAULT_METRICS` that apply to ``scene``."""
     out = []
@@ -213,29 +209,24 @@ def default_metrics(scene, output=None) -> list:
     return out
 
 
-def _designs(scene, parameters, samples, monte_carlo, tolerance, random_state) -> Designs:
-    given = [n for n, v in (("parameters", parameters), ("samples", samples),
-                            ("monte_carlo", monte_carlo)) if v is not None]
-    if len(given) != 1:
-        raise SweepError("parameters", "give exactly one of parameters (a grid), samples "
-                                       "or monte_carlo (a Monte Carlo spread); got "
-                                       f"{', '.join(given) or 'none'}")
-    if tolerance is not None and monte_carlo is None:
-        raise SweepError("tolerance", "used only with monte_carlo (a Monte Carlo spread)")
+def _designs(scene, parameters) -> Designs:
+    """The designs ``parameters`` stands for (see :func:`sweep`)."""
     if isinstance(parameters, Designs):
         return parameters
-    if parameters is not None:
+    if isinstance(parameters, Mapping):
         return grid(parameters)
-    if samples is not None:
-        return read_samples(samples)
-    from linkage_sym.design.execute import Spec as _S, _state
-
-    model, _ = _state(_S(scene, (), ("assemblable",), forces=True))
+    if isinstance(parameters, (str, os.PathLike)):
+        return read_samples(parameters)
+    if not isinstance(parameters, MonteCarlo):
+        raise SweepError("parameters", "a mapping of names to values (a grid), Designs, "
+                                       "MonteCarlo or the path of a CSV file is expected, got "
+                                       f"{type(parameters).__name__}")
+    model, _ = compiled_state(Spec(scene, (), ("assemblable",), forces=True))
     base = {n: v for n, v in zip(model.names, model.base)}
-    for n in (tolerance or {}):
+    for n in (parameters.tolerance or {}):
         if n not in base or n.startswith("theta0_"):
             check_names(Designs((n,), np.zeros((1, 1)), "monte-carlo"), model.names, "tolerance")
-    return _mc(base, tolerance or {}, monte_carlo, random_state)
+    return parameters.designs(base)
 
 
 def _rows(rows, n: int) -> np.ndarray:
@@ -246,18 +237,18 @@ def _rows(rows, n: int) -> np.ndarray:
         if isinstance(r, range):  # checked by its ends before it is listed
             if len(r) and not (0 <= r[0] < n and 0 <= r[-1] < n):
                 first = r[0] if not 0 <= r[0] < n else max(r[0], n)
-                raise SweepError("scene_rows", f"no design {first}: the designs are 0 to {n - 1}")
+                raise SweepError("rows", f"no design {first}: the designs are 0 to {n - 1}")
             out.extend(r)
             continue
         try:
             v = int(r)
         except (TypeError, ValueError):
-            raise SweepError("scene_rows", f"design numbers are expected, got {rows!r}") from None
+            raise SweepError("rows", f"design numbers are expected, got {rows!r}") from None
         if isinstance(r, bool) or not 0 <= v < n:
-            raise SweepError("scene_rows", f"no design {r!r}: the designs are 0 to {n - 1}")
+            raise SweepError("rows", f"no design {r!r}: the designs are 0 to {n - 1}")
         out.append(v)
     if not out:
-        raise SweepError("scene_rows", "no design named")
+        raise SweepError("rows", "no design named")
     return np.unique(np.array(out, dtype=int))
 
 

@@ -4,8 +4,10 @@ The designs are cut into chunks of whole designs whose boundaries depend only
 on the chunk size, never on who evaluates them; every backend evaluates a
 chunk by the same function (:func:`evaluate_chunk`), so the table is the same
 bit for bit whichever ran it.  Each process builds the compiled mechanism once
-(:func:`_state`, cached per sweep specification; loaded from the on-disk cache
+(:func:`compiled_state`, cached per sweep specification; loaded from the on-disk cache
 of compiled topologies, without SymPy) and reuses it for all its chunks.
+
+:class:`Execution` says which (``execution`` of :func:`linkage_sym.design.sweep`):
 
 * in-process (default): chunk after chunk, with a progress bar on a terminal
   (tqdm, the ``progress`` extra);
@@ -28,12 +30,45 @@ from linkage_sym.design.errors import SweepError
 from linkage_sym.numeric.engine import heap
 from linkage_sym.output import chunk_bounds, progress_bar
 
-__all__ = ["Spec", "evaluate_chunk", "run_chunks", "chunk_bounds"]
+__all__ = ["Execution", "Spec", "compiled_state", "evaluate_chunk", "run_chunks", "chunk_bounds"]
 
 TARGET_ENTRIES = 1 << 16
 """Designs x path points per chunk by default.  Measured on 10^5 four-bars x 361 steps (CPU
 time, one core): 16,000 entries 3.2 s, 32,000 2.5 s, 65,000 2.0 s, 130,000 2.2 s, 260,000
 2.3 s -- smaller chunks pay Python's overhead per call, larger ones leave the cache."""
+
+
+@dataclass(frozen=True)
+class Execution:
+    """How a sweep runs its chunks: in this process (the default), in local processes, or
+    on Dask; the results are the same bit for bit whichever runs them.
+
+    Attributes
+    ----------
+    workers : int, optional
+        Local processes (default: this process only); with ``dask="local"``, the
+        LocalCluster's.
+    dask : str or dask.distributed.Client, optional
+        A scheduler address, ``"local"`` (a LocalCluster of ``workers`` processes) or a
+        client: the chunks run there.
+    chunk_designs : int, optional
+        Designs per chunk (default: about 65,000 design-steps a chunk, :data:`TARGET_ENTRIES`;
+        8 designs when they run one at a time).
+    progress : bool
+        A progress bar on a terminal (tqdm).
+
+    The sweep checks them; a problem names the attribute (``workers``, ``chunk_designs``).
+
+    Examples
+    --------
+    >>> Execution(workers=2)
+    Execution(workers=2, dask=None, chunk_designs=None, progress=False)
+    """
+
+    workers: int | None = None
+    dask: object = None
+    chunk_designs: int | None = None
+    progress: bool = False
 
 
 @dataclass(frozen=True)
@@ -67,7 +102,11 @@ def settle_allocator() -> None:
 
 
 @functools.lru_cache(maxsize=4)
-def _state(spec: Spec):
+def compiled_state(spec: Spec):
+    """``(model, metric plan)`` of ``spec``: the compiled mechanism's model of its scene
+    (:class:`~linkage_sym.design.evaluate.Model`) and its
+    :class:`~linkage_sym.design.metrics.MetricPlan`, built once per process and spec
+    (cached) and shared by all the chunks it evaluates."""
     from linkage_sym.design.evaluate import Model
     from linkage_sym.design.metrics import MetricPlan
 
@@ -80,7 +119,7 @@ def _state(spec: Spec):
 
 def evaluate_chunk(spec: Spec, values: np.ndarray) -> dict:
     """The metric columns of the designs ``values`` (n, k) of one chunk."""
-    model, plan = _state(spec)
+    model, plan = compiled_state(spec)
     P = model.params(spec.names, values)
     sol = model.solve(P, len(values), plan.need, plan.unwrap(model))
     return plan.compute(model, sol)

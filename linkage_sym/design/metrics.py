@@ -147,6 +147,12 @@ class MetricPlan:
         of the scene pivoted on the ground by an ``R`` joint that is not driven.
     trace : sequence of str, optional
         The traced points (scene ``points``) of ``path``; default all.
+
+    Attributes
+    ----------
+    output : str or None
+        The link of ``K`` and ``swing``: ``output`` or the default one when a metric asked
+        for measures a link's limit positions; None when none does.
     """
 
     def __init__(self, scene, metrics=DEFAULT_METRICS, output=None, trace=None):
@@ -163,8 +169,7 @@ class MetricPlan:
         self.need = set().union(*(_NEEDS.get(m, set()) for m in self.metrics))
         self.forces = "forces" in self.need
         refuse_meshes(scene)
-        if "rate_t" in self.need:
-            self.output = self._output(output)
+        self.output = self._output(output) if "rate_t" in self.need else None
         if "K" in self.metrics and not (len(scene.drivers) == 1
                                         and scene.joint(scene.drivers[0].joint).type == "R"):
             raise SweepError("metrics", f"K: the stroke-time ratio of a driver turning at a "

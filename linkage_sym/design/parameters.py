@@ -8,7 +8,8 @@ table, one row per design, one column per varied name:
 * :func:`grid` -- the product of axes of values (``--vary NAME=LO:HI:N``);
 * :func:`monte_carlo` -- normal deviations around the scene's values
   (``--monte-carlo N --tolerance NAME=SIGMA``), reproducible from a
-  ``random_state``;
+  ``random_state``; a :class:`MonteCarlo` asks :func:`linkage_sym.design.sweep` to
+  draw them about its scene's values;
 * :func:`read_samples` -- a CSV file whose header names the parameters
   (``--samples FILE.csv``).
 
@@ -28,6 +29,7 @@ from __future__ import annotations
 
 import csv
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -37,7 +39,7 @@ from linkage_sym.design.errors import SweepError
 from linkage_sym.numeric.engine import heap
 from linkage_sym.errors import POINTERS, finite_number
 
-__all__ = ["Designs", "grid", "monte_carlo", "read_samples", "parse_axis", "parse_tolerance",
+__all__ = ["Designs", "MonteCarlo", "grid", "monte_carlo", "read_samples", "parse_axis", "parse_tolerance",
            "check_names", "parameter_list", "design_problems", "refuse_invalid"]
 
 
@@ -56,6 +58,32 @@ class Designs:
 
     def __len__(self) -> int:
         return len(self.values)
+
+
+@dataclass(frozen=True)
+class MonteCarlo:
+    """A Monte Carlo spread about a scene's values, for :func:`linkage_sym.design.sweep`:
+    ``n`` designs with every parameter of ``tolerance`` (``name -> sigma``, the standard
+    deviation in the parameter's unit) drawn from a normal distribution about the scene's
+    value (:func:`monte_carlo`, ``numpy.random.default_rng(random_state)``: the same
+    ``random_state`` gives the same designs).
+
+    The sweep checks it; a problem names ``monte_carlo`` (``n``), ``tolerance`` or
+    ``random_state``.
+
+    Examples
+    --------
+    >>> MonteCarlo(1000, {"l_AB": 5e-5})
+    MonteCarlo(n=1000, tolerance={'l_AB': 5e-05}, random_state=0)
+    """
+
+    n: int
+    tolerance: Mapping[str, float]
+    random_state: int = 0
+
+    def designs(self, base) -> Designs:
+        """The designs drawn about ``base`` (``name -> value``, the scene's values)."""
+        return monte_carlo(base, self.tolerance, self.n, self.random_state)
 
 
 DESIGN_BYTES = 64

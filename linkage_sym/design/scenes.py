@@ -1,4 +1,5 @@
-"""Each design as a scene of its own (``--write-scenes DIR``).
+"""Each design as a scene of its own (``--write-scenes DIR``; :class:`SceneFiles` asks
+:func:`linkage_sym.design.sweep` for them).
 
 A design's scene is the sweep's scene with its joints where the design's
 assembly configuration puts them (the closed forms at the scene's driver
@@ -16,12 +17,40 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
 from linkage_sym.model import GROUND
 
-__all__ = ["design_scene"]
+__all__ = ["SceneFiles", "design_scene"]
+
+
+@dataclass(frozen=True)
+class SceneFiles:
+    """Each design's own scene written as a file, for :func:`linkage_sym.design.sweep`.
+
+    Attributes
+    ----------
+    folder : str or os.PathLike
+        Where each design's scene is written, as ``design_<i>.json`` (created if need
+        be).  A design that cannot be assembled has none (the result's ``no_scene`` lists
+        them), nor has one that breaks the scene's rules (``bad_scene``, with the rule: the
+        invalid designs, and any whose scene the scene reader refuses).
+    rows : sequence of int or range, optional
+        Only these designs' scenes (their ``design`` numbers, rows of the table);
+        default every design's.  The sweep checks them; a problem names ``rows``.
+
+    Examples
+    --------
+    >>> SceneFiles("designs", rows=[0, range(10, 20)])
+    SceneFiles(folder='designs', rows=[0, range(10, 20)])
+    """
+
+    folder: str | os.PathLike
+    rows: Sequence | None = None
 
 
 def _at(v, d):

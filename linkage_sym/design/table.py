@@ -48,7 +48,7 @@ class SweepResult:
     scene : str
         The scene's name.
     files : list of str
-        The design scenes written (``write_scenes``).
+        The design scenes written (``scenes``, a :class:`~linkage_sym.design.scenes.SceneFiles`).
     one_at_a_time : tuple of str
         The scene's groups without a closed form: when not empty, each design was
         solved on its own by the numeric plan (:mod:`linkage_sym.design.newton_groups`).

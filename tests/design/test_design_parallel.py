@@ -9,6 +9,7 @@ import pytest
 
 import linkage_sym
 from linkage_sym.cli import main
+from linkage_sym.design import Execution
 from linkage_sym.examples import example_path
 
 AXES = {"l_AB": np.linspace(0.02, 0.04, 5), "l_BC": [0.06, 0.065, 0.07]}
@@ -19,9 +20,11 @@ METRICS = ["assemblable", "grashof", "K", "swing", "min_transmission_deg", "peak
 @pytest.mark.slow
 def test_in_process_workers_and_dask_give_identical_tables():
     scene = linkage_sym.load_example("crank_rocker")
-    ref = linkage_sym.sweep(scene, AXES, METRICS, chunk_designs=4)
-    by_workers = linkage_sym.sweep(scene, AXES, METRICS, chunk_designs=4, workers=2)
-    by_dask = linkage_sym.sweep(scene, AXES, METRICS, chunk_designs=4, workers=2, dask="local")
+    ref = linkage_sym.sweep(scene, AXES, METRICS, execution=Execution(chunk_designs=4))
+    by_workers = linkage_sym.sweep(scene, AXES, METRICS,
+                                   execution=Execution(workers=2, chunk_designs=4))
+    by_dask = linkage_sym.sweep(scene, AXES, METRICS,
+                                execution=Execution(workers=2, dask="local", chunk_designs=4))
     assert list(ref.columns) == list(by_workers.columns) == list(by_dask.columns)
     for c in ref.columns:
         np.testing.assert_array_equal(ref[c], by_workers[c])

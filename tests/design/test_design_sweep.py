@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import linkage_sym
-from linkage_sym.design import SweepError, sweep
+from linkage_sym.design import Execution, MonteCarlo, SceneFiles, SweepError, sweep
 from linkage_sym.design.metrics import K_NOTES
 from linkage_sym.model import OUTPUTS, Effects
 from linkage_sym.numeric.extremes import find_extremes
@@ -115,7 +115,7 @@ def test_every_metric_equals_analyze_of_the_written_scene(tmp_path):
     scene = linkage_sym.load_example("crank_rocker")
     # 0.036: the crank no longer turns fully (gaps of unassemblable steps, K undefined)
     res = sweep(scene, {"l_AB": [0.02, 0.036], "l_BC": [0.06, 0.066], "m_coupler": [0.5, 0.8],
-                        "F_2y": [-5.0]}, ALL, write_scenes=tmp_path)
+                        "F_2y": [-5.0]}, ALL, scenes=SceneFiles(tmp_path))
     assert len(res) == 8
     assert sorted(res.parameters) == ["F_2y", "l_AB", "l_BC", "m_coupler"]
     assert 0 < res["assemblable"][4] < 1 and res["assemblable"][0] == 1
@@ -134,7 +134,7 @@ def test_sliders_and_ternary_links_equal_analyze(tmp_path, name):
     axes = {n: [rows[n] * 0.97 if n.startswith("l_") else rows[n] + 0.02, rows[n]] for n in names}
     metrics = ["assemblable", "peak_driving", "rms_driving", "peak_reaction", "rms_shaking_force",
                "rms_shaking_moment"] + (["path"] if scene.points else [])
-    res = sweep(scene, axes, metrics, write_scenes=tmp_path)
+    res = sweep(scene, axes, metrics, scenes=SceneFiles(tmp_path))
     scenes = _designs_of(tmp_path)
     assert len(scenes) >= 4
     _check_against_analyze(res, scenes)
@@ -155,7 +155,7 @@ def test_groups_without_closed_form_one_design_at_a_time(tmp_path, name, metrics
     rows = {n: v for n, v, _ in linkage_sym.design.scene_parameters(scene)}
     first, second = [n for n in rows if n.startswith("l_")][:2]
     res = sweep(scene, {first: [rows[first], rows[first] * 1.03], second: [rows[second] * 0.98]},
-                ["assemblable"] + metrics, write_scenes=tmp_path)
+                ["assemblable"] + metrics, scenes=SceneFiles(tmp_path))
     assert res.one_at_a_time and (res["assemblable"] == 1).all()
     # the scene's own values: the scene itself, to rounding
     assert abs(res[first][0] - rows[first]) == 0
@@ -212,14 +212,14 @@ def test_results_do_not_depend_on_the_chunks():
     scene = linkage_sym.load_example("crank_rocker")
     axes = {"l_AB": np.linspace(0.02, 0.04, 5), "l_BC": [0.06, 0.065, 0.07]}
     ms = ["assemblable", "K", "swing", "min_transmission_deg", "peak_driving", "rms_shaking_force"]
-    one = sweep(scene, axes, ms, chunk_designs=1)
+    one = sweep(scene, axes, ms, execution=Execution(chunk_designs=1))
     big = sweep(scene, axes, ms)
     for c in one.columns:
         np.testing.assert_array_equal(one[c], big[c])
     # designs solved one at a time (an actuator group): each design's numbers are its own
     boom = linkage_sym.load_example("hydraulic_boom")
     ms = ["assemblable", "swing", "peak_reaction"]
-    one = sweep(boom, {"l_OR": [1.15, 1.2, 1.25]}, ms, chunk_designs=1)
+    one = sweep(boom, {"l_OR": [1.15, 1.2, 1.25]}, ms, execution=Execution(chunk_designs=1))
     big = sweep(boom, {"l_OR": [1.15, 1.2, 1.25]}, ms)
     for c in one.columns:
         np.testing.assert_array_equal(one[c], big[c])
@@ -228,9 +228,9 @@ def test_results_do_not_depend_on_the_chunks():
 def test_monte_carlo_is_reproducible():
     scene = linkage_sym.load_example("crank_rocker")
     tol = {"l_AB": 5e-5, "l_BC": 5e-5}
-    a = sweep(scene, monte_carlo=6, tolerance=tol, metrics=["K"], random_state=3)
-    b = sweep(scene, monte_carlo=6, tolerance=tol, metrics=["K"], random_state=3)
-    c = sweep(scene, monte_carlo=6, tolerance=tol, metrics=["K"], random_state=4)
+    a = sweep(scene, MonteCarlo(6, tol, random_state=3), metrics=["K"])
+    b = sweep(scene, MonteCarlo(6, tol, random_state=3), metrics=["K"])
+    c = sweep(scene, MonteCarlo(6, tol, random_state=4), metrics=["K"])
     np.testing.assert_array_equal(a["l_AB"], b["l_AB"])
     np.testing.assert_array_equal(a["K"], b["K"])
     assert not np.array_equal(a["l_AB"], c["l_AB"])
@@ -246,14 +246,18 @@ def test_bad_input_is_refused_by_name():
         sweep(linkage_sym.load_example("slider_crank_offset"), {"theta0_slider": [0.1]})
     with pytest.raises(SweepError, match="metrics: unknown metric 'Kk'; the metrics are assemblable"):
         sweep(scene, {"l_AB": [0.02]}, ["Kk"])
-    with pytest.raises(SweepError, match="exactly one of"):
-        sweep(scene, {"l_AB": [0.02]}, monte_carlo=3, tolerance={"l_AB": 1e-5})
+    # one argument holds the designs (a grid, Designs, a MonteCarlo or a CSV file): two kinds
+    # at once cannot be given; anything else is refused by name
+    with pytest.raises(SweepError, match=r"^parameters: a mapping of names to values \(a grid\), "
+                                         r"Designs, MonteCarlo or the path of a CSV file is "
+                                         r"expected, got list"):
+        sweep(scene, [0.02])
     with pytest.raises(SweepError, match="metrics: K: .* not driven by one R joint"):
         sweep(linkage_sym.load_example("hydraulic_boom"), {"l_OR": [1.2]}, ["K"])
     with pytest.raises(SweepError, match="output: unknown link 'rockr'"):
         sweep(scene, {"l_AB": [0.02]}, ["K"], output="rockr")
     with pytest.raises(SweepError, match="^tolerance: unknown parameter 'l_ZZ'"):
-        sweep(scene, monte_carlo=3, tolerance={"l_ZZ": 1e-5})
+        sweep(scene, MonteCarlo(3, {"l_ZZ": 1e-5}))
 
 
 def test_partial_sweep_and_singular_step(tmp_path):
@@ -265,13 +269,13 @@ def test_partial_sweep_and_singular_step(tmp_path):
     half = dataclasses.replace(scene, drivers=(dataclasses.replace(scene.drivers[0], stop=math.pi,
                                                                    steps=181),))
     res = sweep(half, {"l_AB": [0.02, 0.024]}, ["assemblable", "K", "swing"],
-                write_scenes=tmp_path / "half")
+                scenes=SceneFiles(tmp_path / "half"))
     assert res["K_note"].tolist() == [K_NOTES["partial"]] * 2
     _check_against_analyze(res, _designs_of(tmp_path / "half"), output="rocker")
     l_CD = dict((n, v) for n, v, _ in linkage_sym.design.scene_parameters(scene))["l_CD"]
     # B at (-0.024, 0) at the crank's step 180: |BD| = 0.102 = l_BC + l_CD
     res = sweep(scene, {"l_BC": [0.078 + 0.024 - l_CD]}, ["assemblable", "K", "path"],
-                write_scenes=tmp_path / "sing")
+                scenes=SceneFiles(tmp_path / "sing"))
     scenes = _designs_of(tmp_path / "sing")
     an = linkage_sym.analyze(scenes[0])
     assert an.status.tolist().count("singular") == 1 and (an.status != "unassemblable").all()
@@ -283,7 +287,7 @@ def test_partial_sweep_and_singular_step(tmp_path):
 def test_a_design_that_cannot_be_assembled_is_marked(tmp_path):
     scene = linkage_sym.load_example("crank_rocker")
     res = sweep(scene, {"l_BC": [0.063, 0.2]}, ["assemblable", "K", "min_transmission_deg"],
-                write_scenes=tmp_path)
+                scenes=SceneFiles(tmp_path))
     assert res["assemblable"][1] == 0
     assert math.isnan(res["K"][1]) and math.isnan(res["min_transmission_deg"][1])
     assert res["K_note"][1] == K_NOTES["assembly"]
@@ -315,7 +319,7 @@ def test_designs_that_break_the_scene_s_rules_are_marked_not_solved(tmp_path):
     torque = _reader_problem(lambda d: d["loads"][0].update(torque=1e308))
     assert mass == "links[1].mass: must be a finite number >= 0, got -1.0"
     res = sweep(scene, {"l_AB": [-0.02, 0.0, 0.024], "m_coupler": [-1.0, 0.5]},
-                ["assemblable", "K", "grashof"], write_scenes=tmp_path)
+                ["assemblable", "K", "grashof"], scenes=SceneFiles(tmp_path))
     length = "l_AB: joints[1].at: a length must be > 0 (a distance between two joints), got "
     assert res["invalid"].tolist() == [length + "-0.02"] * 2 + [length + "0.0"] * 2 + [
         "m_coupler: " + mass, ""]
@@ -343,4 +347,27 @@ def test_options_that_give_no_valid_design_are_refused():
         sweep(scene, {"m_coupler": [-1.0, 0.5], "l_AB": [-0.01, 0.0]})
     with pytest.raises(SweepError, match=r"^tolerance: none of the 50 designs is valid; design "
                                          r"0: l_AB: joints\[1\]\.at: must be within \+-1e\+30"):
-        sweep(scene, monte_carlo=50, tolerance={"l_AB": 1e308})
+        sweep(scene, MonteCarlo(50, {"l_AB": 1e308}))
+
+
+def test_the_designs_argument_takes_each_kind(tmp_path):
+    """``parameters`` holds the designs whatever their kind: a CSV file's path (str or
+    Path) is read as read_samples reads it, a MonteCarlo is drawn about the scene's values
+    as monte_carlo draws it, and each table is that of the Designs given directly."""
+    from linkage_sym.design import Designs, monte_carlo, read_samples, scene_parameters
+
+    scene = linkage_sym.load_example("crank_rocker")
+    f = tmp_path / "s.csv"
+    f.write_text("l_AB,l_BC\n0.02,0.06\n0.025,0.065\n")
+    given = sweep(scene, read_samples(f), ["K"])
+    for path in (f, str(f)):
+        res = sweep(scene, path, ["K"])
+        assert res.kind == "samples" and list(res.columns) == list(given.columns)
+        for c in res.columns:
+            np.testing.assert_array_equal(res[c], given[c])
+    base = {n: v for n, v, _ in scene_parameters(scene)}
+    drawn = monte_carlo(base, {"l_AB": 5e-5}, 5, random_state=2)
+    res = sweep(scene, MonteCarlo(5, {"l_AB": 5e-5}, random_state=2), ["K"])
+    np.testing.assert_array_equal(res["l_AB"], drawn.values[:, 0])
+    alone = sweep(scene, Designs(drawn.names, drawn.values, "monte-carlo"), ["K"])
+    np.testing.assert_array_equal(res["K"], alone["K"])
