@@ -316,8 +316,8 @@ def newton_gaps(repeats=2):
                 spent["search"] += time.perf_counter() - t0
         return g
 
-    originals = (continuation.roots_near, batched_path._gap)
-    continuation.roots_near, batched_path._gap = (timed(f) for f in originals)
+    originals = (continuation.roots_near, batched_path.search_gap)
+    continuation.roots_near, batched_path.search_gap = (timed(f) for f in originals)
     out = {"steps": 721}
     try:
         for runtime, run in _runtimes(scene).items():
@@ -337,7 +337,7 @@ def newton_gaps(repeats=2):
                     "search_ms_per_unassemblable_step": 1e3 * best[1] / n_gap,
                 }
     finally:
-        continuation.roots_near, batched_path._gap = originals
+        continuation.roots_near, batched_path.search_gap = originals
         continuation.BATCHED = True
     return out
 

@@ -48,7 +48,7 @@ from linkage_sym.numeric.kinematics.state import LinkState
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.results.result import OK, Analysis, Forces, GroupForces
 from linkage_sym.numeric.engine.sweep import (
-    _unwrap,
+    unwrap_angles as _unwrap,
     Calibration,
     finish,
     ground_driven,

@@ -224,7 +224,7 @@ class Extremes:
 # ------------------------------------------------------------------ the search
 
 
-class _Sweep:
+class FractionalSweep:
     """Evaluate a plan at fractional steps ``t`` of the scene's sweep."""
 
     def __init__(self, scene, plan, q, qd, qdd, disconnection):
@@ -289,7 +289,7 @@ def find_extremes(scene, plan, res, disconnection=None, q=None, qd=None, qdd=Non
     docstring.  ``q, qd, qdd``: that sweep's driver values (default: the scene's)."""
     if q is None:
         q, qd, qdd = plan.sweep()
-    sw = _Sweep(scene, plan, q, qd, qdd, disconnection)
+    sw = FractionalSweep(scene, plan, q, qd, qdd, disconnection)
     N = sw.N
     ok = res.status == OK
     t_samples = np.arange(N, dtype=float)
@@ -432,7 +432,7 @@ def _group_limits(scene, plan, ext: Extremes) -> list:
     return out
 
 
-def _assembly_limits(sw: _Sweep, res) -> list:
+def _assembly_limits(sw: FractionalSweep, res) -> list:
     """Driver values where the sweep leaves or enters the assemblable steps (bisection on
     whether the positions solve, to :data:`BISECT_TOL` steps)."""
     pos = res.status != UNASSEMBLABLE

@@ -44,7 +44,6 @@ from linkage_sym.numeric.kinematics.state import LinkState
 from linkage_sym.numeric.engine.sweep import (
     SCREEN,
     Calibration,
-    _unwrap,
     ground_driven,
     interrupted,
     nearest_across_gaps,
@@ -55,6 +54,7 @@ from linkage_sym.numeric.engine.sweep import (
     scene_sweep,
     solving_path,
     step_status,
+    unwrap_angles,
 )
 from linkage_sym.structure import Decomposition, decompose
 from linkage_sym.structure.parameters import driver_q0
@@ -179,7 +179,7 @@ class Plan:
                 for n in wrapped.intersection(solver.group.links):
                     th = np.array(np.broadcast_to(S[n].th, (len(next(iter(path.q.values()))),)))
                     ok = np.isfinite(th)
-                    th[ok] = _unwrap(th[ok])
+                    th[ok] = unwrap_angles(th[ok])
                     S[n].th = th
             # a group whose geometry does not change (two fixed slide directions) gives a scalar
             inds.append(None if ind is None else np.broadcast_to(ind, (npath,)))
@@ -197,13 +197,13 @@ class Plan:
             if np.ndim(st.th) == 0:
                 continue  # a link that never turns
             if all_valid and np.shape(st.th) == (npath,):
-                st.th = _unwrap(st.th)  # a new array only where it changes
+                st.th = unwrap_angles(st.th)  # a new array only where it changes
                 continue
             th = np.array(np.broadcast_to(st.th, (npath,)), dtype=float)
             if all_valid:
-                th = _unwrap(th)
+                th = unwrap_angles(th)
             else:
-                th[valid] = _unwrap(th[valid])
+                th[valid] = unwrap_angles(th[valid])
             st.th = th
         out = path.out
         failed = failed_at[out]

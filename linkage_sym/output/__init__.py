@@ -66,10 +66,9 @@ from linkage_sym.output.writers import (
     NpzWriter,
     OutputError,
     ParquetWriter,
+    NoWriter,
     ProgressFn,
-    _numeric_columns,
-    _NoWriter,
-    _Writer,
+    Writer,
     output_format,
     require_pyarrow,
 )
@@ -113,6 +112,11 @@ Arrow arrays with their validity masks, and the encoded pages)."""
 FIXED_BYTES = 64 * 2**20
 """Memory a run needs besides its chunk (a JSON or CSV block of records, buffers)."""
 
+
+def numeric_columns(res: Analysis) -> list:
+    """The ``(name, values, width)`` columns of ``res`` that hold numbers (all but
+    ``status`` and ``message``): what a step costs in memory is counted in them."""
+    return [(n, v, w) for n, v, w in res.columns() if n not in ("status", "message")]
 
 
 def bytes_per_step(n_values: int, method: str, newton: bool, fmt: str | None = None,
@@ -193,7 +197,7 @@ def run_memory(scene, results: str = "whole", *, method: str = "dyad", fmt: str 
                                                        for d in scene.drivers))
         sweep = plan_sweep(compile_plan(two), "dyad" if method == "symbolic" else method)
         template = sweep.solve(0, 1)
-        per_step = bytes_per_step(len(_numeric_columns(template)), method, bool(sweep.heads),
+        per_step = bytes_per_step(len(numeric_columns(template)), method, bool(sweep.heads),
                                   fmt, _centre_pairs(template))
         budget = (CHUNK_MEMORY if available is None
                   else min(CHUNK_MEMORY, max(0, available - FIXED_BYTES) // 2))
@@ -401,11 +405,11 @@ class ChunkError(RuntimeError):
 
 
 def _last_rotations(res: Analysis) -> dict:
-    """Each link's rotation at the chunk's last step (for the next chunk's :func:`_join`)."""
+    """Each link's rotation at the chunk's last step (for the next chunk's :func:`join_rotations`)."""
     return {n: float(lk.rotation[-1]) for n, lk in res.links.items()}
 
 
-def _join(prev: dict, res: Analysis, at: int, step: int) -> None:
+def join_rotations(prev: dict, res: Analysis, at: int, step: int) -> None:
     """Make the chunk's rotations continue the previous chunk's at the step they share.
 
     ``at``: the chunk's index of the step both solved (the sweep's ``step``).
@@ -527,7 +531,7 @@ def write_sweep(sweep: Sweep, path=None, fmt: str = "json", *, indent: int | Non
     N = sweep.n_steps
     template = sweep.solve(0, 1)
     stats = SweepStats(template, sweep.heads)
-    per_step = bytes_per_step(len(_numeric_columns(template)), sweep.method, bool(sweep.heads), fmt,
+    per_step = bytes_per_step(len(numeric_columns(template)), sweep.method, bool(sweep.heads), fmt,
                               _centre_pairs(template))
     available = available_memory() if memory == "probe" else memory
     if keep:
@@ -554,11 +558,11 @@ def _write(sweep, path, fmt, indent, stream, progress, keep, N, size, stats, tar
     """The chunks of :func:`write_sweep`, solved and written into ``tmp`` (renamed to
     ``target`` when complete)."""
     fh = None
-    writer: _Writer
+    writer: Writer
     bar = None
     try:
         if path is None and stream is None:
-            writer = _NoWriter()
+            writer = NoWriter()
         elif fmt in ("json", "csv"):
             if stream is not None:
                 fh = stream
@@ -582,7 +586,7 @@ def _write(sweep, path, fmt, indent, stream, progress, keep, N, size, stats, tar
             res = sweep.solve(lo, b, before)
             skip = len(before) + a - lo
             if prev is not None:
-                _join(prev, res, skip - 1, lo)
+                join_rotations(prev, res, skip - 1, lo)
             stats.add(res, a, skip, keep_warnings=keep)
             writer.write(res, skip, a, stats, advance)
             if keep:

@@ -69,18 +69,13 @@ def require_pyarrow():
     return pa, pq
 
 
-# ------------------------------------------------------------------ memory
-
-
-def _numeric_columns(res: Analysis) -> list:
-    return [(n, v, w) for n, v, w in res.columns() if n not in ("status", "message")]
-
-
 # ------------------------------------------------------------------ writers
 
 
-class _Writer:
-    """A result file being written chunk by chunk."""
+class Writer:
+    """A result file being written chunk by chunk, the base of each format's writer:
+    :meth:`begin` once, :meth:`write` for each chunk of steps, then :meth:`finish`, or
+    :meth:`discard` when the run fails."""
 
     def begin(self, stats: SweepStats) -> None:
         pass
@@ -95,7 +90,7 @@ class _Writer:
         pass
 
 
-class JsonWriter(_Writer):
+class JsonWriter(Writer):
     """The contract's JSON, step by step: the same bytes as ``json.dumps(to_dict(), indent=...)``."""
 
     def __init__(self, fh, indent: int | None = None):
@@ -150,7 +145,7 @@ def _csv_field(text: str) -> str:
     return text
 
 
-class CsvWriter(_Writer):
+class CsvWriter(Writer):
     """One row per step: ``step``, ``status``, ``message`` and one column per number.
 
     Numbers as Python writes them (``repr``: the shortest text that reads back
@@ -198,7 +193,7 @@ def _npy_header(dtype: np.dtype, n: int) -> bytes:
     return buf.getvalue()
 
 
-class NpzWriter(_Writer):
+class NpzWriter(Writer):
     """One array per column in a NumPy ``.npz`` (a zip of ``.npy`` files).
 
     Each chunk's columns are appended to one raw file per column in a
@@ -292,7 +287,7 @@ class NpzWriter(_Writer):
         shutil.rmtree(self.tmp, ignore_errors=True)
 
 
-class ParquetWriter(_Writer):
+class ParquetWriter(Writer):
     """One row group per chunk (pyarrow); values left out of the JSON are nulls here.
 
     The schema's metadata ``linkage_sym`` holds the JSON's keys but ``steps``.
@@ -341,8 +336,9 @@ class ParquetWriter(_Writer):
             self.writer.close()
 
 
-class _NoWriter(_Writer):
-    """No file: the statistics only (``analyze`` without ``-o``)."""
+class NoWriter(Writer):
+    """No file: the statistics only (:func:`~linkage_sym.output.write_sweep` given neither a
+    path nor a stream)."""
 
     def write(self, res, skip, offset, stats, progress):
         progress(res.n_steps - skip)

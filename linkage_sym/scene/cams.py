@@ -20,7 +20,7 @@ import numpy as np
 
 from linkage_sym.model.scene import CamSpec, Point
 from linkage_sym.numeric.kinematics.cam_profile import CamProfile, self_intersection
-from linkage_sym.scene.fields import FieldReader, _show, _suggest
+from linkage_sym.scene.fields import FieldReader, did_you_mean, show_value
 
 CAM_KEYS = ("profile", "follower")
 """The keys only a ``cam`` joint has."""
@@ -80,8 +80,8 @@ def _follower(reader, entry, path):
         reader.missing(f"{field}.kind", "one of 'roller', 'knife', 'flat'")
         return None
     if kind not in FOLLOWER_KINDS:
-        reader.add(f"{field}.kind", f"must be one of 'roller', 'knife', 'flat', got {_show(kind)}"
-                   f"{_suggest(str(kind), FOLLOWER_KINDS)}")
+        reader.add(f"{field}.kind", f"must be one of 'roller', 'knife', 'flat', got {show_value(kind)}"
+                   f"{did_you_mean(str(kind), FOLLOWER_KINDS)}")
         return None
     radius, face = 0.0, None
     if kind == "roller":
@@ -181,7 +181,7 @@ def _points(reader, sub, values):
     pts = []
     for i, v in enumerate(values):
         if not isinstance(v, (list, tuple)) or len(v) != 2:
-            reader.add(f"{sub}[{i}]", f"must be an array of 2 finite numbers [x, y], got {_show(v)}")
+            reader.add(f"{sub}[{i}]", f"must be an array of 2 finite numbers [x, y], got {show_value(v)}")
             continue
         x = reader.point({"p": v}, "p", f"{sub}[{i}]")
         if x is not None:

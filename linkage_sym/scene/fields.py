@@ -44,13 +44,14 @@ ANGLE_WHY = (
     "to 1e-10 degree; beyond, the direction it gives is lost)"
 )
 
-_ANGLE = {"limit": MAX_ANGLE_DEG, "limit_why": ANGLE_WHY}
+ANGLE = {"limit": MAX_ANGLE_DEG, "limit_why": ANGLE_WHY}
 """Keyword arguments of :meth:`FieldReader.number` for an angle in degrees."""
 
-_REQUIRED = object()
+REQUIRED = object()
 """Default marking a key that must be present."""
 
-_POINT = "an array of 2 finite numbers [x, y]"
+POINT_EXPECTED = "an array of 2 finite numbers [x, y]"
+"""What a point's field must hold, as a problem says it."""
 
 
 
@@ -68,7 +69,7 @@ class FieldReader:
         for key in obj:
             if key not in allowed:
                 where = _join(path, str(key))
-                self.add(where, f"unknown key{_suggest(str(key), allowed)}")
+                self.add(where, f"unknown key{did_you_mean(str(key), allowed)}")
 
     def forbid(self, obj: Mapping[str, Any], path: str, keys: tuple[str, ...], where: str) -> None:
         for key in keys:
@@ -82,32 +83,32 @@ class FieldReader:
         """Whether ``key`` is there to be read; reports it if required and missing."""
         if key in obj:
             return True
-        if default is _REQUIRED:
+        if default is REQUIRED:
             self.missing(_join(path, key), why)
         return False
 
     def object(self, value: Any, path: str) -> bool:
         if isinstance(value, Mapping):
             return True
-        self.add(path, f"must be an object, got {_kind(value)}")
+        self.add(path, f"must be an object, got {json_kind(value)}")
         return False
 
     def array(self, obj: Mapping[str, Any], key: str, path: str) -> list[Any] | None:
-        if not self.present(obj, key, path, _REQUIRED, ""):
+        if not self.present(obj, key, path, REQUIRED, ""):
             return None
         value = obj[key]
         if isinstance(value, (list, tuple)):
             return list(value)
-        self.add(_join(path, key), f"must be an array, got {_kind(value)}")
+        self.add(_join(path, key), f"must be an array, got {json_kind(value)}")
         return None
 
     def name(self, obj: Mapping[str, Any], key: str, path: str, *, why: str = "") -> str | None:
-        if not self.present(obj, key, path, _REQUIRED, why):
+        if not self.present(obj, key, path, REQUIRED, why):
             return None
         value = obj[key]
         if isinstance(value, str) and value:
             return value
-        self.add(_join(path, key), f"must be a non-empty string, got {_show(value)}")
+        self.add(_join(path, key), f"must be a non-empty string, got {show_value(value)}")
         return None
 
     def number(
@@ -116,22 +117,22 @@ class FieldReader:
         key: str,
         path: str,
         *,
-        default: Any = _REQUIRED,
+        default: Any = REQUIRED,
         minimum: float | None = None,
         why: str = "",
         limit: float = MAX_MAGNITUDE,
         limit_why: str = _MAGNITUDE_WHY,
     ) -> float | None:
         if not self.present(obj, key, path, default, why):
-            return None if default is _REQUIRED else default
+            return None if default is REQUIRED else default
         value = obj[key]
         number = _finite(value)
         if number is None or (minimum is not None and number < minimum):
             bound = "" if minimum is None else f" >= {minimum:g}"
-            self.add(_join(path, key), f"must be a finite number{bound}, got {_show(value)}")
+            self.add(_join(path, key), f"must be a finite number{bound}, got {show_value(value)}")
             return None
         if abs(number) > limit:
-            self.add(_join(path, key), f"{limit_why}, got {_show(value)}")
+            self.add(_join(path, key), f"{limit_why}, got {show_value(value)}")
             return None
         return number
 
@@ -161,22 +162,22 @@ class FieldReader:
         for i, v in enumerate(values):
             x = _finite(v)
             if x is None:
-                self.add(f"{where}[{i}]", f"must be a finite number, got {_show(v)}")
+                self.add(f"{where}[{i}]", f"must be a finite number, got {show_value(v)}")
                 ok = False
             elif abs(x) > limit:
-                self.add(f"{where}[{i}]", f"{why}, got {_show(v)}")
+                self.add(f"{where}[{i}]", f"{why}, got {show_value(v)}")
                 ok = False
             else:
                 out.append(x)
         return out if ok else None
 
     def integer(self, obj: Mapping[str, Any], key: str, path: str, *, minimum: int) -> int | None:
-        if not self.present(obj, key, path, _REQUIRED, ""):
+        if not self.present(obj, key, path, REQUIRED, ""):
             return None
         value = obj[key]
         if isinstance(value, int) and not isinstance(value, bool) and value >= minimum:
             return value
-        self.add(_join(path, key), f"must be an integer >= {minimum}, got {_show(value)}")
+        self.add(_join(path, key), f"must be an integer >= {minimum}, got {show_value(value)}")
         return None
 
     def boolean(self, obj: Mapping[str, Any], key: str, path: str, *, default: bool) -> bool | None:
@@ -185,7 +186,7 @@ class FieldReader:
         value = obj[key]
         if isinstance(value, bool):
             return value
-        self.add(_join(path, key), f"must be true or false, got {_show(value)}")
+        self.add(_join(path, key), f"must be true or false, got {show_value(value)}")
         return None
 
     def point(
@@ -194,24 +195,24 @@ class FieldReader:
         key: str,
         path: str,
         *,
-        default: Any = _REQUIRED,
-        expected: str = _POINT,
+        default: Any = REQUIRED,
+        expected: str = POINT_EXPECTED,
         position: bool = False,
     ) -> Point | None:
         """A point ``[x, y]``; ``position``: a point fixed on a link (checked against the size)."""
         if not self.present(obj, key, path, default, ""):
-            return None if default is _REQUIRED else default
+            return None if default is REQUIRED else default
         value = obj[key]
         field = _join(path, key)
         if not isinstance(value, (list, tuple)) or len(value) != 2:
-            self.add(field, f"must be {expected}, got {_show(value)}")
+            self.add(field, f"must be {expected}, got {show_value(value)}")
             return None
         x, y = (_finite(c) for c in value)
         for i, (given, number) in enumerate(zip(value, (x, y))):
             if number is None:
-                self.add(f"{field}[{i}]", f"must be a finite number, got {_show(given)}")
+                self.add(f"{field}[{i}]", f"must be a finite number, got {show_value(given)}")
             elif abs(number) > MAX_MAGNITUDE:
-                self.add(f"{field}[{i}]", f"{_MAGNITUDE_WHY}, got {_show(given)}")
+                self.add(f"{field}[{i}]", f"{_MAGNITUDE_WHY}, got {show_value(given)}")
                 x = y = None
         if x is None or y is None:
             return None
@@ -231,7 +232,14 @@ def _finite(value: Any) -> float | None:
     return number if math.isfinite(number) else None
 
 
-def _radians(degrees: float | None) -> float | None:
+def radians_or_none(degrees: float | None) -> float | None:
+    """``degrees`` in radians; ``None`` (a field that was missing or refused) stays ``None``.
+
+    Examples
+    --------
+    >>> radians_or_none(180.0) == math.pi, radians_or_none(None)
+    (True, None)
+    """
     return None if degrees is None else math.radians(degrees)
 
 
@@ -239,8 +247,14 @@ def _join(path: str, key: str) -> str:
     return f"{path}.{key}" if path else key
 
 
-def _kind(value: Any) -> str:
-    """The JSON type name of a value, for messages."""
+def json_kind(value: Any) -> str:
+    """The JSON type name of a value, for messages.
+
+    Examples
+    --------
+    >>> json_kind(True), json_kind(2.5), json_kind({"a": 1}), json_kind(None)
+    ('a boolean', 'a number', 'an object', 'null')
+    """
     if value is None:
         return "null"
     if isinstance(value, bool):
@@ -256,8 +270,14 @@ def _kind(value: Any) -> str:
     return type(value).__name__
 
 
-def _show(value: Any, limit: int = 40) -> str:
-    """A short JSON rendering of a value, for messages."""
+def show_value(value: Any, limit: int = 40) -> str:
+    """A short JSON rendering of a value, for messages (at most ``limit`` characters).
+
+    Examples
+    --------
+    >>> show_value([1, 2]), show_value("x" * 50, limit=10)
+    ('[1, 2]', '"xxxxxx...')
+    """
     try:
         text = json.dumps(value)
     except (TypeError, ValueError):
@@ -265,7 +285,13 @@ def _show(value: Any, limit: int = 40) -> str:
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
-def _suggest(word: str, choices: Any) -> str:
-    """`` (did you mean 'x'?)`` for the closest of ``choices``, or ``""``."""
+def did_you_mean(word: str, choices: Any) -> str:
+    """`` (did you mean 'x'?)`` for the closest of ``choices``, or ``""``.
+
+    Examples
+    --------
+    >>> did_you_mean("crnk", ["crank", "rocker"]), did_you_mean("zzz", ["crank"])
+    (" (did you mean 'crank'?)", '')
+    """
     match = difflib.get_close_matches(word, [str(c) for c in choices], n=1)
     return f" (did you mean '{match[0]}'?)" if match else ""

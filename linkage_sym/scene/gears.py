@@ -16,7 +16,7 @@ from collections.abc import Mapping
 from typing import Any, NamedTuple
 
 from linkage_sym.model.scene import GROUND, Joint, Point
-from linkage_sym.scene.fields import FieldReader, _show, _suggest
+from linkage_sym.scene.fields import FieldReader, did_you_mean, show_value
 
 GEAR_KEYS = ("carrier", "radii", "internal", "pressure_angle_deg")
 """The keys only a ``G`` joint has."""
@@ -62,11 +62,11 @@ def read_mesh_fields(
     if "carrier" in entry:
         carrier = entry["carrier"]
         if not isinstance(carrier, str) or not carrier:
-            reader.add(field, f"must be a non-empty link name, got {_show(carrier)}")
+            reader.add(field, f"must be a non-empty link name, got {show_value(carrier)}")
             carrier = None
         elif link_names is not None and carrier != GROUND and carrier not in link_names:
             choices = [GROUND, *link_names]
-            reader.add(field, f"unknown link '{carrier}'{_suggest(carrier, choices)}")
+            reader.add(field, f"unknown link '{carrier}'{did_you_mean(carrier, choices)}")
             carrier = None
     if carrier is not None and links is not None and carrier in links:
         reader.add(

@@ -20,7 +20,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from linkage_sym.model.scene import Driver, LoadTable
-from linkage_sym.scene.fields import _ANGLE, FieldReader, _suggest
+from linkage_sym.scene.fields import ANGLE, FieldReader, did_you_mean
 
 SCHEDULE_KEYS = ("driver", "table", "active", "active_deg", "period_deg")
 """The keys of a load entry that make it vary over the cycle."""
@@ -52,7 +52,7 @@ def read_schedule(r: FieldReader, entry: Mapping[str, Any], path: str, drivers: 
         name = r.name(entry, "driver", path)
         if name is not None and name not in by_joint:
             known = ", ".join(by_joint) or "none"
-            r.add(f"{path}.driver", f"'{name}' is not a driven joint{_suggest(name, by_joint)} "
+            r.add(f"{path}.driver", f"'{name}' is not a driven joint{did_you_mean(name, by_joint)} "
                   f"(driven joints: {known})")
         d = by_joint.get(name)
     elif len(drivers) == 1:
@@ -69,7 +69,7 @@ def read_schedule(r: FieldReader, entry: Mapping[str, Any], path: str, drivers: 
             r.add(f"{path}.period_deg", f"only for an R driver; {d.joint} is a P joint, whose table "
                   "or range is not repeated")
         else:
-            pd = r.number(entry, "period_deg", path, minimum=0.0, **_ANGLE)
+            pd = r.number(entry, "period_deg", path, minimum=0.0, **ANGLE)
             if pd is not None and pd <= 0:
                 r.add(f"{path}.period_deg", f"must be a positive angle in degrees, got {pd:g}")
             elif pd is not None:

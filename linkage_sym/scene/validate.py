@@ -29,14 +29,14 @@ from linkage_sym.scene.cams import CAM_KEYS, read_cam_fields
 from linkage_sym.scene.gears import GEAR_KEYS, MeshFields, place_meshes, read_mesh_fields
 from linkage_sym.scene.schedules import SCHEDULE_KEYS, read_schedule
 from linkage_sym.scene.fields import (
-    _ANGLE,
-    _POINT,
-    _REQUIRED,
+    ANGLE,
+    POINT_EXPECTED,
+    REQUIRED,
     FieldReader,
-    _kind,
-    _radians,
-    _show,
-    _suggest,
+    did_you_mean,
+    json_kind,
+    radians_or_none,
+    show_value,
 )
 from linkage_sym.model.scene import (
     EXTENSION_OUTPUTS,
@@ -108,7 +108,7 @@ joint gives no size), so such a sweep is already 150 000 solving points.
 MASS_RULE = {"minimum": 0.0}
 """The rule of a link's ``mass`` and ``inertia`` (besides every number's magnitude)."""
 
-ANGLE_RULE = _ANGLE
+ANGLE_RULE = ANGLE
 """The rule of an angle in degrees (``axis_deg``, ``start_deg``, ``stop_deg``)."""
 
 
@@ -217,7 +217,7 @@ class _SceneReader(FieldReader):
 
     def read(self, data: Any) -> Scene:
         if not isinstance(data, Mapping):
-            raise SceneError([f"scene: must be an object, got {_kind(data)}"])
+            raise SceneError([f"scene: must be an object, got {json_kind(data)}"])
         self.keys(data, "", TOP_KEYS)
         name = self.name(data, "name", "")
         links = self.read_links(data)
@@ -311,7 +311,7 @@ class _SceneReader(FieldReader):
                 self.add(f"{path}.axis_deg", f"not allowed on {what} (only a P joint has an axis)")
             elif jtype == "P":
                 why = "a P joint gives its slide direction"
-                axis = _radians(self.number(entry, "axis_deg", path, why=why, **ANGLE_RULE))
+                axis = radians_or_none(self.number(entry, "axis_deg", path, why=why, **ANGLE_RULE))
             elif jtype == "R" and "axis_deg" in entry:
                 self.add(f"{path}.axis_deg", "not allowed on an R joint (only a P joint has an axis)")
             if name is not None and name not in self.joints:
@@ -362,7 +362,7 @@ class _SceneReader(FieldReader):
             if joint is not None and self.joints is not None:
                 info = self.joints.get(joint)
                 if info is None:
-                    self.add(f"{path}.joint", f"unknown joint '{joint}'{_suggest(joint, self.joints)}")
+                    self.add(f"{path}.joint", f"unknown joint '{joint}'{did_you_mean(joint, self.joints)}")
                 elif info.type == "G":
                     self.add(f"{path}.joint", f"joint '{joint}' is a gear mesh; drive a gear's "
                              "pivot (an R joint) instead")
@@ -409,8 +409,8 @@ class _SceneReader(FieldReader):
             why = f"a driver of R joint '{joint}' needs it"
             assert info is not None
             toward = self.toward(entry, path, joint, info)
-            start = self.number(entry, "start_deg", path, why=why, **_ANGLE)
-            stop = self.number(entry, "stop_deg", path, why=why, **_ANGLE)
+            start = self.number(entry, "start_deg", path, why=why, **ANGLE)
+            stop = self.number(entry, "stop_deg", path, why=why, **ANGLE)
             if start is not None and stop is not None and abs(stop - start) > MAX_SWEEP_DEG:
                 self.add(
                     f"{path}.stop_deg",
@@ -419,7 +419,7 @@ class _SceneReader(FieldReader):
                     f"({MAX_SWEEP_DEG:.0f} degrees) are allowed: the solver follows the mechanism "
                     "in increments of at most 2 degrees",
                 )
-            return _radians(start), _radians(stop), toward, (start, stop)
+            return radians_or_none(start), radians_or_none(stop), toward, (start, stop)
         if kind == "P":
             where = f"on a driver of P joint '{joint}'"
             self.forbid(entry, path, ("toward",), where)
@@ -455,7 +455,7 @@ class _SceneReader(FieldReader):
             if link == GROUND:
                 self.add(f"{path}.link", f"loads act on moving links, not on '{GROUND}'")
             elif link is not None and self.link_index is not None and link not in self.link_index:
-                self.add(f"{path}.link", f"unknown link '{link}'{_suggest(link, self.link_index)}")
+                self.add(f"{path}.link", f"unknown link '{link}'{did_you_mean(link, self.link_index)}")
             force = self.point(entry, "force", path, default=None)
             at = self.point(entry, "at", path, default=None, position=True)
             torque = self.number(entry, "torque", path, default=0.0)
@@ -499,7 +499,7 @@ class _SceneReader(FieldReader):
             if link == GROUND:
                 self.add(f"{path}.link", f"a point on '{GROUND}' does not move; points trace moving links")
             elif link is not None and self.link_index is not None and link not in self.link_index:
-                self.add(f"{path}.link", f"unknown link '{link}'{_suggest(link, self.link_index)}")
+                self.add(f"{path}.link", f"unknown link '{link}'{did_you_mean(link, self.link_index)}")
             at = self.point(entry, "at", path, position=True)
             if len(self.problems) == before:
                 points.append(TracedPoint(name, link, at))
@@ -518,7 +518,7 @@ class _SceneReader(FieldReader):
         if gravity is None or gravity is False:
             gravity = None
         else:
-            gravity = self.point(effects, "gravity", "effects", expected=f"false, null or {_POINT}")
+            gravity = self.point(effects, "gravity", "effects", expected=f"false, null or {POINT_EXPECTED}")
         return Effects(inertia, gravity, loads)
 
     def read_outputs(self, data: Mapping[str, Any]) -> tuple[str, ...] | None:
@@ -533,9 +533,9 @@ class _SceneReader(FieldReader):
             path = f"outputs[{i}]"
             expected = f"one of {', '.join(known)}"
             if not isinstance(entry, str):
-                self.add(path, f"must be {expected}, got {_show(entry)}")
+                self.add(path, f"must be {expected}, got {show_value(entry)}")
             elif entry not in known:
-                self.add(path, f"unknown output '{entry}'{_suggest(entry, known)}; expected {expected}")
+                self.add(path, f"unknown output '{entry}'{did_you_mean(entry, known)}; expected {expected}")
             elif entry in seen:
                 self.add(path, f"output '{entry}' is listed twice (also outputs[{seen[entry]}])")
             else:
@@ -552,7 +552,7 @@ class _SceneReader(FieldReader):
         field = f"{path}.toward"
         other = self.joints.get(toward)
         if other is None:
-            self.add(field, f"unknown joint '{toward}'{_suggest(toward, self.joints)}")
+            self.add(field, f"unknown joint '{toward}'{did_you_mean(toward, self.joints)}")
             return toward
         if toward == joint:
             self.add(field, f"must name a joint other than the driven joint '{joint}'")
@@ -690,7 +690,7 @@ class _SceneReader(FieldReader):
     # -- field readers: report a problem and return None when invalid ------
 
     def joint_type(self, entry: Mapping[str, Any], path: str) -> str | None:
-        if not self.present(entry, "type", path, _REQUIRED, ""):
+        if not self.present(entry, "type", path, REQUIRED, ""):
             return None
         value = entry["type"]
         if isinstance(value, str) and value in JOINT_TYPES:
@@ -700,23 +700,23 @@ class _SceneReader(FieldReader):
 
     def joint_links(self, entry: Mapping[str, Any], path: str) -> tuple[str, str] | None:
         """The two link names of a joint, resolved against the links section."""
-        if not self.present(entry, "links", path, _REQUIRED, ""):
+        if not self.present(entry, "links", path, REQUIRED, ""):
             return None
         value = entry["links"]
         field = f"{path}.links"
         if not isinstance(value, (list, tuple)) or len(value) != 2:
-            self.add(field, f"must be an array of 2 link names, got {_show(value)}")
+            self.add(field, f"must be an array of 2 link names, got {show_value(value)}")
             return None
         ok = True
         for i, name in enumerate(value):
             if not isinstance(name, str) or not name:
-                self.add(f"{field}[{i}]", f"must be a non-empty link name, got {_show(name)}")
+                self.add(f"{field}[{i}]", f"must be a non-empty link name, got {show_value(name)}")
                 ok = False
             elif self.link_index is None:
                 ok = False  # links section unusable: cannot resolve
             elif name != GROUND and name not in self.link_index:
                 choices = [GROUND, *self.link_index]
-                self.add(f"{field}[{i}]", f"unknown link '{name}'{_suggest(name, choices)}")
+                self.add(f"{field}[{i}]", f"unknown link '{name}'{did_you_mean(name, choices)}")
                 ok = False
         if ok and value[0] == value[1]:
             self.add(field, f"both ends are link '{value[0]}'; a joint connects two different links")
@@ -736,7 +736,7 @@ def joint_type_problem(value: Any) -> str:
     True
     """
     kinds = [f'"{t}" ({JOINT_TYPE_NAMES[t]})' for t in JOINT_TYPES]
-    out = f"must be {', '.join(kinds[:-1])} or {kinds[-1]}, got {_show(value)}"
+    out = f"must be {', '.join(kinds[:-1])} or {kinds[-1]}, got {show_value(value)}"
     if isinstance(value, str):
         word = " ".join(value.strip().lower().replace("-", " ").split())
         meant = next((t for t, words in JOINT_TYPE_SYNONYMS.items()

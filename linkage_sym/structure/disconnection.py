@@ -17,7 +17,7 @@ from itertools import combinations
 
 from linkage_sym.errors import SceneError
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.structure.groups import Group, _classify, _Item, _search
+from linkage_sym.structure.groups import Constraint, Group, classify_group, search_groups
 
 
 @dataclass(frozen=True)
@@ -125,12 +125,12 @@ def _choices(scene, group, jl, jtype, known, attempts):
         for chosen in combinations(cands, dof):
             if len({n for n, _ in chosen}) < dof:
                 continue
-            items = [_Item(j, False, jl[j]) for j in joints]
-            items += [_Item(j, True, jl[j]) for _, j in chosen]
+            items = [Constraint(j, False, jl[j]) for j in joints]
+            items += [Constraint(j, True, jl[j]) for _, j in chosen]
             try:
                 groups = [
-                    _classify(scene, ls, mine)
-                    for ls, mine in _search(scene, items, set(known), links)
+                    classify_group(scene, ls, mine)
+                    for ls, mine in search_groups(scene, items, set(known), links)
                 ]
             except SceneError:
                 continue

@@ -112,8 +112,10 @@ class Decomposition:
 
 
 @dataclass(frozen=True)
-class _Item:
-    """One constraint of the structure: a joint (2 equations), a driver or a gear mesh (1).
+class Constraint:
+    """One constraint of the structure: a joint (2 equations), a driver or a gear mesh (1),
+    as :func:`search_groups` takes them (also for the disconnection's virtual mechanism,
+    :mod:`linkage_sym.structure.disconnection`).
 
     A mesh's ``links`` are its two gears and its carrier.
     """
@@ -128,15 +130,15 @@ class _Item:
         return 1 if self.is_driver or self.is_mesh else 2
 
 
-def _items(scene: Scene, drivers=None) -> list[_Item]:
+def _items(scene: Scene, drivers=None) -> list[Constraint]:
     items = [
-        _Item(j.name, False, (*j.links, j.carrier), True) if j.type == "G"
-        else _Item(j.name, False, j.links, True) if j.type == "cam"
-        else _Item(j.name, False, j.links)
+        Constraint(j.name, False, (*j.links, j.carrier), True) if j.type == "G"
+        else Constraint(j.name, False, j.links, True) if j.type == "cam"
+        else Constraint(j.name, False, j.links)
         for j in scene.joints
     ]
     for d in scene.drivers if drivers is None else drivers:
-        items.append(_Item(d, True, scene.joint(d).links))
+        items.append(Constraint(d, True, scene.joint(d).links))
     return items
 
 
@@ -157,7 +159,7 @@ def mobility(scene: Scene) -> int:
     return 3 * len(scene.links) - 2 * (len(scene.joints) - h) - h
 
 
-def _search(scene: Scene, items: list[_Item], known: set[str], order: list[str]):
+def search_groups(scene: Scene, items: list[Constraint], known: set[str], order: list[str]):
     """Generator of (links, items) groups in solving order; raises on failure.
 
     On failure (a sub-chain with more equations than unknowns, or none that
@@ -194,7 +196,7 @@ def _search(scene: Scene, items: list[_Item], known: set[str], order: list[str])
         pending = [it for it in pending if it not in mine]
 
 
-def _refusal(remaining: list[str], pending: list[_Item], known: set[str], over) -> list[str]:
+def _refusal(remaining: list[str], pending: list[Constraint], known: set[str], over) -> list[str]:
     """The problems of links ``remaining`` that no group determines.
 
     ``over`` is the over-constrained sub-chain the search met, if any.  Both
@@ -248,7 +250,7 @@ def _links(names: list[str]) -> str:
     return f"link {names[0]} is" if len(names) == 1 else f"links {', '.join(names)} are"
 
 
-def _parts(remaining: list[str], pending: list[_Item]) -> tuple[list[str], list[str]]:
+def _parts(remaining: list[str], pending: list[Constraint]) -> tuple[list[str], list[str]]:
     """Links of the over- and of the under-constrained part among ``remaining``.
 
     The coarse Dulmage-Mendelsohn decomposition of the structural incidence of
@@ -311,7 +313,10 @@ def _parts(remaining: list[str], pending: list[_Item]) -> tuple[list[str], list[
     return links(over_cols), links(under_cols)
 
 
-def _classify(scene: Scene, links: tuple[str, ...], mine: list[_Item]) -> Group:
+def classify_group(scene: Scene, links: tuple[str, ...], mine: list[Constraint]) -> Group:
+    """The :class:`Group` of ``links`` solved by the constraints ``mine`` (a group found by
+    :func:`search_groups`): its kind (input, dyad, triad, gear, cam ...), class and
+    internal and external joints."""
     s = set(links)
     joints = [it for it in mine if not it.is_driver]
     drivers = tuple(it.name for it in mine if it.is_driver)
@@ -417,7 +422,7 @@ def decompose(scene: Scene) -> Decomposition:
     order = list(scene.link_names)
     items = _items(scene, [d.joint for d in scene.drivers])
     groups = tuple(
-        _classify(scene, links, mine)
-        for links, mine in _search(scene, items, {GROUND}, order)
+        classify_group(scene, links, mine)
+        for links, mine in search_groups(scene, items, {GROUND}, order)
     )
     return Decomposition(groups=groups, mobility=mobility(scene))

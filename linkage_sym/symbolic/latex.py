@@ -89,7 +89,7 @@ def _label(s: str) -> str:
     return re.sub(r"[^A-Za-z0-9:.-]", "-", s)
 
 
-class _Namer:
+class Namer:
     """``symbol_names`` for :func:`sympy.latex`, from the equations' structure."""
 
     def __init__(self, eqs: MechanismEquations):
@@ -186,7 +186,7 @@ class _Namer:
         return out
 
 
-def _pmatrix(namer: _Namer, M: sp.Matrix, force: bool = False) -> str | None:
+def _pmatrix(namer: Namer, M: sp.Matrix, force: bool = False) -> str | None:
     """``M`` as a ``pmatrix``, or None when it is too big to read that way."""
     if M.rows == 0 or M.cols == 0:
         return None
@@ -203,7 +203,7 @@ def _pmatrix(namer: _Namer, M: sp.Matrix, force: bool = False) -> str | None:
     return None if not force and len(out) > MAX_EQUATION else out
 
 
-def _rows_of(namer: _Namer, lhs: str, syms, per_row: int = 8) -> list[str]:
+def _rows_of(namer: Namer, lhs: str, syms, per_row: int = 8) -> list[str]:
     """``lhs &= (a, b, c, ...)^T`` as align rows of at most ``per_row`` entries."""
     names = [namer(s) for s in syms]
     chunks = [names[i:i + per_row] for i in range(0, len(names), per_row)]
@@ -214,7 +214,7 @@ def _rows_of(namer: _Namer, lhs: str, syms, per_row: int = 8) -> list[str]:
     return rows
 
 
-def _column(namer: _Namer, syms) -> str:
+def _column(namer: Namer, syms) -> str:
     return r"\begin{pmatrix} " + r" \\ ".join(namer(s) for s in syms) + r" \end{pmatrix}"
 
 
@@ -247,7 +247,7 @@ class _Doc:
             self.out.append(r + tail)
         self.out.append(rf"\end{{{env}}}")
 
-    def entries(self, namer: _Namer, name: str, M: sp.Matrix, what: str, entry: str):
+    def entries(self, namer: Namer, name: str, M: sp.Matrix, what: str, entry: str):
         """The nonzero entries of a matrix too big to print whole (``entry``: the
         entries' letter, with any superscript; the row/column index is appended)."""
         rows = []
@@ -413,7 +413,7 @@ def latex_document(eqs: MechanismEquations, symbols: bool = False) -> str:
     >>> tex.count(r"\begin{equation}") == tex.count(r"\end{equation}")
     True
     """
-    nm = _Namer(eqs)
+    nm = Namer(eqs)
     scene = eqs.scene
     doc = _Doc("eq:" + scene.name)
     title = escape_text(scene.name)

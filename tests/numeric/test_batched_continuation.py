@@ -425,14 +425,14 @@ def _problems(run):
 def test_both_runtimes_take_the_batched_path(monkeypatch):
     scene = linkage_sym.load_example("sixbar_class3")
     blocks = []
-    orig = batched_path._block
+    orig = batched_path.solve_block
 
     def spy(walk, idx):
         out = orig(walk, idx)
         blocks.append((type(walk.problem).__name__, len(idx), out[0]))
         return out
 
-    monkeypatch.setattr(batched_path, "_block", spy)
+    monkeypatch.setattr(batched_path, "solve_block", spy)
     steps = 361
     for run in (compile_plan(scene).run, linkage_sym.compile_mechanism(scene).run):
         blocks.clear()

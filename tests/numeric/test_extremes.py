@@ -245,7 +245,7 @@ def test_class_three_group_extremes_are_stationary():
     quantity itself (the plan run at 1e-3 steps either side gives no larger maximum or
     smaller minimum, to 1e-12 of the value's scale)."""
     from linkage_sym.examples import load_example
-    from linkage_sym.numeric.extremes import _Sweep, quantities
+    from linkage_sym.numeric.extremes import FractionalSweep, quantities
 
     scene = load_example("sixbar_class3")
     scene = dataclasses.replace(scene, drivers=tuple(
@@ -255,7 +255,7 @@ def test_class_three_group_extremes_are_stationary():
     ext = find_extremes(scene, plan, res)
     assert ext.limits and ext.limits[-1]["group"].startswith("triad")
     q, qd, qdd = plan.sweep()
-    sw = _Sweep(scene, plan, q, qd, qdd, None)
+    sw = FractionalSweep(scene, plan, q, qd, qdd, None)
     qs = {(qu.group, qu.name, qu.field): qu for qu in quantities(scene, True)}
     checks = []
     for key, mm in ext.values.items():

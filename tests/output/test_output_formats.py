@@ -584,13 +584,13 @@ def test_join_adds_whole_turns_only():
     part = _take(whole, slice(8, 20))
     before = {n: lk.rotation.copy() for n, lk in whole.links.items()}
     prev = {n: float(lk.rotation[10]) + 2 * math.pi for n, lk in whole.links.items()}
-    output._join(prev, part, 2, 10)
+    output.join_rotations(prev, part, 2, 10)
     for n, lk in part.links.items():
         assert lk.rotation[2] == pytest.approx(prev[n], abs=1e-12)
         assert np.allclose(lk.rotation, before[n][8:20] + 2 * math.pi, atol=1e-12)
     prev = {n: v + 0.5 for n, v in prev.items()}
     with pytest.raises(output.ChunkError, match="do not join"):
-        output._join(prev, part, 2, 10)
+        output.join_rotations(prev, part, 2, 10)
 
 
 # -- warnings merged over chunks -------------------------------------------------------------------

@@ -364,7 +364,7 @@ def _roots(walk: Walk, idx: np.ndarray) -> np.ndarray:
     return A
 
 
-def _block(walk: Walk, idx: np.ndarray) -> tuple[int, bool]:
+def solve_block(walk: Walk, idx: np.ndarray) -> tuple[int, bool]:
     """Solve the points ``idx`` (consecutive, right after ``walk.last``) at once.
 
     Returns how many of them, from the first, were taken (and recorded), and
@@ -491,7 +491,7 @@ def roots_near_points(problem, idx, ref, others, sign):
     ]
 
 
-def _gap(walk: Walk, idx: np.ndarray) -> int:
+def search_gap(walk: Walk, idx: np.ndarray) -> int:
     """Points ``idx`` of a gap (the walk cannot continue to them): their root searches at once.
 
     The leading points without a root of the assembly sign are recorded as
@@ -527,7 +527,7 @@ def walk_path(walk: Walk, n_points: int) -> None:
         elif last is None or last[0] != i - 1:
             # a gap: no continuous path from the last solved point
             end = min(stop, i + g)
-            n = _gap(walk, np.arange(i, end))
+            n = search_gap(walk, np.arange(i, end))
             i += n
             if i < end:
                 walk.step(i)  # a root of the assembly sign: the walk re-enters there
@@ -538,7 +538,7 @@ def walk_path(walk: Walk, n_points: int) -> None:
         else:
             g = 2
             end = min(stop, i + m)
-            n, fails = _block(walk, np.arange(i, end))
+            n, fails = solve_block(walk, np.arange(i, end))
             i += n
             if fails:
                 walk.step(i)  # the point the direct step does not take: the walk's own code

@@ -173,11 +173,17 @@ class Calibration:
         return self._G[0]
 
 
-def _unwrap(th: np.ndarray) -> np.ndarray:
+def unwrap_angles(th: np.ndarray) -> np.ndarray:
     """Remove the 2 pi jumps of an angle sequence (as ``np.unwrap``, with a fast exit).
 
     Consecutive path points are at most a few degrees apart, so a jump of more
-    than half a turn can only be a wrap of ``atan2``.
+    than half a turn can only be a wrap of ``atan2``.  Shared by the numeric plan and the
+    compiled mechanism's runtime.
+
+    Examples
+    --------
+    >>> unwrap_angles(np.array([3.0, -3.0, -2.9])).round(4).tolist()
+    [3.0, 3.2832, 3.3832]
     """
     d = np.diff(th)
     jump = np.abs(d) > math.pi

@@ -43,7 +43,7 @@ import numpy as np
 
 from linkage_sym.numeric.continuation.roots import indicator, inverses
 from linkage_sym.numeric.kinematics.constraints import GMesh, PJoint, RJoint
-from linkage_sym.numeric.kinematics.newton import SINGULAR_IND, NewtonSolver, _PoseProblem
+from linkage_sym.numeric.kinematics.newton import SINGULAR_IND, NewtonSolver, PoseProblem
 
 
 def applies(scene, group, constraints) -> bool:
@@ -363,7 +363,7 @@ class LoopClosureSolver(NewtonSolver):
         self._slide_rates = None
 
 
-class _AngleProblem(_PoseProblem):
+class _AngleProblem(PoseProblem):
     """A group of R and P joints in its angles and slides, for
     :func:`continuation.solve_path`.
 

@@ -109,7 +109,7 @@ class NewtonSolver:
         return sol.indicator
 
     def _problem(self, S, q):
-        return _PoseProblem(self, S, q)
+        return PoseProblem(self, S, q)
 
     def _set_poses(self, S, problem, sol):
         out = sol.u * problem.scale
@@ -168,7 +168,7 @@ class NewtonSolver:
         self._rates_cache = None  # the last rate stage: its block is not needed any more
 
 
-class _PoseProblem:
+class PoseProblem:
     """A Newton group in pose coordinates, for :func:`continuation.solve_path`.
 
     Unknowns ``u``: each link's ``(dx / L, dy / L, theta)``; inputs at a path
