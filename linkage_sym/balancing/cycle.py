@@ -56,7 +56,7 @@ from linkage_sym.balancing.counterweight import as_scene, check_counterweights
 from linkage_sym.model import OUTPUTS, Effects
 from linkage_sym.numeric.results.cycle_average import counted_steps, whole_period
 from linkage_sym.numeric.plan import compile_plan
-from linkage_sym.numeric.engine.sweep import scene_sweep
+from linkage_sym.numeric.engine.run import scene_sweep
 from linkage_sym.structure.parameters import link_frames
 
 __all__ = ["TERMS", "CycleModel"]

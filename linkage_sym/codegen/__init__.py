@@ -12,7 +12,7 @@ only.
   generator's source and SymPy's version;
 - ``runtime``: :class:`~linkage_sym.codegen.runtime.CompiledMechanism` runs
   the functions over a sweep, through the sweep engine the numeric plan
-  uses (:mod:`linkage_sym.numeric.engine.sweep`, :mod:`linkage_sym.numeric.engine.block`,
+  uses (:mod:`linkage_sym.numeric.engine.run`, :mod:`linkage_sym.numeric.engine.block`,
   :mod:`linkage_sym.numeric.continuation`);
 - ``precision``: the same functions at mpmath precision (``--precision``).
 """

@@ -33,7 +33,7 @@ from linkage_sym.codegen import cache
 from linkage_sym.codegen.runtime import CompiledMechanism, load_compiled
 from linkage_sym.errors import refuse_symbolic_unsupported
 from linkage_sym.model import Scene
-from linkage_sym.numeric.engine.sweep import needed_stages
+from linkage_sym.numeric.engine.run import needed_stages
 from linkage_sym.symbolic.mechanism import MechanismEquations
 
 ARGS = ("X", "XD", "XDD", "Q", "QD", "QDD", "FORCES", "P", "CX", "SX")

@@ -65,7 +65,7 @@ from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.results import accuracy
 from linkage_sym.numeric.forces.loads import load_factor
 from linkage_sym.numeric.results.result import OK, SINGULAR, UNASSEMBLABLE, GroupForces
-from linkage_sym.numeric.engine.sweep import SINGULAR_COND
+from linkage_sym.numeric.engine.run import SINGULAR_COND
 from linkage_sym.structure.parameters import ident
 
 DOUBLE = "double"

@@ -47,7 +47,7 @@ from linkage_sym.numeric.kinematics.loci import clamp_tangent, coordinate_size
 from linkage_sym.numeric.kinematics.state import LinkState
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.results.result import OK, Analysis, Forces, GroupForces
-from linkage_sym.numeric.engine.sweep import (
+from linkage_sym.numeric.engine.run import (
     unwrap_angles as _unwrap,
     Calibration,
     finish,

@@ -48,7 +48,7 @@ import numpy as np
 
 from linkage_sym.design.solution import Solution
 from linkage_sym.model import OUTPUTS
-from linkage_sym.numeric.engine.sweep import (
+from linkage_sym.numeric.engine.run import (
     SCREEN,
     SINGULAR_COND,
     ground_driven,

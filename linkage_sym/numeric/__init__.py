@@ -27,9 +27,9 @@ import contract):
     and Zhang's disconnection and superposition), ``global_statics`` (every
     link at once: the check), ``kinetostatics`` (the force plan).
 ``engine``
-    The one sweep engine both runtimes call: ``sweep`` (the sweep, stages,
-    solving path and unwrapping, step statuses, the singularity decision, the
-    ``Analysis``, what every run adds, the accuracy calibration), ``block``
+    The one sweep engine both runtimes call: ``run`` (a run's bookkeeping: the
+    scene's sweep, stages, solving path and unwrapping, step statuses, the singularity
+    decision, the ``Analysis``, what every run adds, the accuracy calibration), ``block``
     (the result block and its records), ``heap`` (the allocator's state).
 
 On top, ``plan`` (the numeric runtime: a scene compiled into its groups'

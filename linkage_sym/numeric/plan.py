@@ -16,7 +16,7 @@ unwrapped along that path, so they are continuous and measured from the
 assembly configuration.  Velocities and accelerations are solved at the
 steps only.  The path, the singularity threshold and its message and the run's
 warnings are shared with the compiled symbolic mechanism
-(:mod:`linkage_sym.numeric.engine.sweep`), as is the Newton continuation policy
+(:mod:`linkage_sym.numeric.engine.run`), as is the Newton continuation policy
 (:mod:`linkage_sym.numeric.continuation`).
 """
 
@@ -41,7 +41,7 @@ from linkage_sym.numeric.kinematics.newton import NewtonSolver
 from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.numeric.kinematics.solver import GroupSolver
 from linkage_sym.numeric.kinematics.state import LinkState
-from linkage_sym.numeric.engine.sweep import (
+from linkage_sym.numeric.engine.run import (
     SCREEN,
     Calibration,
     ground_driven,
@@ -267,7 +267,7 @@ class Plan:
 
     def _across_gaps(self, S, valid, out, solved) -> None:
         """Each link's rotation after an interruption of the path: the value nearest the
-        last solved step (:func:`~linkage_sym.numeric.engine.sweep.nearest_across_gaps`), except
+        last solved step (:func:`~linkage_sym.numeric.engine.run.nearest_across_gaps`), except
         a link turned by a driver on the ground, whose rotation is the driver's value."""
         broken = interrupted(valid, out, solved)
         if not broken.any():

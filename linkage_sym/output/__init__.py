@@ -162,8 +162,8 @@ def run_memory(scene, results: str = "whole", *, method: str = "dyad", fmt: str 
       own and its compiled mechanism's with that one's path, 4 -- measured: 137 bytes a
       step of a four-bar's model, 249 of the five-bar's, against 144 and 272 estimated);
     * ``solving path``: while it is built, the steps stacked, the path with its pieces and
-      temporaries and the steps' indices (:func:`~linkage_sym.numeric.engine.sweep.solving_path`),
-      then the path kept (:func:`~linkage_sym.numeric.engine.sweep.path_size` points, an upper bound);
+      temporaries and the steps' indices (:func:`~linkage_sym.numeric.engine.run.solving_path`),
+      then the path kept (:func:`~linkage_sym.numeric.engine.run.path_size` points, an upper bound);
     * ``results``: ``results`` (:data:`RESULTS`) steps at :func:`bytes_per_step` each, from
       the columns of a run of the scene at two steps, and :data:`FIXED_BYTES` (a chunk as
       :func:`chunk_steps` makes it with ``available`` bytes); none for ``"none"``.
@@ -181,7 +181,7 @@ def run_memory(scene, results: str = "whole", *, method: str = "dyad", fmt: str 
     import dataclasses
 
     from linkage_sym.numeric.plan import compile_plan
-    from linkage_sym.numeric.engine.sweep import path_size
+    from linkage_sym.numeric.engine.run import path_size
 
     if results not in RESULTS:
         raise ValueError(f"results must be one of {', '.join(RESULTS)}, got {results!r}")
@@ -285,7 +285,7 @@ class Sweep:
     (``"triad (b1, t, b2, b3)"``), in the order a run lists their warnings.
     ``q0`` is each driver's value in the assembly configuration and
     ``limits`` its largest increment along a solving path (see
-    :func:`linkage_sym.numeric.engine.sweep.solving_path`): with them,
+    :func:`linkage_sym.numeric.engine.run.solving_path`): with them,
     :meth:`waypoints` lets a chunk's path take the whole sweep's route.
     """
 
@@ -353,7 +353,7 @@ class Sweep:
 
 
 def _limits(scene, L) -> dict:
-    from linkage_sym.numeric.engine.sweep import MAX_ANGLE_STEP, MAX_SLIDE_STEP
+    from linkage_sym.numeric.engine.run import MAX_ANGLE_STEP, MAX_SLIDE_STEP
 
     return {d.joint: MAX_ANGLE_STEP if scene.joint(d.joint).type == "R" else MAX_SLIDE_STEP * L
             for d in scene.drivers}

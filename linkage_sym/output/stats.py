@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkage_sym.numeric.engine.sweep import WARN_COND, cancelling_warning, ill_conditioned_warning, run_warnings
+from linkage_sym.numeric.engine.run import WARN_COND, cancelling_warning, ill_conditioned_warning, run_warnings
 from linkage_sym.numeric.results.result import OK, UNASSEMBLABLE, Analysis
 from linkage_sym.numeric.results.strict_json import LeftOut
 from linkage_sym.numeric.forces.superposition import AMPLIFICATION_LIMIT

@@ -30,7 +30,7 @@ from linkage_sym import output
 from linkage_sym.cli import main
 from linkage_sym.examples import example_dict, example_names
 from linkage_sym.numeric.plan import compile_plan
-from linkage_sym.numeric.engine.sweep import run_warnings
+from linkage_sym.numeric.engine.run import run_warnings
 from linkage_sym.numeric.results.result import Analysis
 
 from tests.support import scenes  # the tests' scene builders (tests/support/scenes.py)

@@ -195,7 +195,7 @@ class Analysis:
         Exact dimensionless condition number of the full constraint
         Jacobian (lengths divided by the mechanism's size) at the steps
         where it was computed: where a group's cheap indicator fell below
-        ``linkage_sym.numeric.engine.sweep.SCREEN``, or at every step with
+        ``linkage_sym.numeric.engine.run.SCREEN``, or at every step with
         ``Plan.run(exact_condition=True)``.  NaN at the other steps (well
         conditioned by their indicators) and at unassemblable steps.
     outputs : tuple of str

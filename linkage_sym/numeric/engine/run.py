@@ -1,4 +1,4 @@
-"""Bookkeeping of a sweep that both runtimes share (NumPy only).
+"""Bookkeeping of a run over the scene's sweep that both runtimes share (NumPy only).
 
 The numeric plan (:mod:`linkage_sym.numeric.plan`) and the compiled symbolic
 mechanism (:mod:`linkage_sym.codegen.runtime`) solve a sweep by different
