@@ -6,8 +6,10 @@ __all__ = ["SweepError"]
 
 
 class SweepError(ValueError):
-    """A sweep's input that cannot be used: ``field`` names the argument or option
-    (``parameters``, ``metrics``, ``tolerance`` ...), ``reason`` says why.
+    """A sweep's input that cannot be used: ``field`` names the argument of
+    :func:`~linkage_sym.design.sweep` or the attribute of its ``MonteCarlo``, ``SceneFiles``
+    or ``Execution`` (``parameters``, ``metrics``, ``tolerance``, ``rows``, ``workers`` ...),
+    ``reason`` says why; the command line names its option for it.
 
     Examples
     --------
