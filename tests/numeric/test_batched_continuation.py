@@ -250,6 +250,7 @@ NEAR_DEGENERATE_TRIAD = (0.045, -0.043209483740241264, 0.0, 0.030123784173729268
                          0.008131556477265614, 0.019422335435914234, 0.0, 0.0, 0.0, 0.001, 0.0, 0.0)
 
 
+@pytest.mark.slow
 def test_a_near_degenerate_triad_past_a_limit_batched_equals_point_by_point():
     scene = _load(_triad_from(NEAR_DEGENERATE_TRIAD, steps=181))
     for m in METHODS:

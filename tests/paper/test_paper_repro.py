@@ -211,6 +211,7 @@ def _id(row):
 
 
 @pytest.mark.parametrize("row", EXPECTED, ids=_id)
+@pytest.mark.slow
 def test_item(row):
     source, where, name, printed, status, tol, reason = row
     by_key, _ = runner()

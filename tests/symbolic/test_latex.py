@@ -77,6 +77,7 @@ def test_the_parser_reads_matrices():
 
 
 @pytest.mark.parametrize("name", symbolic_examples())  # the symbolic layer refuses cams
+@pytest.mark.slow
 def test_every_formula_parses(documents, name):
     doc = documents[name]
     n = 0
@@ -90,6 +91,7 @@ def test_every_formula_parses(documents, name):
 
 
 @pytest.mark.parametrize("name", symbolic_examples())  # the symbolic layer refuses cams
+@pytest.mark.slow
 def test_environments_balance_and_labels_are_unique(documents, name):
     doc = documents[name]
     assert "\\documentclass" not in doc
@@ -161,6 +163,7 @@ def test_cli_derive_latex_writes_a_file(tmp_path, capsys):
     assert "theta_crank" in plain and "l_AB" not in plain and "A =" in plain
 
 
+@pytest.mark.slow
 def test_cli_derive_invalid_scene_exits_2_and_writes_nothing(tmp_path):
     import json
 
