@@ -200,6 +200,8 @@ EXPECTED = [
 ]
 
 
+# runs every reproduction (about 40 s on a loaded 2-core machine): the tests using it are
+# marked slow, or the first of them in the fast lane would pay it
 @functools.lru_cache(maxsize=1)
 def runner():
     items = run_all.collect()
@@ -230,6 +232,7 @@ def test_item(row):
             assert it.corrected and it.why
 
 
+@pytest.mark.slow
 def test_every_printed_value_is_named_here():
     _, items = runner()
     named = {(r[0], r[1], r[2]) for r in EXPECTED}
@@ -238,6 +241,7 @@ def test_every_printed_value_is_named_here():
     assert len(items) == len({(it.source, it.where, it.name) for it in items}), "two rows share a key"
 
 
+@pytest.mark.slow
 def test_unprinted_rows_agree():
     """Rows without a printed value: the scripts' two computations agree (1e-9 relative)."""
     _, items = runner()
@@ -248,6 +252,7 @@ def test_unprinted_rows_agree():
         assert it.status == REPRODUCED and it.holds is True and it.ok, (it.where, it.name, it.why)
 
 
+@pytest.mark.slow
 def test_not_reproducible_rows_say_why():
     by_key, items = runner()
     for it in items:
@@ -258,6 +263,7 @@ def test_not_reproducible_rows_say_why():
     assert "10.2 times the spread" in miss.why
 
 
+@pytest.mark.slow
 def test_errata_of_song_and_wang_are_all_there():
     """The issue names eqs. 4, 6, 13, 16, 17 and the design-2 text; the derivation found 9, 10 and 11 too."""
     _, items = runner()

@@ -31,6 +31,8 @@ ENV = re.compile(r"\\begin\{(" + "|".join(re.escape(e) for e in MATH_ENVS) + r")
 DROP = re.compile(r"\\label\{[^}]*\}|\\nonumber|\\notag")
 
 
+# derives every example (about 50 s on a loaded 2-core machine): the tests using it are
+# marked slow, or the first of them in the fast lane would pay it
 @pytest.fixture(scope="module")
 def documents():
     return {n: latex_document(derive(load_example(n), forces=True)) for n in symbolic_examples()}
@@ -135,6 +137,7 @@ def test_notation_of_the_kinematics_chapter():
 
 
 @pytest.mark.skipif(not (shutil.which("pdflatex") or shutil.which("latex")), reason="no TeX on PATH")
+@pytest.mark.slow
 def test_compiles_with_tex(tmp_path, documents):
     exe = shutil.which("pdflatex") or shutil.which("latex")
     for name in ("crank_rocker", "sixbar_class3"):
@@ -193,6 +196,7 @@ def _equation_lines(doc):
     return out
 
 
+@pytest.mark.slow
 def test_the_four_bar_has_no_equation_longer_than_250_characters(documents):
     """Named intermediates (outer joints, d, a, h, the inner joint; the centres of mass's
     accelerations) keep every equation of the shipped four-bar readable."""
@@ -258,6 +262,7 @@ def _real_or_none(f, vals):
     return None if isinstance(v, mp.mpc) else v
 
 
+@pytest.mark.slow
 def test_sources_are_cited_as_bibliography_entries(documents):
     doc = documents["crank_rocker"]
     keys = set(re.findall(r"\\cite(?:\[[^]]*\])?\{([^}]*)\}", doc))
