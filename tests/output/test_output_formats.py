@@ -317,7 +317,8 @@ def _flat(record, prefix=""):
 
 @pytest.mark.parametrize("name", slow_cases(example_names(), {
     "engine_four_stroke", "song_wang_sixbar", "watt_sixbar", "shaper", "stephenson_sixbar",
-    "fivebar"}))
+    "fivebar", "cam_cycloidal_roller", "slider_crank_offset", "gear_linkage", "planetary_train",
+    "crank_rocker", "guide_bar_quick_return"}))
 def test_json_file_is_byte_identical_to_the_contract_writer(name, tmp_path):
     d = example_dict(name)
     if name in NEWTON:
@@ -394,7 +395,8 @@ def _with_centres(d, speed=None):
 
 
 @pytest.mark.parametrize("make", [
-    _slider_with_gap, scenes.change_point_fourbar, lambda: example_dict("watt_sixbar"),
+    _slider_with_gap, scenes.change_point_fourbar,
+    pytest.param(lambda: example_dict("watt_sixbar"), marks=pytest.mark.slow),
     # instant centres: at infinity and a gap; found from the velocities; undefined at rest
     lambda: _with_centres(_slider_with_gap()),
     lambda: _with_centres(_with_steps(example_dict("fivebar"), 13)),
@@ -528,9 +530,10 @@ def test_chunked_equals_whole_on_every_example(name, tmp_path):
 
 
 @pytest.mark.parametrize("make", [
-    pytest.param(lambda: _with_centres(_slider_with_gap()), marks=pytest.mark.slow),
+    lambda: _with_centres(_slider_with_gap()),
     lambda: _with_centres(_with_steps(example_dict("fivebar"), 97)),
 ], ids=["slider_with_gap", "fivebar"])
+@pytest.mark.slow
 def test_chunked_equals_whole_with_instant_centres(make, tmp_path):
     d = make()
     whole = compile_plan(linkage_sym.load_scene(d)).run()

@@ -271,6 +271,7 @@ def test_errata_of_song_and_wang_are_all_there():
     assert where == {"eq. 4", "eq. 6", "eq. 9", "eq. 10", "eq. 11", "eq. 13", "eq. 16", "eq. 17", "design 2"}
 
 
+@pytest.mark.slow
 def test_the_runner_prints_every_source_and_exits_zero(capsys):
     assert run_all.main(["--only", "shaper_distances", "--only", "song_wang_errata"]) == 0
     out = capsys.readouterr().out

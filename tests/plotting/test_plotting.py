@@ -247,7 +247,8 @@ def test_a_stage_that_did_not_run_is_not_drawn(tmp_path):
     assert [p.name.rsplit("_", 1)[1] for p in paths] == ["positions.png"]
 
 
-@pytest.mark.parametrize("make", [slider_crank, four_bar, shaper])
+@pytest.mark.parametrize("make", [slider_crank, four_bar,
+                                  pytest.param(shaper, marks=pytest.mark.slow)])
 def test_coupler_curves_write_one_png(tmp_path, make):
     scene, analysis = make()
     out = tmp_path / "sub" / "paths.png"

@@ -49,7 +49,8 @@ CASES = [("crank_rocker", k) for k in range(0, 361, 10)] + [
     ("shaper", k) for k in (0, 135, 180, 360)]
 # over 3 s each on a loaded 2-core machine: the default run only (-m "not slow" leaves them out)
 SLOW_CASES = {("crank_rocker", k) for k in (0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120,
-                                           130, 140, 150, 180, 190, 230, 240, 260, 320, 360)} | {
+                                           130, 140, 150, 180, 190, 230, 240, 260, 280, 300,
+                                           310, 320, 330, 360)} | {
     ("shaper", k) for k in (0, 135, 180, 360)}
 
 
