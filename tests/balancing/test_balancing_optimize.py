@@ -267,7 +267,8 @@ def assert_within_bounds(res, links):
         assert max(abs(cw.at[0]), abs(cw.at[1])) <= res.max_radius[cw.link] * (1 + 1e-12)
 
 
-@pytest.mark.parametrize("name", ["crank_rocker", "watt_sixbar"])
+@pytest.mark.parametrize("name", ["crank_rocker",
+                                  pytest.param("watt_sixbar", marks=pytest.mark.slow)])
 @pytest.mark.parametrize("weights", [(1, 1, 1), (0, 1, 0), (0.2, 0, 1)])
 def test_optimiser_is_never_worse_than_the_start_and_respects_bounds(name, weights):
     scene = example_dict(name)
@@ -310,6 +311,7 @@ def test_optimiser_from_a_given_start_with_tight_bounds():
     assert again.objective_start == pytest.approx(sum((1, 0.5, 0.5)))
 
 
+@pytest.mark.slow
 def test_a_start_value_of_zero_is_normalised_by_the_gross_scale():
     """Start from a force-balanced design: rms_F0 ~ 1e-16, so the force term is
     normalised by the gross scale instead (else it would dominate by 1e16)."""

@@ -208,6 +208,7 @@ def test_count_on_every_step(name):
             assert sum(k in r for k in ("position", "direction", "undefined")) == 1, r
 
 
+@pytest.mark.slow
 def test_reachability_of_the_examples():
     """The five-bar's secondary centres (two degrees of freedom) are filled from the
     velocities; every 1-DOF example's are Kennedy's at every step but two of the shaper's:
@@ -265,6 +266,7 @@ def _crank_rocker(l2, l3, l4, f):
     return l1
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(l2=length, l3=length, l4=length, f=st.floats(0.1, 0.9), sg=sigma, start=angle,
        rot=angle, sc=scale, w=rate)
@@ -290,6 +292,7 @@ def test_random_fourbars(l2, l3, l4, f, sg, start, rot, sc, w):
             assert np.all(dist[fin] <= 1e-12 * scale_p[fin]), pair
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(l1=st.floats(0.5, 2.0), r=st.floats(1.5, 5.0), ef=st.floats(-0.8, 0.8), sg=sigma,
        start=angle, rot=angle, sc=scale, w=rate)
@@ -310,6 +313,7 @@ def test_random_slider_cranks(l1, r, ef, sg, start, rot, sc, w):
     assert np.all(np.abs(u[moving] @ axis) <= 1e-15)  # at infinity normal to the slide
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(l4=length, f=st.floats(0.1, 0.8), g=st.floats(0.05, 0.9), gamma=st.floats(20.0, 160.0),
        sg=sigma, start=angle, rot=angle, sc=scale, w=rate)

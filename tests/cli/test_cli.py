@@ -41,6 +41,7 @@ def test_output_folders_are_created(tmp_path):
     assert json.loads(out.read_text())["scene"] == "crank-rocker"
 
 
+@pytest.mark.slow
 def test_analyze_plots(tmp_path, capsys):
     """``--plots DIR`` writes the sweep's pictures; with the JSON on standard output
     (``-o -``) the list of pictures goes to standard error, so standard output stays one
@@ -85,6 +86,7 @@ def test_analyze_refuses_an_unknown_disconnection(tmp_path, capsys):
     assert not out.exists()
 
 
+@pytest.mark.slow
 def test_python_m_is_the_same_program(tmp_path):
     out = tmp_path / "r.json"
     p = run("analyze", str(example_path("crank_rocker")), "-o", str(out))
@@ -218,6 +220,7 @@ def test_balance_prints_a_summary_not_the_json(tmp_path, capsys):
     assert written["name"] == "crank-rocker with counterweights"
 
 
+@pytest.mark.slow
 def test_balance_writes_the_json_with_o_only(tmp_path, capsys):
     scene = _small_crank_rocker(tmp_path)
     out = tmp_path / "b.json"
@@ -230,6 +233,7 @@ def test_balance_writes_the_json_with_o_only(tmp_path, capsys):
     assert "force_balance_conditions" in json.loads(got.out) and "RMS" not in got.err
 
 
+@pytest.mark.slow
 def test_balance_latex_writes_a_tex_file(tmp_path, capsys):
     """``--latex`` only added a 'latex' key to the JSON (and to the 76 KB printed without
     -o): it now writes a LaTeX fragment of its own, to the file given or beside -o."""

@@ -102,12 +102,14 @@ def test_refusals(args, message):
     assert message in p.stderr
 
 
+@pytest.mark.slow
 def test_deg_needs_one_r_driver():
     p = run(example_path("hydraulic_boom"), "--deg", "10")
     assert p.returncode == 2
     assert "--deg: needs a scene with one R driver" in p.stderr
 
 
+@pytest.mark.slow
 def test_output_path_checked_first(tmp_path):
     p = run(example_path("crank_rocker"), "-o", tmp_path)
     assert p.returncode == 2 and "-o/--output" in p.stderr

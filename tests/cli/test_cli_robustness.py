@@ -187,6 +187,7 @@ def test_a_pipe_closed_after_some_bytes_stops_quietly():
 # -- 4. balance: prismatic joints and bad options -----------------------------------------
 
 
+@pytest.mark.slow
 def test_balance_of_a_slider_crank_points_to_optimize(tmp_path):
     out = tmp_path / "b.json"
     p = run("balance", SLIDER_CRANK, "-o", str(out))
@@ -400,6 +401,7 @@ def test_a_run_whose_peak_does_not_fit_is_refused_in_every_command(
     assert files_under(tmp_path) == ["scene_file.json"]
 
 
+@pytest.mark.slow
 def test_a_solving_path_far_longer_than_the_sweep_is_refused():
     """``centres --deg 1e12`` asked for a path of 5e11 points from the assembly configuration
     (numpy's 3.6 TiB allocation, or 'Maximum allowed size exceeded'): the option is held to a
@@ -487,6 +489,7 @@ def test_fuzzed_scenes_are_refused_or_solved_without_a_traceback(tmp_path):
     assert steps[0]["message"].startswith("no real position at 20 digits")
 
 
+@pytest.mark.slow
 def test_scene_rows_beyond_the_designs_are_refused_without_listing_them(tmp_path):
     """``--scene-rows 0:99999999999999`` listed 10^14 numbers (MemoryError) and a number over
     2^63 overflowed numpy's int; both name the first design that does not exist."""
@@ -511,6 +514,7 @@ def test_a_load_schedule_with_an_invalid_period_names_it(tmp_path):
     assert f"loads[{i}].period_deg: must be a finite number >= 0, got NaN" in p.stderr
 
 
+@pytest.mark.slow
 def test_closed_or_ascii_standard_output_ends_without_a_traceback():
     """Started with standard output closed (``>&-``: ``sys.stdout`` is None) the final flush
     raised AttributeError; an ASCII-only standard output could not take '°' or '·'."""
@@ -527,6 +531,7 @@ def test_closed_or_ascii_standard_output_ends_without_a_traceback():
     assert "N\\xb7m" in p.stdout  # escaped, not fatal
 
 
+@pytest.mark.slow
 def test_analyze_replaces_files_not_devices_pipes_or_links(tmp_path):
     """``analyze`` writes a temporary file and renames it over ``-o``: a named pipe (or a
     device, /dev/full as root) was replaced by a regular file, and a symbolic link by the
@@ -545,6 +550,7 @@ def test_analyze_replaces_files_not_devices_pipes_or_links(tmp_path):
     assert link.is_symlink() and json.loads(real.read_text())["scene"] == "crank-rocker"
 
 
+@pytest.mark.slow
 def test_samples_header_problems_name_samples_and_a_bom_is_no_name(tmp_path):
     """An unknown column of ``--samples`` was reported as ``--vary``; a spreadsheet's UTF-8
     byte-order mark became part of the first name ('\\ufeffl_AB')."""
@@ -648,6 +654,7 @@ def test_every_command_runs_with_standard_output_closed(tmp_path):
         assert (tmp_path / "out" / name).stat().st_size > 0
 
 
+@pytest.mark.slow
 def test_a_shell_closing_standard_output_gets_no_traceback(tmp_path):
     """The same through a shell's own ``>&-`` (not a descriptor closed by the test)."""
     import os
@@ -659,6 +666,7 @@ def test_a_shell_closing_standard_output_gets_no_traceback(tmp_path):
     assert p.returncode == 0 and p.stderr == "", p.stderr
 
 
+@pytest.mark.slow
 def test_a_cache_path_under_a_file_warns_and_the_run_goes_on(tmp_path):
     """``LINKAGE_SYM_CACHE`` under a file ended ``analyze --method symbolic`` with exit 1
     ('Not a directory'); it now warns once and runs without the disk cache."""

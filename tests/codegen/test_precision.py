@@ -227,6 +227,7 @@ def test_offset_slider_crank_at_50_digits(near):
             assert _double_rate_error(double, reference, ("rod",)) > 1e-13
 
 
+@pytest.mark.slow
 def test_statuses_and_forces_as_the_numeric_solver():
     """Shipped examples with forces at 30 digits: statuses as float64's; reactions, efforts
     and frame loads equal the numeric solver's to 1e-12 of each array's largest value (the

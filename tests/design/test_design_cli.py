@@ -131,6 +131,7 @@ def test_write_scenes_of_some_designs(tmp_path, capsys):
     assert ("K_note: not assembled at the scene's driver values 3" in capsys.readouterr().out)
 
 
+@pytest.mark.slow
 def test_plots_a_map_per_metric_of_a_grid_and_histograms(tmp_path, capsys):
     assert main(["sweep", CRANK, "--vary", "l_AB=0.015:0.045:6", "--vary", "l_BC=0.05:0.09:5",
                  "--metrics", "grashof,K", "--plots", str(tmp_path / "g")]) == 0
@@ -164,6 +165,7 @@ def test_summary_gives_units_and_no_empty_K_note(capsys):
     assert metric_unit("peak_driving_P", linkage_sym.load_example("hydraulic_boom")) == "N"
 
 
+@pytest.mark.slow
 def test_parallel_note_on_a_small_sweep(capsys):
     """--workers 2 on two designs prints the note naming the rule; the same sweep without the
     option does not; a sweep above the rule's size does not either (the rule only: no

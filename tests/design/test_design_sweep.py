@@ -111,6 +111,7 @@ def _check_against_analyze(res, scenes, output=None):
                         assert res["K_note"][i] == K_NOTES["partial"]
 
 
+@pytest.mark.slow
 def test_every_metric_equals_analyze_of_the_written_scene(tmp_path):
     scene = linkage_sym.load_example("crank_rocker")
     # 0.036: the crank no longer turns fully (gaps of unassemblable steps, K undefined)
@@ -124,7 +125,9 @@ def test_every_metric_equals_analyze_of_the_written_scene(tmp_path):
     _check_against_analyze(res, scenes, output="rocker")
 
 
-@pytest.mark.parametrize("name", ["slider_crank_offset", "shaper", "watt_sixbar"])
+@pytest.mark.parametrize("name", ["slider_crank_offset",
+                                  pytest.param("shaper", marks=pytest.mark.slow),
+                                  pytest.param("watt_sixbar", marks=pytest.mark.slow)])
 def test_sliders_and_ternary_links_equal_analyze(tmp_path, name):
     """P joints (the designs' own assembly angles theta0 of blocks and sliders), ternary
     links (beta), frame origins on P joints."""
@@ -208,6 +211,7 @@ def test_grashof_and_K_of_random_fourbars_against_formulas():
     assert {("crank-rocker", True), ("double-rocker", True), ("triple-rocker", False)} <= kinds
 
 
+@pytest.mark.slow
 def test_results_do_not_depend_on_the_chunks():
     scene = linkage_sym.load_example("crank_rocker")
     axes = {"l_AB": np.linspace(0.02, 0.04, 5), "l_BC": [0.06, 0.065, 0.07]}

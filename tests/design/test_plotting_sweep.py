@@ -110,7 +110,7 @@ MEANINGS = (("distance from joint", "m"), ("x of point", "m"), ("y of point", "m
 
 
 @pytest.mark.parametrize("example", ["crank_rocker", "slider_crank_offset", "shaper",
-                                     "watt_sixbar"])
+                                     pytest.param("watt_sixbar", marks=pytest.mark.slow)])
 def test_every_parameter_has_the_unit_its_meaning_says(example):
     rows = scene_parameters(linkage_sym.load_example(example))
     assert rows

@@ -45,6 +45,7 @@ from linkage_sym.codegen.precision import run_precise  # noqa: E402
 from linkage_sym.errors import SceneError  # noqa: E402
 from linkage_sym.examples import example_names, load_example  # noqa: E402
 from tests.support.example_sets import symbolic_examples  # noqa: E402
+from tests.support.marks import slow_cases  # noqa: E402
 from linkage_sym.numeric.results import accuracy  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 from linkage_sym.scene import load_scene  # noqa: E402
@@ -152,7 +153,8 @@ def _toggle_scene(gap_deg, steps=6):
     return load_scene(d)
 
 
-@pytest.mark.parametrize("gap_deg", [1e-1, 1e-2, 1e-4, 1e-6, 1e-8, 1e-10])
+@pytest.mark.parametrize("gap_deg", slow_cases([1e-1, 1e-2, 1e-4, 1e-6, 1e-8, 1e-10],
+                                                {1e-1, 1e-4, 1e-6, 1e-8, 1e-10}, key=float))
 def test_bounds_near_a_dead_centre(gap_deg):
     """Condition numbers from 22 to 7e6; the velocity error at 1e-10 deg is ~20 %, and the
     estimate says so: every method's estimate bounds it."""
@@ -167,6 +169,7 @@ def test_bounds_near_a_dead_centre(gap_deg):
     print(tally)
 
 
+@pytest.mark.slow
 def test_bounds_change_point_and_limit_within_rounding():
     tally = Tally()
     scene = load_scene(scenes.change_point_fourbar("accuracy change point", 10.0, 3.0))
@@ -251,6 +254,7 @@ def _forces(d, mass_links=()):
     return d
 
 
+@pytest.mark.slow
 @settings(**SETTINGS)
 @given(l2=st.floats(1.0, 4.0), l3=st.floats(1.0, 4.0), l4=st.floats(1.0, 4.0),
        f=st.floats(0.1, 0.99), sg=st.sampled_from([1, -1]), start=st.floats(-180, 180),
@@ -274,6 +278,7 @@ def test_bounds_random_crank_rockers(l2, l3, l4, f, sg, start, rot, sc, com):
     _check_mp(scene, res, "random crank-rocker", TALLY)
 
 
+@pytest.mark.slow
 @settings(**SETTINGS)
 @given(l1=st.floats(0.5, 2.0), r=st.floats(1.1, 5.0), ef=st.floats(-0.95, 0.95),
        sg=st.sampled_from([1, -1]), start=st.floats(-180, 180), rot=st.floats(-180, 180),

@@ -54,6 +54,7 @@ from tests.numeric.test_newton_groups import _families  # noqa: E402  (the resul
 import linkage_sym  # noqa: E402
 from linkage_sym.errors import SceneError  # noqa: E402
 from tests.support.example_sets import symbolic_examples  # noqa: E402
+from tests.support.marks import slow_cases  # noqa: E402
 from linkage_sym.examples import example_path  # noqa: E402
 from linkage_sym.numeric.continuation import batched_path  # noqa: E402
 from linkage_sym.numeric import continuation  # noqa: E402
@@ -250,6 +251,7 @@ NEAR_DEGENERATE_TRIAD = (0.045, -0.043209483740241264, 0.0, 0.030123784173729268
                          0.008131556477265614, 0.019422335435914234, 0.0, 0.0, 0.0, 0.001, 0.0, 0.0)
 
 
+@pytest.mark.slow
 def test_a_near_degenerate_triad_past_a_limit_batched_equals_point_by_point():
     scene = _load(_triad_from(NEAR_DEGENERATE_TRIAD, steps=181))
     for m in METHODS:
@@ -367,7 +369,9 @@ def test_sweeps_ending_near_or_past_a_limit_batched_equal_point_by_point(past_de
 # -- resolution independence --------------------------------------------------------------------
 
 @pytest.mark.parametrize("name,n",
-                         [(name, 19) for name in NEWTON_EXAMPLES] + [("sixbar_class3", 181)])
+                         slow_cases([(name, 19) for name in NEWTON_EXAMPLES]
+                                    + [("sixbar_class3", 181)],
+                                    {"gear_linkage"}, key=lambda c: c[0] if c[1] == 19 else None))
 def test_shipped_examples_batched_do_not_depend_on_the_step_count(name, n):
     d = json.loads(example_path(name).read_text())
     coarse = linkage_sym.load_scene(_steps_of(d, n))

@@ -105,6 +105,7 @@ def _exact_extremes(value, rate, th, with_all=False):
     return (hi, lo, vals) if with_all else (hi, lo)
 
 
+@pytest.mark.slow
 def test_fourbar_extremes_match_the_closed_form_rate_roots():
     d = _fourbar_scene(73)
     scene = load_scene(d)
@@ -193,7 +194,7 @@ def test_assembly_limit_of_a_triple_rocker():
     assert abs(limit["drivers"]["A"] - float(th_lim)) <= 1e-9
 
 
-@pytest.mark.parametrize("steps", [37, 361, 3601])
+@pytest.mark.parametrize("steps", [37, 361, pytest.param(3601, marks=pytest.mark.slow)])
 def test_sampled_extremes_converge_as_one_over_n_squared(steps):
     """The largest sample of N steps misses the rocker's exact maximum by at most
     ``|f''| Delta^2 / 8`` (``f''``: the rocker's angular acceleration per crank angle
@@ -239,6 +240,7 @@ def test_brent_generator_finds_roots_as_scipy():
         assert abs(root - brentq(f, a, b, xtol=1e-14)) <= 4e-14
 
 
+@pytest.mark.slow
 def test_class_three_group_extremes_are_stationary():
     """A class-III six-bar (Newton positions, superposition forces): every extreme located
     between samples is at least as extreme as the samples and a local extreme of the

@@ -722,6 +722,7 @@ def _superposition_tol(kappa, amp):
     return C_EXACT * EPS * kappa ** 2 + EPS * kappa * max(1.0, amp)
 
 
+@pytest.mark.slow
 def test_class3_sixbar_all_steps_default_choice():
     """The shipped sixbar_class3 (inertia off) over a full turn, 361 steps, every
     step: the dyad method (superposition, default disconnection) and the global
@@ -787,6 +788,7 @@ def test_class3_forced_poor_choice_switches_where_it_must(choice):
     assert not fails, f"disconnection {choice} forced: " + "; ".join(fails[:6])
 
 
+@pytest.mark.slow
 def test_class3_near_its_own_singular_position():
     """The sixbar with its crank 1.8 times longer cannot turn fully: the crank
     angle reaches a maximum th* = 197.75 deg where the triad's loop Jacobian is

@@ -430,6 +430,7 @@ def test_symbolic_flank_that_never_settles_is_the_same_warning(monkeypatch):
                and "after 5 force solves" in w for w in res.warnings), res.warnings
 
 
+@pytest.mark.slow
 def test_symbolic_precision_of_a_gear_train_equals_float():
     """``--precision 50`` (mpmath, its own flank choice per step) against the float64 run."""
     from linkage_sym.codegen.precision import analyze_precise

@@ -20,11 +20,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from tests.support import reference_kinematics as ref  # noqa: E402
 from tests.support import scenes  # noqa: E402
+
+# every test here runs 50 random mechanisms (over 3 s each on a loaded 2-core machine)
+pytestmark = pytest.mark.slow
 
 POS_TOL = 1e-12
 RATE_TOL = 1e-11

@@ -200,7 +200,9 @@ def test_every_shipped_example_inertia_only(name):
     check_contract(scene, a, g, inertia_only=True)
 
 
-@pytest.mark.parametrize("name", ["sixbar_class3", "printing_mechanism", "hydraulic_boom"])
+@pytest.mark.parametrize("name", ["sixbar_class3",
+                                  pytest.param("printing_mechanism", marks=pytest.mark.slow),
+                                  "hydraulic_boom"])
 def test_every_disconnection_gives_the_same_reactions(name):
     scene = linkage_sym.load_example(name)
     plan = compile_plan(scene)

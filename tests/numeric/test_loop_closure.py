@@ -129,7 +129,8 @@ def _printing_from(j, steps=181, guide="ground"):
 @pytest.mark.parametrize("jitter", [None, (0.02, -0.01, 0.0, 0.015, -0.02, 0.01,
                                            0.01, 0.0, -0.015, 0.02, 0.0, -0.01), "printing",
                                      "printing turned", "slide on the lever",
-                                     "guide on the crank", "hydraulic boom", "knee",
+                                     pytest.param("guide on the crank", marks=pytest.mark.slow),
+                                     "hydraulic boom", pytest.param("knee", marks=pytest.mark.slow),
                                      "gear_linkage", "planetary_train"])
 def test_jacobian_against_central_differences(jitter):
     if jitter is None:
@@ -179,6 +180,7 @@ def _against_poses(scene, what):
     return a, b
 
 
+@pytest.mark.slow
 def test_the_shipped_class3_sixbar_agrees_with_the_pose_formulation():
     a, _ = _against_poses(linkage_sym.load_example("sixbar_class3"), "sixbar_class3")
     assert (a.status == "ok").all()
@@ -195,6 +197,7 @@ def test_random_triads_agree_with_the_pose_formulation(j):
     _against_poses(scene, "random triad")
 
 
+@pytest.mark.slow
 def test_the_printing_mechanism_agrees_with_the_pose_formulation():
     for name in ("printing_mechanism", "printing_mechanism_stroke"):
         a, _ = _against_poses(linkage_sym.load_example(name), name)
@@ -214,7 +217,9 @@ def test_random_printing_mechanisms_agree_with_the_pose_formulation(j):
             _against_poses(scene, f"random printing mechanism, guide on the {guide}")
 
 
-@pytest.mark.parametrize("axis_deg", [0.0, 60.0, 120.0, 150.0])
+@pytest.mark.parametrize("axis_deg", [pytest.param(0.0, marks=pytest.mark.slow), 60.0,
+                                      pytest.param(120.0, marks=pytest.mark.slow),
+                                      pytest.param(150.0, marks=pytest.mark.slow)])
 def test_a_triad_sliding_on_its_lever_agrees_with_the_pose_formulation(axis_deg):
     """The guide turns with the group; at 0, 120 and 150 deg parts of the turn cannot be
     assembled (limits, gaps)."""
@@ -252,6 +257,7 @@ def test_random_knees_agree_with_the_pose_formulation(j, long):
         _against_poses(scene, "random knee")
 
 
+@pytest.mark.slow
 def test_a_triad_past_a_limit_agrees_with_the_pose_formulation():
     scene = linkage_sym.load_scene(scenes.triad_jump())
     a, b = _against_poses(scene, "triad jump")
@@ -259,7 +265,8 @@ def test_a_triad_past_a_limit_agrees_with_the_pose_formulation():
 
 
 @pytest.mark.parametrize("which", ["triad", "printing", "slide on the lever",
-                                   "guide on the crank", "hydraulic boom", "knee",
+                                   pytest.param("guide on the crank", marks=pytest.mark.slow),
+                                   "hydraulic boom", pytest.param("knee", marks=pytest.mark.slow),
                                    "planetary_train"])
 def test_rates_against_finite_differences_of_the_positions(which):
     """Velocities and accelerations of every link against finite differences of the

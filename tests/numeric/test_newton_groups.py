@@ -223,6 +223,7 @@ def test_knee_limit_is_reported_at_its_driver_value():
 
 # -- class-III triads: both methods, closure and determinant signs ------------------------------
 
+@pytest.mark.slow
 @settings(**SETTINGS)
 @given(j=st.tuples(*[jitter] * 12))
 def test_random_triads_both_methods_agree_and_close_in_the_assembly_mode(j):
@@ -279,6 +280,7 @@ def test_random_newton_groups_do_not_depend_on_the_step_count(j, kind, jt):
 
 # -- jumps are never silent ----------------------------------------------------------------------
 
+@pytest.mark.slow
 def test_a_triad_that_jumps_past_a_limit_says_so_and_names_an_ambiguous_mode():
     """A random triad whose branch ends at a limit position and which goes on in another
     configuration of the same determinant sign: both runtimes warn, naming the limit's

@@ -181,7 +181,7 @@ print(json.dumps(faults))
 
 @pytest.mark.skipif(platform.system() != "Linux" or platform.libc_ver()[0] != "glibc",
                     reason="counts the page faults of glibc's heap on Linux")
-@pytest.mark.parametrize("runtime", ["numeric", "symbolic"])
+@pytest.mark.parametrize("runtime", ["numeric", pytest.param("symbolic", marks=pytest.mark.slow)])
 def test_first_run_touches_no_fresh_memory(runtime):
     scene = _scene("crank_rocker", 3600)
     if runtime == "symbolic":  # into this session's cache, which the subprocess reads

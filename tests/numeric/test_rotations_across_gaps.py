@@ -403,6 +403,7 @@ def test_driven_crank_reports_the_drivers_value_after_a_gap():
 
 # -- the sweep's swing of a four-bar with a gap ----------------------------------------
 
+@pytest.mark.slow
 def test_sweep_swing_with_a_gap_is_the_rockers_own():
     """The design sweep's ``swing`` of the report's four-bar (two arcs of the crank, 37 steps
     over 200 degrees) is the largest minus the smallest rotation by the rule: at the steps,

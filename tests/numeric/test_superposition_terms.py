@@ -25,7 +25,8 @@ def scene(name, steps=7):
     return linkage_sym.load_scene(d)
 
 
-@pytest.mark.parametrize("name", ["printing_mechanism", "sixbar_class3"])
+@pytest.mark.parametrize("name", [pytest.param("printing_mechanism", marks=pytest.mark.slow),
+                                  "sixbar_class3"])
 def test_terms_recombine_into_the_solvers_reactions(name):
     s = scene(name)
     plan = compile_plan(s)

@@ -34,6 +34,7 @@ from linkage_sym.numeric.engine.run import run_warnings
 from linkage_sym.numeric.results.result import Analysis
 
 from tests.support import scenes  # the tests' scene builders (tests/support/scenes.py)
+from tests.support.marks import slow_cases
 
 REL = 1e-12
 """Chunked vs whole: tolerance relative to the largest magnitude of the quantity."""
@@ -314,7 +315,10 @@ def _flat(record, prefix=""):
 
 # -- JSON: the contract's bytes --------------------------------------------------------------------
 
-@pytest.mark.parametrize("name", example_names())
+@pytest.mark.parametrize("name", slow_cases(example_names(), {
+    "engine_four_stroke", "song_wang_sixbar", "watt_sixbar", "shaper", "stephenson_sixbar",
+    "fivebar", "cam_cycloidal_roller", "slider_crank_offset", "gear_linkage", "planetary_train",
+    "crank_rocker", "guide_bar_quick_return"}))
 def test_json_file_is_byte_identical_to_the_contract_writer(name, tmp_path):
     d = example_dict(name)
     if name in NEWTON:
@@ -327,7 +331,8 @@ def test_json_file_is_byte_identical_to_the_contract_writer(name, tmp_path):
         assert_contract_bytes(out.read_text(), whole, indent, (name, flags))
 
 
-@pytest.mark.parametrize("make", [_slider_with_gap, scenes.change_point_fourbar, _triad_jump,
+@pytest.mark.parametrize("make", [_slider_with_gap, scenes.change_point_fourbar,
+                                  pytest.param(_triad_jump, marks=pytest.mark.slow),
                                   _ill_conditioned_fourbar])
 def test_json_of_failures_points_and_warnings_is_byte_identical(make, tmp_path, capsys):
     d = make()
@@ -390,7 +395,8 @@ def _with_centres(d, speed=None):
 
 
 @pytest.mark.parametrize("make", [
-    _slider_with_gap, scenes.change_point_fourbar, lambda: example_dict("watt_sixbar"),
+    _slider_with_gap, scenes.change_point_fourbar,
+    pytest.param(lambda: example_dict("watt_sixbar"), marks=pytest.mark.slow),
     # instant centres: at infinity and a gap; found from the velocities; undefined at rest
     lambda: _with_centres(_slider_with_gap()),
     lambda: _with_centres(_with_steps(example_dict("fivebar"), 13)),
@@ -509,7 +515,8 @@ def _chunked(d, tmp_path, chunk, method="dyad"):
     return stats, _npz_columns(path)
 
 
-@pytest.mark.parametrize("name", example_names())
+@pytest.mark.parametrize("name", slow_cases(example_names(), set(example_names()) - {
+    "hydraulic_boom", "sixbar_class3"}))
 def test_chunked_equals_whole_on_every_example(name, tmp_path):
     d = example_dict(name)
     whole = compile_plan(linkage_sym.load_scene(d)).run()
@@ -526,6 +533,7 @@ def test_chunked_equals_whole_on_every_example(name, tmp_path):
     lambda: _with_centres(_slider_with_gap()),
     lambda: _with_centres(_with_steps(example_dict("fivebar"), 97)),
 ], ids=["slider_with_gap", "fivebar"])
+@pytest.mark.slow
 def test_chunked_equals_whole_with_instant_centres(make, tmp_path):
     d = make()
     whole = compile_plan(linkage_sym.load_scene(d)).run()
@@ -596,6 +604,7 @@ def test_join_adds_whole_turns_only():
 # -- warnings merged over chunks -------------------------------------------------------------------
 
 @pytest.mark.parametrize("chunk", [5, 13, 14])
+@pytest.mark.slow
 def test_newton_jump_warnings_merged_as_a_whole_run_words_them(chunk, tmp_path):
     """The triad's jump at step 14 (reached from step 13) is warned once, with the sweep's step
     numbers, wherever the chunk boundaries fall (14: the jump is between two chunks)."""
@@ -706,7 +715,8 @@ def test_summary_of_chunks_equals_the_whole_runs(tmp_path, capsys, monkeypatch):
     ("printing_mechanism", "dyad", 500, None),
     # instant centres: their construction's memory grows with the pairs, not the columns
     ("crank_rocker", "dyad", 20000, ["instant_centres"]),
-    ("watt_sixbar", "dyad", 20000, ["kinematics", "instant_centres"]),
+    pytest.param("watt_sixbar", "dyad", 20000, ["kinematics", "instant_centres"],
+                 marks=pytest.mark.slow),
     ("fivebar", "dyad", 20000, ["kinematics", "reactions", "instant_centres"]),
 ])
 def test_memory_estimate_covers_the_measured_peak(name, method, steps, outputs):
@@ -799,6 +809,7 @@ def test_chunk_size_follows_the_memory_available():
         output.chunk_steps(10**6, per, output.FIXED_BYTES + per * output.MIN_CHUNK // 2, False)
 
 
+@pytest.mark.slow
 def test_too_large_runs_are_refused_before_anything_is_written(tmp_path, capsys, monkeypatch):
     scene = _write(tmp_path, _with_steps(example_dict("watt_sixbar"), 2000))
     monkeypatch.setattr(output, "available_memory", lambda: output.FIXED_BYTES + 2**18)
@@ -852,7 +863,8 @@ def test_a_failure_while_writing_leaves_no_partial_file(fmt, tmp_path, capsys, m
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r." + fmt, "scene.json"]
 
 
-@pytest.mark.parametrize("signame, status", [("SIGTERM", None), ("SIGINT", 130)])
+@pytest.mark.parametrize("signame, status", [pytest.param("SIGTERM", None, marks=pytest.mark.slow),
+                                             ("SIGINT", 130)])
 def test_a_killed_analyze_leaves_no_partial_file(signame, status, tmp_path):
     """Issue 27: SIGTERM ended analyze at once, leaving its ``.partial`` file.  A run of two
     million steps (about a minute) is signalled once its partial file exists: the file is
@@ -951,6 +963,7 @@ def test_the_numeric_core_loads_neither_tqdm_nor_pyarrow():
     assert p.stdout.strip() == ""
 
 
+@pytest.mark.slow
 def test_force_groups_when_the_first_step_fails(tmp_path):
     """A class-III six-bar whose first steps cannot be assembled (its crank pivot moved 1 m
     down, found by fuzzing): the one-step template of the sweep had no force groups at all,

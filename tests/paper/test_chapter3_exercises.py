@@ -38,6 +38,7 @@ def test_exercise_3_5():
         assert close(ours, closed), (name, ours, closed)
 
 
+@pytest.mark.slow
 def test_exercise_3_13():
     r = ch3.exercise_3_13()
     for key in ("v_C", "omega4_ratio", "v_E"):

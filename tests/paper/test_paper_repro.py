@@ -200,6 +200,8 @@ EXPECTED = [
 ]
 
 
+# runs every reproduction (about 40 s on a loaded 2-core machine): the tests using it are
+# marked slow, or the first of them in the fast lane would pay it
 @functools.lru_cache(maxsize=1)
 def runner():
     items = run_all.collect()
@@ -211,6 +213,7 @@ def _id(row):
 
 
 @pytest.mark.parametrize("row", EXPECTED, ids=_id)
+@pytest.mark.slow
 def test_item(row):
     source, where, name, printed, status, tol, reason = row
     by_key, _ = runner()
@@ -229,6 +232,7 @@ def test_item(row):
             assert it.corrected and it.why
 
 
+@pytest.mark.slow
 def test_every_printed_value_is_named_here():
     _, items = runner()
     named = {(r[0], r[1], r[2]) for r in EXPECTED}
@@ -237,6 +241,7 @@ def test_every_printed_value_is_named_here():
     assert len(items) == len({(it.source, it.where, it.name) for it in items}), "two rows share a key"
 
 
+@pytest.mark.slow
 def test_unprinted_rows_agree():
     """Rows without a printed value: the scripts' two computations agree (1e-9 relative)."""
     _, items = runner()
@@ -247,6 +252,7 @@ def test_unprinted_rows_agree():
         assert it.status == REPRODUCED and it.holds is True and it.ok, (it.where, it.name, it.why)
 
 
+@pytest.mark.slow
 def test_not_reproducible_rows_say_why():
     by_key, items = runner()
     for it in items:
@@ -257,6 +263,7 @@ def test_not_reproducible_rows_say_why():
     assert "10.2 times the spread" in miss.why
 
 
+@pytest.mark.slow
 def test_errata_of_song_and_wang_are_all_there():
     """The issue names eqs. 4, 6, 13, 16, 17 and the design-2 text; the derivation found 9, 10 and 11 too."""
     _, items = runner()
@@ -264,6 +271,7 @@ def test_errata_of_song_and_wang_are_all_there():
     assert where == {"eq. 4", "eq. 6", "eq. 9", "eq. 10", "eq. 11", "eq. 13", "eq. 16", "eq. 17", "design 2"}
 
 
+@pytest.mark.slow
 def test_the_runner_prints_every_source_and_exits_zero(capsys):
     assert run_all.main(["--only", "shaper_distances", "--only", "song_wang_errata"]) == 0
     out = capsys.readouterr().out

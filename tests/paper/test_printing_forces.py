@@ -155,6 +155,7 @@ def test_reactions_match_the_paper_within_the_rounding_spread(name):
     assert abs(ours - printed) <= s[name], (name, ours, printed, s[name])
 
 
+@pytest.mark.slow
 def test_spread_is_a_real_bound_not_a_blanket():
     """The spread is much smaller than the forces, and the residuals use a fair part of it."""
     s, _ = spread()

@@ -217,7 +217,8 @@ def _assert_png(path):
     assert data[:8] == PNG_SIGNATURE
 
 
-@pytest.mark.parametrize("make", [slider_crank, four_bar, shaper])
+@pytest.mark.parametrize("make", [pytest.param(slider_crank, marks=pytest.mark.slow), four_bar,
+                                  pytest.param(shaper, marks=pytest.mark.slow)])
 def test_motion_diagrams_write_three_pngs(tmp_path, make):
     scene, analysis = make()
     out = tmp_path / "nested" / "dir"
@@ -230,6 +231,7 @@ def test_motion_diagrams_write_three_pngs(tmp_path, make):
         _assert_png(p)
 
 
+@pytest.mark.slow
 def test_prefix_names_the_files(tmp_path):
     scene, analysis = slider_crank()
     paths = motion_diagrams(scene, analysis, tmp_path, prefix="run1")
@@ -245,7 +247,8 @@ def test_a_stage_that_did_not_run_is_not_drawn(tmp_path):
     assert [p.name.rsplit("_", 1)[1] for p in paths] == ["positions.png"]
 
 
-@pytest.mark.parametrize("make", [slider_crank, four_bar, shaper])
+@pytest.mark.parametrize("make", [slider_crank, four_bar,
+                                  pytest.param(shaper, marks=pytest.mark.slow)])
 def test_coupler_curves_write_one_png(tmp_path, make):
     scene, analysis = make()
     out = tmp_path / "sub" / "paths.png"
@@ -253,6 +256,7 @@ def test_coupler_curves_write_one_png(tmp_path, make):
     _assert_png(out)
 
 
+@pytest.mark.slow
 def test_nan_gaps_and_all_bad_steps_do_not_raise(tmp_path):
     scene, analysis = slider_crank()
     assert np.isnan(analysis.links["rod"].rotation[9])
@@ -318,6 +322,7 @@ def test_status_runs_split_by_status():
     assert status_runs(status) == [(UNASSEMBLABLE, 1, 2), (SINGULAR, 3, 3), (UNASSEMBLABLE, 5, 5)]
 
 
+@pytest.mark.slow
 def test_plotting_changes_no_global_matplotlib_state():
     """Importing and plotting neither imports pyplot nor switches the backend."""
     code = (

@@ -83,6 +83,7 @@ def _all_text(fig) -> str:
 # ------------------------------------------------------------------------- files
 
 
+@pytest.mark.slow
 def test_files_are_valid_pngs_of_sensible_size(before, tmp_path):
     after = _copy(before, "after", 0.05, 0.1, turn=0.6)
     out = tmp_path / "new" / "dir"
@@ -168,6 +169,7 @@ def test_tiny_after_series_counts_as_zero(before):
     assert "numerically zero" in text and "e-17 N" in text
 
 
+@pytest.mark.slow
 def test_zero_series_alone(tmp_path):
     q = np.linspace(0.0, 2 * np.pi, 37)
     zero = BalanceSeries("balanced", q, np.full(37, "ok"), np.zeros((37, 2)), np.zeros(37))
@@ -302,6 +304,7 @@ def test_module_imports_neither_sympy_nor_cli_nor_balancing():
     assert not any(n.startswith(("linkage_sym.cli", "linkage_sym.balancing")) for n in names), names
 
 
+@pytest.mark.slow
 def test_plots_run_without_loading_sympy(tmp_path):
     code = (
         "import sys\n"
@@ -321,6 +324,7 @@ def test_plots_run_without_loading_sympy(tmp_path):
     assert (tmp_path / "f.png").exists() and (tmp_path / "m.png").exists()
 
 
+@pytest.mark.slow
 def test_demo_and_balance_plots_give_one_plot_one_name(tmp_path):
     """The demo's balancing plots have the names ``balance --plots`` gives the same plots
     (the demo called the polar plot ``_balance_force_polar.png``, ``balance`` called it

@@ -178,6 +178,7 @@ def test_plot_all_follows_the_outputs(tmp_path):
 # ------------------------------------------------------------------ what is drawn
 
 
+@pytest.mark.slow
 def test_shaking_words_only_under_inertia_alone():
     scene, analysis = example()  # inertia + gravity + loads
     assert not inertia_only(scene)
@@ -203,6 +204,7 @@ def test_inertia_only_rule(effects, shaking):
     assert inertia_only(replace(scene, loads=())) is (effects.inertia and effects.gravity is None)
 
 
+@pytest.mark.slow
 def test_hodographs_are_polar_one_per_joint_in_scene_order():
     scene, analysis = example()
     fig = reaction_hodographs_figure(scene, analysis)

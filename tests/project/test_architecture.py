@@ -136,6 +136,7 @@ def _cycles(graph: dict) -> list:
     return found
 
 
+@pytest.mark.slow
 def test_no_import_cycle():
     """No module of linkage_sym imports, directly or through others, a module that imports it."""
     graph = _import_graph(ROOT / "linkage_sym")

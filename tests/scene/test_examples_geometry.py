@@ -450,6 +450,7 @@ def test_shaper_dimensions():
     assert _angle(j["A"], j["B"]) == pytest.approx(0.0, abs=1e-9)  # assembly at th1 = 0
 
 
+@pytest.mark.slow
 def test_shaper_reproduces_table_3_1():
     """Tracking the scene itself (independent solver above) to th1 = 0, 10, 20 deg.
 

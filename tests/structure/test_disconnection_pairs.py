@@ -236,6 +236,7 @@ def test_dyad_method_equals_global(runs):
     assert errs[worst] <= TOL, (worst, errs[worst])
 
 
+@pytest.mark.slow
 def test_every_pair_disconnection_gives_the_same_forces(scene, runs):
     plan, _, g = runs
     for k in range(20):

@@ -31,6 +31,7 @@ def turns_fully(a, d, b, c):
 length = st.floats(0.05, 20.0)
 
 
+@pytest.mark.slow
 @settings(max_examples=400, deadline=None)
 @given(length, length, length, length)
 def test_class_against_the_reach_of_the_dyads(d, a, b, c):

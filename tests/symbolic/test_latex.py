@@ -31,6 +31,8 @@ ENV = re.compile(r"\\begin\{(" + "|".join(re.escape(e) for e in MATH_ENVS) + r")
 DROP = re.compile(r"\\label\{[^}]*\}|\\nonumber|\\notag")
 
 
+# derives every example (about 50 s on a loaded 2-core machine): the tests using it are
+# marked slow, or the first of them in the fast lane would pay it
 @pytest.fixture(scope="module")
 def documents():
     return {n: latex_document(derive(load_example(n), forces=True)) for n in symbolic_examples()}
@@ -77,6 +79,7 @@ def test_the_parser_reads_matrices():
 
 
 @pytest.mark.parametrize("name", symbolic_examples())  # the symbolic layer refuses cams
+@pytest.mark.slow
 def test_every_formula_parses(documents, name):
     doc = documents[name]
     n = 0
@@ -90,6 +93,7 @@ def test_every_formula_parses(documents, name):
 
 
 @pytest.mark.parametrize("name", symbolic_examples())  # the symbolic layer refuses cams
+@pytest.mark.slow
 def test_environments_balance_and_labels_are_unique(documents, name):
     doc = documents[name]
     assert "\\documentclass" not in doc
@@ -133,6 +137,7 @@ def test_notation_of_the_kinematics_chapter():
 
 
 @pytest.mark.skipif(not (shutil.which("pdflatex") or shutil.which("latex")), reason="no TeX on PATH")
+@pytest.mark.slow
 def test_compiles_with_tex(tmp_path, documents):
     exe = shutil.which("pdflatex") or shutil.which("latex")
     for name in ("crank_rocker", "sixbar_class3"):
@@ -161,6 +166,7 @@ def test_cli_derive_latex_writes_a_file(tmp_path, capsys):
     assert "theta_crank" in plain and "l_AB" not in plain and "A =" in plain
 
 
+@pytest.mark.slow
 def test_cli_derive_invalid_scene_exits_2_and_writes_nothing(tmp_path):
     import json
 
@@ -190,6 +196,7 @@ def _equation_lines(doc):
     return out
 
 
+@pytest.mark.slow
 def test_the_four_bar_has_no_equation_longer_than_250_characters(documents):
     """Named intermediates (outer joints, d, a, h, the inner joint; the centres of mass's
     accelerations) keep every equation of the shipped four-bar readable."""
@@ -255,6 +262,7 @@ def _real_or_none(f, vals):
     return None if isinstance(v, mp.mpc) else v
 
 
+@pytest.mark.slow
 def test_sources_are_cited_as_bibliography_entries(documents):
     doc = documents["crank_rocker"]
     keys = set(re.findall(r"\\cite(?:\[[^]]*\])?\{([^}]*)\}", doc))

@@ -58,6 +58,7 @@ import linkage_sym.codegen.compile as cg_compile  # noqa: E402
 from linkage_sym.codegen.compile import compile_mechanism  # noqa: E402
 from linkage_sym.examples import example_names
 from tests.support.example_sets import symbolic_examples  # noqa: E402
+from tests.support.marks import slow_cases  # noqa: E402
 from linkage_sym.scene import load_scene  # noqa: E402
 from linkage_sym.symbolic.mechanism import derive  # noqa: E402
 
@@ -264,7 +265,10 @@ def _json_clean(res):
 
 
 # =========================================================================== 1. examples
-@pytest.mark.parametrize("name", EXAMPLES)
+@pytest.mark.parametrize("name", slow_cases(EXAMPLES, {
+    "stephenson_sixbar", "song_wang_sixbar", "shaper", "fivebar", "engine_four_stroke",
+    "sixbar_class3", "printing_mechanism", "guide_bar_quick_return", "printing_mechanism_stroke",
+    "crank_rocker", "watt_sixbar"}))
 def test_examples_match_numeric(name):
     """Contract: the compiled symbolic run equals the numeric solver on every
     shipped example (arrays and JSON)."""
@@ -325,6 +329,7 @@ def _fourbar_ok(l1, l2, l3, l4, sigma):
     return np.all(np.abs(cmu) <= math.cos(math.radians(20)))
 
 
+@pytest.mark.slow
 @HYP
 @given(l1=st.floats(0.2, 1.0), l2=st.floats(1.0, 4.0), l3=st.floats(1.0, 4.0),
        l4=st.floats(1.0, 4.0), sigma=st.sampled_from([1, -1]),
@@ -339,6 +344,7 @@ def test_random_fourbars(l1, l2, l3, l4, sigma, rot, seed, accel):
     assert np.all(num.status == "ok")
 
 
+@pytest.mark.slow
 @HYP
 @given(l1=st.floats(0.2, 1.0), ratio=st.floats(2.5, 6.0), e=st.floats(-0.9, 0.9),
        sigma=st.sampled_from([1, -1]), rot=st.floats(-180, 180),
@@ -557,7 +563,8 @@ def test_generated_functions_document_their_arguments():
 
 
 # =========================================================================== 6. CLI
-@pytest.mark.parametrize("name", ["slider_crank_offset", "sixbar_class3"])
+@pytest.mark.parametrize("name", ["slider_crank_offset",
+                                  pytest.param("sixbar_class3", marks=pytest.mark.slow)])
 def test_cli_symbolic_matches_dyad(name, tmp_path):
     from linkage_sym import cli
     from linkage_sym.examples import __file__ as ex_init

@@ -38,6 +38,7 @@ length = st.floats(0.01, 10.0)
 angle = st.floats(-720.0, 720.0)
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(length, length, length, length, angle, st.sampled_from(["open", "crossed"]),
        st.floats(-5, 5), st.floats(-5, 5))
@@ -62,6 +63,7 @@ def test_fourbar_lengths_branch_and_point(a, b, c, d, phi, branch, u, v):
     assert (e[0] * (P - B)[1] - e[1] * (P - B)[0]) == pytest.approx(v, abs=1e-12 * (b + abs(u) + abs(v)))
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(length, length, st.floats(-10, 10), angle, st.sampled_from(["right", "left"]))
 def test_slider_crank_lengths_and_line(a, b, e, phi, branch):

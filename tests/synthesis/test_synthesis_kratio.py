@@ -86,6 +86,7 @@ psis = st.floats(10.0, 170.0)
 # ------------------------------------------------------------------ crank-rocker
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None)
 @given(Ks, psis, st.floats(0.01, 10.0))
 def test_crank_rocker_without_condition_meets_K_and_psi(K, psi, c):
@@ -168,6 +169,7 @@ def test_crank_rocker_ground_only_on_the_forbidden_arcs_is_refused(K, psi, pick)
         assert err.value.field == "K" and "leaves no admissible crank pivot" in err.value.reason
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)
 @given(st.floats(1.01, 30.0), psis)
 def test_which_K_have_a_crank_rocker(K, psi):
@@ -186,7 +188,9 @@ def test_which_K_have_a_crank_rocker(K, psi):
         assert err.value.field == "K" and "θ < 90° + ψ/2" in err.value.reason
 
 
-@pytest.mark.parametrize("K, psi", [(1.5, 45.0), (1.2, 100.0), (2.5, 30.0), (4.0, 150.0)])
+@pytest.mark.parametrize("K, psi", [pytest.param(1.5, 45.0, marks=pytest.mark.slow),
+                                    pytest.param(1.2, 100.0, marks=pytest.mark.slow),
+                                    (2.5, 30.0), (4.0, 150.0)])
 def test_crank_rocker_best_transmission_angle(K, psi):
     """Without a condition, no admissible pivot of the independent construction gives a larger
     minimum transmission angle (law of cosines here) than the chosen one, beyond 1e-9; and the
@@ -226,6 +230,7 @@ def test_crank_rocker_worked_example():
 # ------------------------------------------------------------------ slider-crank
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None)
 @given(st.floats(1.05, 2.9), st.floats(0.01, 10.0), st.floats(0.02, 0.98), st.integers(0, 2),
        st.booleans())
@@ -301,6 +306,7 @@ def test_slider_crank_best_transmission_angle():
 # ------------------------------------------------------------------ guide-bar
 
 
+@pytest.mark.slow
 @settings(max_examples=30, deadline=None)
 @given(st.floats(1.01, 20.0), st.floats(0.01, 10.0))
 def test_guide_bar_meets_K(K, d):

@@ -86,6 +86,7 @@ def test_two_positions_with_the_pivots(lens, phi1, step):
     assert reproduced(design, rows) <= TOL
 
 
+@pytest.mark.slow
 def test_two_positions_without_pivots():
     rows = positions_of(1.0, 3.0, 3.0, 3.5, [60.0, 100.0])
     design = coupler_positions(rows)
