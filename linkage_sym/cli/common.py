@@ -77,7 +77,12 @@ SWEEP_OPTIONS = {"parameters": "--vary", "output": "--output-link", "trace": "--
 axis ``l_AB`` of ``--vary``); a field not listed is printed as it is
 (``parameters['l_AB']``)."""
 
-OPTIONS = {"sweep": SWEEP_OPTIONS}
+ANIMATE_OPTIONS = {"path": "-o/--output", "frames": "--frames", "fps": "--fps", **{layer: f"--layers {layer}" for layer in (
+    "velocity", "acceleration", "forces", "centres", "transmission")}}
+"""The parameters of :func:`linkage_sym.plotting.animation.animate` and the options of
+``animate`` that fill them (``path``: the file of ``-o``; a layer: its name in ``--layers``)."""
+
+OPTIONS = {"sweep": SWEEP_OPTIONS, "animate": ANIMATE_OPTIONS}
 """Each command whose options are not its library parameters with dashes: its table."""
 
 

@@ -76,7 +76,8 @@ from linkage_sym.plotting.paths import (
 )
 
 __all__ = ["ARROW_SHARE", "DEFAULT_FPS", "DEFAULT_FRAMES", "FADED", "LAYERS", "SUFFIXES",
-           "AnimationError", "MechanismAnimation", "animate", "frame_steps"]
+           "AnimationError", "MechanismAnimation", "animate", "check_fps", "frame_steps",
+           "output_kind", "require_ffmpeg", "self_contained"]
 
 LAYERS = ("velocity", "acceleration", "forces", "centres", "transmission")
 """The layers an animation may draw over the mechanism, in drawing order."""
@@ -183,6 +184,17 @@ def _positive(field: str, value, what: str) -> float:
     raise AnimationError(field, f"a positive number of {what} is expected, got {value!r}")
 
 
+def check_fps(fps) -> float:
+    """``fps`` as a positive finite float, else :class:`AnimationError` (field ``fps``).
+
+    Examples
+    --------
+    >>> check_fps(12), check_fps("2.5")
+    (12.0, 2.5)
+    """
+    return _positive("fps", fps, "frames per second")
+
+
 def output_kind(path) -> str:
     """``"gif"``, ``"mp4"`` or ``"html"`` from ``path``'s suffix (any case).
 
@@ -261,7 +273,7 @@ class MechanismAnimation:
         self.scene = scene
         self.analysis = analysis
         self.steps = frame_steps(analysis.n_steps, frames)
-        self.fps = _positive("fps", fps, "frames per second")
+        self.fps = check_fps(fps)
         self.dpi = _positive("dpi", dpi, "dots per inch")
         self.layers = tuple(name for name in LAYERS if asked[name])
         self._check_layers()
