@@ -49,7 +49,7 @@ from __future__ import annotations
 import math
 import os
 import re
-import tempfile
+import secrets
 import textwrap
 from pathlib import Path
 
@@ -697,8 +697,9 @@ class MechanismAnimation:
         if kind == "mp4":
             require_ffmpeg()
         style.ensure_dir(path.parent)
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)
-        os.close(fd)
+        # a name of its own beside it (the writers create it, with the permissions any new
+        # file gets), its suffix kept: Pillow and ffmpeg choose the format by it
+        tmp = str(path.with_name(f".{path.stem}.{os.getpid()}.{secrets.token_hex(6)}{path.suffix}"))
         try:
             if kind == "html":
                 Path(tmp).write_text(_html_page(self.scene.name, self.to_jshtml()),
@@ -714,10 +715,12 @@ class MechanismAnimation:
         return path
 
 
-ICONS = {"fa fa-minus": "\u2212", "fa fa-fast-backward": "\u23ee", "fa fa-step-backward": "|\u25c0",
-         "fa fa-play fa-flip-horizontal": "\u25c0", "fa fa-pause": "\u23f8", "fa fa-play": "\u25b6",
-         "fa fa-step-forward": "\u25b6|", "fa fa-fast-forward": "\u23ed", "fa fa-plus": "+"}
-"""The player's buttons as characters, for the icon font Matplotlib's player fetches."""
+ICONS = {"fa fa-minus": "\u2212", "fa fa-fast-backward": "|\u25c0\u25c0",
+         "fa fa-step-backward": "|\u25c0", "fa fa-play fa-flip-horizontal": "\u25c0",
+         "fa fa-pause": "||", "fa fa-play": "\u25b6", "fa fa-step-forward": "\u25b6|",
+         "fa fa-fast-forward": "\u25b6\u25b6|", "fa fa-plus": "+"}
+"""The player's buttons as characters (triangles of the Geometric Shapes block, which common
+fonts have), for the icon font Matplotlib's player fetches."""
 
 
 def self_contained(html: str) -> str:

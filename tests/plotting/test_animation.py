@@ -89,6 +89,10 @@ def test_the_gif_has_exactly_the_frames_asked_for(crank_rocker, tmp_path):
     anim = animate(*crank_rocker, frames=4, fps=8, dpi=DPI)
     path = anim.save(tmp_path / "motion.gif")
     assert [p.name for p in tmp_path.iterdir()] == ["motion.gif"]  # no temporary file left
+    plain = tmp_path / "plain"
+    plain.write_bytes(b"")
+    assert path.stat().st_mode == plain.stat().st_mode  # the permissions of any new file
+    plain.unlink()
     with Image.open(path) as gif:
         assert gif.format == "GIF"
         assert gif.n_frames == 4
