@@ -79,6 +79,7 @@ def test_kinematic_layers_add_the_kinematics_the_scene_lacks(tmp_path):
     d = example_dict("crank_rocker")
     d["drivers"][0]["steps"] = 7
     d["outputs"] = ["driving"]
+    d["effects"] = {"inertia": False, "gravity": None, "loads": True}  # stages: position, forces
     out = tmp_path / "m.gif"
     assert main(["animate", scene_file(tmp_path, d), "-o", str(out), "--frames", "2",
                  "--layers", "velocity,acceleration,centres,forces"]) == 0
