@@ -22,6 +22,7 @@ __all__ = [
     "SceneError",
     "__version__",
     "analyze",
+    "animate",
     "compile_mechanism",
     "compile_plan",
     "decompose",
@@ -90,6 +91,20 @@ def analyze(scene, method="dyad", disconnection=None, precision="double"):
     if method == "symbolic":
         return compile_mechanism(scene).run()
     return compile_plan(scene, disconnection).run(method=method)
+
+
+def animate(scene, analysis, **options):
+    """An animation of a scene's analysed sweep: ``.save("motion.gif")`` (or ``.mp4``,
+    ``.html``), shown inline in a notebook.
+
+    ``options``: ``frames``, ``fps``, ``dpi`` and the layers ``velocity``, ``acceleration``,
+    ``forces``, ``centres``, ``transmission`` (``True`` to draw).  A function and not a
+    method of the analysis: the numeric core imports no Matplotlib.  See
+    :func:`linkage_sym.plotting.animation.animate`.
+    """
+    from linkage_sym.plotting.animation import animate as _animate
+
+    return _animate(scene, analysis, **options)
 
 
 def derive(scene, symbolic=True, forces=None):

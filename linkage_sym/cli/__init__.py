@@ -2,7 +2,7 @@
 
 One module a command (``linkage_sym.cli.analyze`` with its ``.accuracy`` options,
 ``.derive``, ``.structure``, ``.demo`` with ``examples``, ``.synthesize`` with ``new``,
-``.balance``, ``.centres``, ``.sweep``), each with its ``register`` and ``cmd_*``,
+``.balance``, ``.centres``, ``.sweep``, ``.animate``), each with its ``register`` and ``cmd_*``,
 reading options and printing; what they compute is the library's.  What they share
 is in :mod:`linkage_sym.cli.common`, with the one mapping of the library's parameter
 names to options.  This module builds the parser and runs the command; no command's
@@ -62,6 +62,13 @@ demo [-o DIR] [--example NAME]
     force and moment (the same motion with inertia as the only effect).
 examples
     List the shipped example scenes.
+animate SCENE.json -o motion.gif|.mp4|.html [--frames N] [--fps F]
+        [--layers velocity,acceleration,forces,centres,transmission]
+        [--method dyad|global|symbolic]
+    Solve the sweep and write the mechanism moving: the links, the paths
+    growing, the layers asked for; a frame of a step that is not ``ok`` says
+    so.  GIF by Pillow, MP4 by ffmpeg where it is found, HTML as one
+    self-contained file.
 
 Plot files are named after the scene's ``name`` (made safe for a path) in
 every command.
@@ -90,7 +97,8 @@ from linkage_sym.errors import BalanceError, SceneError
 __all__ = ["BROKEN_PIPE", "EXIT_STATUS", "NO_STEP_ASSEMBLED", "build_parser", "main"]
 
 # the command modules, in the order of the help's list
-COMMANDS = ("analyze", "derive", "structure", "demo", "synthesize", "balance", "centres", "sweep")
+COMMANDS = ("analyze", "derive", "structure", "demo", "synthesize", "balance", "centres", "sweep",
+            "animate")
 
 
 def build_parser() -> CommandParser:

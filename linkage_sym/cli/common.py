@@ -85,7 +85,12 @@ ANALYZE_OPTIONS = {"format": "--format", "keep": "--plots", "path": "-o/--output
 ``OutputError``: ``keep`` is the whole sweep kept for the plots) and of
 :func:`linkage_sym.analyze`, and the options of ``analyze`` that fill them."""
 
-OPTIONS = {"sweep": SWEEP_OPTIONS, "analyze": ANALYZE_OPTIONS}
+ANIMATE_OPTIONS = {"path": "-o/--output", "frames": "--frames", "fps": "--fps", **{layer: f"--layers {layer}" for layer in (
+    "velocity", "acceleration", "forces", "centres", "transmission")}}
+"""The parameters of :func:`linkage_sym.plotting.animation.animate` and the options of
+``animate`` that fill them (``path``: the file of ``-o``; a layer: its name in ``--layers``)."""
+
+OPTIONS = {"sweep": SWEEP_OPTIONS, "analyze": ANALYZE_OPTIONS, "animate": ANIMATE_OPTIONS}
 """Each command whose options are not its library parameters with dashes: its table."""
 
 

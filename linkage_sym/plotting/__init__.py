@@ -20,6 +20,10 @@ reaction_hodographs
     Polar hodographs of the joint reactions over the cycle (1 PNG).
 frame_loads
     Frame (or shaking) force hodograph and moment against the driver (1 PNG).
+
+The animation of a sweep (GIF, MP4, HTML) is :func:`linkage_sym.plotting.animation.animate`,
+imported on its own (``linkage_sym.animate``) so that the still pictures load no animation
+machinery.
 """
 
 from linkage_sym.plotting.forces import driving_effort, frame_loads, reaction_hodographs

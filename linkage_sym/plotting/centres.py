@@ -33,7 +33,7 @@ from linkage_sym.plotting.paths import (
     points_on_link,
 )
 
-__all__ = ["centres_figure", "centrodes_figure", "polygons_figure"]
+__all__ = ["centres_figure", "centrodes_figure", "polygons_figure", "three_centre_segments"]
 
 VIEW = 2.5
 """Centres and centrode points farther than this many mechanism sizes from the
@@ -59,6 +59,74 @@ def _kind(centres, k):
 
 def _fmt_point(p, scale, unit):
     return f"({p[0] * scale:.4g}, {p[1] * scale:.4g}) {unit}"
+
+
+def three_centre_segments(centres, step, L) -> list:
+    """The three-centre lines Kennedy's construction used at ``step``, as drawn segments.
+
+    Each centre found by three-centre lines lies on two lines through two known
+    centres each (``P_ik``, ``P_kj`` and ``P_ij`` on one line); each line is
+    drawn through its centres and a little beyond, or, where one of them is at
+    infinity, through the finite ones along its direction.
+
+    Parameters
+    ----------
+    centres : InstantCentres
+    step : int
+    L : float
+        The mechanism's size (m): the shortest segment drawn is ``0.3 L``.
+
+    Returns
+    -------
+    list of ndarray, shape (2, 2)
+        The ends of each segment (m), each line once per centre it finds.
+    """
+    k_all = centres.kennedy
+    pos = centres.position[step]
+    names = centres.links
+
+    def centre_at(i, j):
+        """Finite position or ('inf', direction) of pair (links i, j) at the step, or None."""
+        k = centres.index(names[i], names[j])
+        if centres.at_infinity[step, k]:
+            return "inf", centres.direction[step, k]
+        p = pos[k]
+        return ("pt", p) if np.all(np.isfinite(p)) else None
+
+    # three-centre lines of the Kennedy centres: P_ik, P_kj, P_ij on one line
+    drawn = set()
+    out = []
+    for k, (a, b) in enumerate(centres.pairs):
+        if _kind(centres, k) != "kennedy" or centres.undefined[step, k] or centres.at_infinity[step, k]:
+            continue
+        i, j = names.index(a), names.index(b)
+        target = pos[k]
+        for third in k_all.via[step, k]:
+            if third < 0:
+                continue
+            ends = [centre_at(i, third), centre_at(third, j)]
+            if any(e is None for e in ends):
+                continue
+            line = tuple(sorted((frozenset((i, third)), frozenset((third, j))), key=sorted))
+            pts = [target] + [e[1] for e in ends if e[0] == "pt"]
+            dirs = [e[1] for e in ends if e[0] == "inf"]
+            if dirs:  # through a point along the direction of the centre at infinity
+                u = dirs[0]
+                t = [(p - pts[0]) @ u for p in pts]
+                span = max(max(t) - min(t), 0.3 * L)
+                seg = [pts[0] + (min(t) - 0.15 * span) * u, pts[0] + (max(t) + 0.15 * span) * u]
+            else:
+                u = pts[1] - pts[0] if len(pts) > 1 else np.array([1.0, 0.0])
+                n = np.hypot(*u)
+                u = u / n if n > 0 else np.array([1.0, 0.0])
+                t = [(p - pts[0]) @ u for p in pts]
+                span = max(max(t) - min(t), 0.3 * L)
+                seg = [pts[0] + (min(t) - 0.08 * span) * u, pts[0] + (max(t) + 0.08 * span) * u]
+            if (line, k) in drawn:
+                continue
+            drawn.add((line, k))
+            out.append(np.array(seg))
+    return out
 
 
 def centres_figure(scene, analysis, centres, step, out_file):
@@ -94,7 +162,6 @@ def centres_figure(scene, analysis, centres, step, out_file):
     ax = fig.subplots()
     ax.set_aspect("equal", adjustable="box")
     mechanism_snapshot(scene, analysis, step, ax, labels=False, unit_scale=scale)
-    k_all = centres.kennedy
     pos = centres.position[step]
     names = centres.links
     listed = []  # text beside the drawing
@@ -102,48 +169,10 @@ def centres_figure(scene, analysis, centres, step, out_file):
     def near(p):
         return bool(np.all(np.isfinite(p))) and np.hypot(*(p - mid)) <= VIEW * L
 
-    def centre_at(i, j):
-        """Finite position or ('inf', direction) of pair (links i, j) at the step, or None."""
-        k = centres.index(names[i], names[j])
-        if centres.at_infinity[step, k]:
-            return "inf", centres.direction[step, k]
-        p = pos[k]
-        return ("pt", p) if np.all(np.isfinite(p)) else None
-
-    # three-centre lines of the Kennedy centres: P_ik, P_kj, P_ij on one line
-    drawn = set()
-    for k, (a, b) in enumerate(centres.pairs):
-        if _kind(centres, k) != "kennedy" or centres.undefined[step, k] or centres.at_infinity[step, k]:
-            continue
-        i, j = names.index(a), names.index(b)
-        target = pos[k]
-        for third in k_all.via[step, k]:
-            if third < 0:
-                continue
-            ends = [centre_at(i, third), centre_at(third, j)]
-            if any(e is None for e in ends):
-                continue
-            line = tuple(sorted((frozenset((i, third)), frozenset((third, j))), key=sorted))
-            pts = [target] + [e[1] for e in ends if e[0] == "pt"]
-            dirs = [e[1] for e in ends if e[0] == "inf"]
-            if dirs:  # through a point along the direction of the centre at infinity
-                u = dirs[0]
-                t = [(p - pts[0]) @ u for p in pts]
-                span = max(max(t) - min(t), 0.3 * L)
-                seg = [pts[0] + (min(t) - 0.15 * span) * u, pts[0] + (max(t) + 0.15 * span) * u]
-            else:
-                u = pts[1] - pts[0] if len(pts) > 1 else np.array([1.0, 0.0])
-                n = np.hypot(*u)
-                u = u / n if n > 0 else np.array([1.0, 0.0])
-                t = [(p - pts[0]) @ u for p in pts]
-                span = max(max(t) - min(t), 0.3 * L)
-                seg = [pts[0] + (min(t) - 0.08 * span) * u, pts[0] + (max(t) + 0.08 * span) * u]
-            if (line, k) in drawn:
-                continue
-            drawn.add((line, k))
-            seg = np.array(seg) * scale
-            ax.plot(seg[:, 0], seg[:, 1], color="#d62728", lw=0.7, ls=(0, (5, 3)), alpha=0.55,
-                    zorder=2)
+    for seg in three_centre_segments(centres, step, L):
+        seg = seg * scale
+        ax.plot(seg[:, 0], seg[:, 1], color="#d62728", lw=0.7, ls=(0, (5, 3)), alpha=0.55,
+                zorder=2)
 
     labels = []  # [position, [labels], colour]
     drawn_at = []  # every centre drawn (m): a label keeps off them

@@ -16,6 +16,7 @@ Only results are read here; nothing is solved.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -133,14 +134,14 @@ def _ground_symbol(ax, p, size, alpha, zorder):
     return [tri]
 
 
-def _block(ax, centre, angle, length, width, color, alpha, zorder):
+def _block(ax, centre, angle, length, width, color, alpha, zorder, gid=None):
     c, s = math.cos(angle), math.sin(angle)
     u, n = np.array([c, s]), np.array([-s, c])
     centre = np.asarray(centre, dtype=float)
     corners = [centre + a * 0.5 * length * u + b * 0.5 * width * n
                for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
     patch = Polygon(corners, closed=True, facecolor=color, edgecolor="0.15", lw=1.0,
-                    alpha=alpha, zorder=zorder)
+                    alpha=alpha, zorder=zorder, gid=gid)
     ax.add_patch(patch)
     return patch
 
@@ -174,7 +175,9 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
     -------
     list
         The artists drawn; empty when the step has no position (e.g. an
-        ``unassemblable`` step).
+        ``unassemblable`` step).  The pin of an ``R`` joint (a circle centred on
+        the joint's point) and the block of a ``P`` joint have the gid
+        ``"joint NAME"``.
     """
     if unit_scale is None:
         unit_scale = style.length_unit(scene)[1]
@@ -227,7 +230,7 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
             artists += _ground_slot(scene, analysis, joint, ax, unit_scale, alpha)
         blk_col = colors.get(slider, "0.6") if slider != GROUND else "0.85"
         artists.append(_block(ax, centre, angle, 2.2 * size, 1.3 * size, blk_col, alpha,
-                              base_z + 1))
+                              base_z + 1, gid=f"joint {joint.name}"))
 
     # cams: the profile turning with the cam, the follower's roller or flat face
     for joint in scene.cams:
@@ -241,7 +244,7 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
             if GROUND in joint.links and ground:
                 artists += _ground_symbol(ax, p, size, alpha, base_z - 0.5)
             pin = Circle(p, 0.22 * size, facecolor="white", edgecolor="0.1", lw=1.2,
-                         alpha=alpha, zorder=base_z + 2)
+                         alpha=alpha, zorder=base_z + 2, gid=f"joint {joint.name}")
             ax.add_patch(pin)
             artists.append(pin)
 
@@ -436,6 +439,93 @@ def _same_path(a, b) -> bool:
     return bool(np.array_equal(fa, fb) and np.allclose(a[fa], b[fb], rtol=0, atol=1e-12))
 
 
+@dataclass(frozen=True)
+class TracedPath:
+    """One path the pictures of a sweep draw (:func:`traced_paths`).
+
+    Attributes
+    ----------
+    position : ndarray, shape (N, 2)
+        The path over the sweep (m), NaN where a step has no position.
+    label : str
+        Legend entry: ``path of B, C`` (coincident joints share one path) or
+        ``point P (on coupler)``.
+    color : str
+        The colour of the link the point is fixed on.
+    ls : str or tuple
+        Line style, telling apart paths of one colour.
+    lw : float
+        Line width: traced points (the coupler curves) bold.
+    zorder : float
+    point : ScenePoint or None
+        The traced point of the scene, for a traced point's path.
+    """
+
+    position: np.ndarray
+    label: str
+    color: str
+    ls: object
+    lw: float
+    zorder: float
+    point: object = None
+
+
+PATH_STYLES = ("-", (0, (6, 2)), (0, (1, 1.5)), (0, (6, 2, 1, 2)))
+"""Line styles of paths that share a colour, in turn."""
+
+
+def traced_paths(scene: Scene, analysis: Analysis) -> list:
+    """The paths of the moving joints, then of the traced points, as they are drawn.
+
+    Every joint point fixed on a moving ``links[1]`` that moves (a pivot on a
+    crank's ground axis does not), coincident paths merged into one entry; then
+    the coupler curve of every traced point of the scene (``points``), bold.
+
+    Parameters
+    ----------
+    scene : Scene
+    analysis : Analysis
+
+    Returns
+    -------
+    list of TracedPath
+    """
+    jcolors = style.joint_colors(scene)
+    lcolors = style.link_colors(scene)
+    drawn = []  # (path, legend entry) to merge coincident joints
+    for joint in scene.joints:
+        if joint.links[1] == GROUND:
+            continue
+        jk = analysis.joints.get(joint.name)
+        if jk is None:
+            continue
+        pos = np.asarray(jk.position, dtype=float)
+        if _still(pos, scene):
+            continue  # a pivot that does not move (e.g. on a crank's ground axis)
+        for entry in drawn:
+            if _same_path(entry[0], pos):
+                entry[1].append(joint.name)
+                break
+        else:
+            drawn.append([pos, [joint.name], jcolors.get(joint.name)])
+    out = []
+    per_color = {}
+    for pos, names, col in drawn:
+        k = per_color.get(col, 0)
+        per_color[col] = k + 1
+        out.append(TracedPath(pos, f"path of {', '.join(names)}", col,
+                              PATH_STYLES[k % len(PATH_STYLES)], 1.6, 4))
+    points = getattr(analysis, "points", {}) or {}
+    for k, pt in enumerate(scene.points):
+        pk = points.get(pt.name)
+        if pk is None:
+            continue
+        out.append(TracedPath(np.asarray(pk.position, dtype=float),
+                              f"point {pt.name} (on {pt.link})", lcolors.get(pt.link),
+                              PATH_STYLES[k % len(PATH_STYLES)], 2.4, 5, pt))
+    return out
+
+
 def snapshot_steps(analysis: Analysis, count: int = 4) -> list:
     """``count`` step indices spread over the solved steps (at 1/8, 3/8, ... of them)."""
     valid = np.flatnonzero(_valid_steps(analysis))
@@ -483,44 +573,17 @@ def coupler_curves_figure(scene: Scene, analysis: Analysis):
                            ground=False)
     mechanism_snapshot(scene, analysis, None, ax, alpha=1.0, labels=True, unit_scale=scale)
 
-    jcolors = style.joint_colors(scene)
+    for path in traced_paths(scene, analysis):
+        pos = path.position * scale
+        ax.plot(pos[:, 0], pos[:, 1], color=path.color, lw=path.lw, ls=path.ls,
+                zorder=path.zorder, label=path.label)
+        if path.point is not None:
+            pt = path.point
+            ax.plot([pt.at[0] * scale], [pt.at[1] * scale], marker="o", ms=6, mfc="white",
+                    mec=path.color, mew=1.6, zorder=6, ls="none")
+            ax.annotate(pt.name, (pt.at[0] * scale, pt.at[1] * scale), textcoords="offset points",
+                        xytext=(6, 4), fontsize=10, fontweight="bold", color="0.1", zorder=6)
     lcolors = style.link_colors(scene)
-    drawn = []  # (path, legend entry) to merge coincident joints
-    for joint in scene.joints:
-        if joint.links[1] == GROUND:
-            continue
-        jk = analysis.joints.get(joint.name)
-        if jk is None:
-            continue
-        pos = np.asarray(jk.position, dtype=float)
-        if _still(pos, scene):
-            continue  # a pivot that does not move (e.g. on a crank's ground axis)
-        for entry in drawn:
-            if _same_path(entry[0], pos):
-                entry[1].append(joint.name)
-                break
-        else:
-            drawn.append([pos, [joint.name], jcolors.get(joint.name)])
-    styles = ("-", (0, (6, 2)), (0, (1, 1.5)), (0, (6, 2, 1, 2)))
-    per_color = {}
-    for pos, names, col in drawn:
-        k = per_color.get(col, 0)
-        per_color[col] = k + 1
-        ax.plot(pos[:, 0] * scale, pos[:, 1] * scale, color=col, lw=1.6,
-                ls=styles[k % len(styles)], zorder=4, label=f"path of {', '.join(names)}")
-    points = getattr(analysis, "points", {}) or {}
-    for k, pt in enumerate(scene.points):
-        pk = points.get(pt.name)
-        if pk is None:
-            continue
-        pos = np.asarray(pk.position, dtype=float)
-        col = lcolors.get(pt.link)
-        ax.plot(pos[:, 0] * scale, pos[:, 1] * scale, color=col, lw=2.4,
-                ls=styles[k % len(styles)], zorder=5, label=f"point {pt.name} (on {pt.link})")
-        ax.plot([pt.at[0] * scale], [pt.at[1] * scale], marker="o", ms=6, mfc="white",
-                mec=col, mew=1.6, zorder=6, ls="none")
-        ax.annotate(pt.name, (pt.at[0] * scale, pt.at[1] * scale), textcoords="offset points",
-                    xytext=(6, 4), fontsize=10, fontweight="bold", color="0.1", zorder=6)
     for link in scene.links:
         lk = analysis.links.get(link.name)
         if lk is None or lk.com is None:

@@ -93,6 +93,7 @@ def test_demo_unknown_example_names_the_option_and_lists_examples(tmp_path):
     ("balance", "-o", []),
     ("balance", "--balanced-scene", ["-o", "OUT"]),
     ("balance", "--optimize", ["-o", "OUT"]),
+    ("animate", "-o", []),
 ])
 def test_an_output_file_that_is_a_folder_is_refused(tmp_path, command, option, extra):
     folder = tmp_path / "existing"
@@ -620,6 +621,7 @@ def _closed_stdout_commands(tmp_path):
         ["centres", scene, "--step", "3"], ["centres", scene, "--step", "3", "-o", "-"],
         ["sweep", scene, "--list"], ["sweep", scene, "--vary", "l_AB=0.02:0.03:3"],
         ["sweep", scene, "--vary", "l_AB=0.02:0.03:3", "-o", "-"],
+        ["animate", scene, "-o", f"{out}/m.gif", "--frames", "2"],
     ]
 
 
@@ -650,7 +652,7 @@ def test_every_command_runs_with_standard_output_closed(tmp_path):
     failed = [(argv, code) for argv, code in results if code != 0]
     assert not failed and "Traceback" not in p.stderr, (failed, p.stderr[-3000:])
     assert len(results) == len(commands)
-    for name in ("r.json", "d.txt", "b.json"):  # files asked for are still written
+    for name in ("r.json", "d.txt", "b.json", "m.gif"):  # files asked for are still written
         assert (tmp_path / "out" / name).stat().st_size > 0
 
 
@@ -701,6 +703,7 @@ _CR = ["--K", "1.5", "--rocker", "0.075", "--swing-deg", "45", "--ground", "0.1"
     (["sweep", "SCENE", "--vary", "l_AB=0.02:0.03:2", "-o", ""], "-o/--output"),
     (["sweep", "SCENE", "--vary", "l_AB=0.02:0.03:2", "--plots", ""], "--plots"),
     (["sweep", "SCENE", "--vary", "l_AB=0.02:0.03:2", "--write-scenes", ""], "--write-scenes"),
+    (["animate", "SCENE", "-o", ""], "-o/--output"),
 ])
 def test_an_empty_path_is_refused_by_every_path_option(tmp_path, monkeypatch, capsys, args,
                                                         option):
