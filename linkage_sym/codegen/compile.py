@@ -30,6 +30,7 @@ import keyword
 import sympy as sp
 
 from linkage_sym.codegen import cache
+from linkage_sym.codegen.artifact import Artifact
 from linkage_sym.codegen.runtime import CompiledMechanism, load_compiled
 from linkage_sym.errors import refuse_symbolic_unsupported
 from linkage_sym.model import Scene
@@ -133,7 +134,8 @@ def _pattern(M) -> list:
     return [(i, j) for i in range(M.rows) for j in range(M.cols) if M[i, j] != 0]
 
 
-def build_artifact(scene: Scene, printer: str = "numpy") -> dict:
+def build_artifact(scene: Scene, printer: str = "numpy", key: str | None = None,
+                   signature: dict | None = None) -> Artifact:
     """Derive ``scene`` with symbolic parameters and generate its functions.
 
     ``printer="mpmath"`` prints the same functions for mpmath numbers (one step at a
@@ -257,7 +259,7 @@ def build_artifact(scene: Scene, printer: str = "numpy") -> dict:
         add("frame", list(eqs.frame), "frame force x, y and moment about the origin", True)
     add("points", outs, "joint, origin and centre-of-mass kinematics, slide units, force blocks", True)
     table = eqs.table
-    return {
+    return Artifact.from_dict({
         "scene": scene.name,
         "stages": list(stages),
         "x": _names(eqs.x),
@@ -274,7 +276,9 @@ def build_artifact(scene: Scene, printer: str = "numpy") -> dict:
         "forces": force_layout,
         "force_names": _names(F),
         "functions": funcs,
-    }
+        "key": key,
+        "signature": signature,
+    })
 
 
 def _jsonable(recipe):
@@ -299,9 +303,7 @@ def compile_mechanism(scene: Scene, use_cache: bool = True) -> CompiledMechanism
             return got
     sig = cache.signature(scene)
     key = cache.key_of(sig)
-    art = build_artifact(scene)
-    art["key"] = key
-    art["signature"] = sig
+    art = build_artifact(scene, key=key, signature=sig)
     if use_cache:
-        cache.store(key, art)
+        cache.store_artifact(key, art)
     return CompiledMechanism(art, scene)
