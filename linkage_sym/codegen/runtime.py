@@ -38,6 +38,7 @@ from linkage_sym.codegen import cache
 from linkage_sym.codegen.artifact import Artifact, ClosedStep
 from linkage_sym.codegen.blocks import full
 from linkage_sym.codegen.evaluator import NumpyEvaluator, frame_motion, load_functions, rigid_point
+from linkage_sym.codegen.path import GroupPathProblem, PathContext
 from linkage_sym.errors import SceneError
 from linkage_sym.numeric.results import accuracy
 from linkage_sym.numeric import continuation
@@ -73,73 +74,8 @@ ASSEMBLY_MATCH = 1e-6
 """Closed forms must reproduce the assembly configuration to this (rad, or fraction of size)."""
 
 
-class _GroupProblem:
-    """A group without a closed form in the derived coordinates (angles, slides), for
-    :func:`continuation.solve_path`: unknowns over the scale (slides over ``L``),
-    residual rows over their scale (loop projections over ``L``)."""
-
-    def __init__(self, cm, step, group, X, Qpath, failed):
-        self.f = cm.functions[step.function]
-        self.params = cm.params
-        self.cols = list(step.x)
-        self.n = len(self.cols)
-        self.m = cm.m
-        self.X = X
-        self.Q = Qpath
-        self.failed = failed
-        self.known = [c for c in range(cm.m) if X[c] is not None]
-        self.scale = np.where(cm.is_angle[self.cols], 1.0, cm.L)
-        self.angles = cm.is_angle[self.cols]
-        r0, r1 = group.rows
-        self.row_scale = np.where(np.array(cm.art.rows_length[r0:r1], bool), 1.0 / cm.L, 1.0)
-
-    def at(self, i):
-        if self.failed[i] >= 0:
-            return None
-        return self.Q[:, i], np.array([self.X[c][i] for c in self.known])
-
-    def blend(self, a, b, t):
-        return (1 - t) * a[0] + t * b[0], (1 - t) * a[1] + t * b[1]
-
-    def available(self):
-        return self.failed < 0
-
-    def evaluate(self, u, ctx):
-        r, J = self.evaluate_many(u[None, :], ctx)
-        return r[0], J[0]
-
-    def evaluate_points(self, U, idx):
-        """Rows of ``U`` at the path points ``idx`` (drivers and known coordinates there)."""
-        return self.evaluate_many(U, (self.Q[:, idx], [self.X[c][idx] for c in self.known]))
-
-    def evaluate_many(self, U, ctx):
-        q, xk = ctx
-        k = len(U)
-        Xs = [None] * self.m
-        for c, v in zip(self.known, xk):
-            Xs[c] = v
-        for c, v in zip(self.cols, (U * self.scale).T):
-            Xs[c] = v
-        out = self.f(Xs, None, None, list(q), None, None, None, self.params)
-        n = self.n
-        vals = np.empty((len(out), k))
-        for i, v in enumerate(out):
-            vals[i] = v
-        R = vals[:n].T * self.row_scale
-        J = vals[n:].T.reshape(k, n, n) * self.row_scale[:, None] * self.scale[None, :]
-        return R, J
-
-
 def _wrap(a):
     return (a + np.pi) % (2 * np.pi) - np.pi
-
-
-class _PathContext:
-    """What the position steps of a run read: the parameters, the driver values along the
-    solving path (a list, and the (D, K) array), and each path point's first failing group."""
-
-    def __init__(self, P, Q, Qpath, K, failed):
-        self.P, self.Q, self.Qpath, self.K, self.failed = P, Q, Qpath, K, failed
 
 
 class CompiledMechanism(NumpyEvaluator):
@@ -272,7 +208,7 @@ class CompiledMechanism(NumpyEvaluator):
         K = Qpath.shape[1]
         failed = np.full(K, -1)
         self.newton_messages, self.newton_notes = {}, []
-        ctx = _PathContext(self.params, list(Qpath), Qpath, K, failed)
+        ctx = PathContext(self.params, list(Qpath), Qpath, K, failed)
         with np.errstate(invalid="ignore", divide="ignore"):
             X = self.walk([None] * self.m, ctx)
         return np.array(X), failed
@@ -291,7 +227,7 @@ class CompiledMechanism(NumpyEvaluator):
         Qpath, failed = ctx.Qpath, ctx.failed
         g = step.group
         group = self.art.group(g)
-        problem = _GroupProblem(self, step, group, X, Qpath, failed)
+        problem = GroupPathProblem(self, step, group, X, Qpath, failed)
         sol = continuation.solve_path(problem, Qpath.shape[1], self.x0[list(step.x)] / problem.scale)
         x = (sol.u * problem.scale).T
         for k, c in enumerate(step.x):
@@ -344,7 +280,7 @@ class CompiledMechanism(NumpyEvaluator):
         N = len(Q[0])
         with np.errstate(invalid="ignore", divide="ignore"):
             X = np.array([np.broadcast_to(v, (N,)) for v in self.walk([None] * self.m,
-                                                                     _PathContext(self.params, Q, None, N, None))])
+                                                                     PathContext(self.params, Q, None, N, None))])
             CS = (list(np.cos(X)), list(np.sin(X)))
             A, Bqd = self.rate_system(X, Q, QD, CS)
             XD = A.solve(Bqd)
