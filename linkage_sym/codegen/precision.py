@@ -5,7 +5,7 @@ evaluates the mechanism's SymPy-derived equations (:mod:`linkage_sym.symbolic.me
 with mpmath at the given number of significant decimal digits, one step at a time:
 
 1. **parameters** (lengths, angles, coordinates, masses, loads) from the scene's numbers
-   by the same recipes as :func:`linkage_sym.structure.parameters.evaluate`, in mpmath:
+   by the same recipes as float64 (:mod:`linkage_sym.structure.recipes`), in mpmath:
    the binary64 numbers of the scene are the mechanism, converted exactly; and each
    step's **driver values** from the scene's numbers too: step ``i`` is
    ``start + i (stop - start) / (steps - 1)`` (an ``R`` driver's ``start_deg`` and
@@ -219,19 +219,6 @@ class _NotReal(Exception):
     """A closed form with no real value at this precision (a tangency missed by rounding)."""
 
 
-def _real_sqrt(x):
-    """``mpmath.sqrt`` of a real argument; a negative one (a tangency the float64 run took,
-    missed at this precision) raises :class:`_NotReal` instead of giving a complex root
-    that the closed form's ``atan2`` cannot take."""
-    if isinstance(x, mp.mpc):
-        if x.imag != 0:
-            raise _NotReal
-        x = x.real
-    if x < 0:
-        raise _NotReal
-    return mp.sqrt(x)
-
-
 def _real(v):
     """``v`` as an ``mpf``; :class:`_NotReal` for a complex value."""
     if isinstance(v, mp.mpc):
@@ -239,6 +226,16 @@ def _real(v):
             raise _NotReal
         v = v.real
     return mp.mpf(v)
+
+
+def _real_sqrt(x):
+    """``mpmath.sqrt`` of a real argument; a negative one (a tangency the float64 run took,
+    missed at this precision) raises :class:`_NotReal` instead of giving a complex root
+    that the closed form's ``atan2`` cannot take."""
+    x = _real(x)
+    if x < 0:
+        raise _NotReal
+    return mp.sqrt(x)
 
 
 class _MpBlocks:
@@ -271,14 +268,6 @@ class _MpBlocks:
             cols = mp.fprod(mp.norm(M[:, j]) for j in range(n))
             big = max(rows, cols)
             out.append(abs(mp.det(M)) / big if big else mp.mpf(0))
-        return out
-
-    def smallest_ratio(self):
-        """The smallest of :meth:`ratios` (``None`` with only 1x1 blocks)."""
-        out = None
-        for r in self.ratios():
-            if r is not None:
-                out = r if out is None else min(out, r)
         return out
 
     def solve(self, rhs) -> list:
@@ -329,6 +318,15 @@ class PreciseResult:
     digits: int
     steps: list = field(default_factory=list)
     x_names: list = field(default_factory=list)
+
+
+_ROUNDED = (("joints", ("position", "velocity", "acceleration")),
+            ("points", ("position", "velocity", "acceleration")),
+            ("links", ("rotation", "origin", "omega", "alpha", "origin_velocity",
+                       "origin_acceleration", "com", "com_velocity", "com_acceleration")))
+"""The kinematics an Analysis holds per joint, traced point and link, by record section."""
+_AT_POSITIONS = {"position", "rotation", "origin", "com"}
+"""Those of :data:`_ROUNDED` that every step with positions has (the others need rates)."""
 
 
 class PreciseMechanism(Evaluator):
@@ -494,7 +492,7 @@ class PreciseMechanism(Evaluator):
         ratio = None
         if rates:  # the rate system: its blocks' indicator, and the rates if asked
             A, Bqd = self.rate_system(X, Q, QD, CS)
-            ratio = A.smallest_ratio()
+            ratio = min((r for r in A.ratios() if r is not None), default=None)
         if rates and "velocity" in stages:
             XD = A.solve(Bqd)
             if "acceleration" in stages:
@@ -540,12 +538,16 @@ class PreciseMechanism(Evaluator):
         steps: list = [None] * len(status)
         with mp.workdps(self.digits):
             Qmp, rounding = self.driver_values(Qs)
+
+            def at(i, rates):  # step i, with rates or positions only
+                return self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i], rates, stages,
+                                 Qs[:, i])
+
             for i in range(len(status)):
                 if status[i] == UNASSEMBLABLE:
                     continue
                 try:
-                    steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i],
-                                         status[i] == OK, stages, Qs[:, i])
+                    steps[i] = at(i, status[i] == OK)
                 except _NotReal:
                     status[i] = UNASSEMBLABLE
                     messages[i] = (f"no real position at {self.digits} digits (a closed form's "
@@ -555,8 +557,7 @@ class PreciseMechanism(Evaluator):
                     messages[i] = (f"singular position: a group block is exactly singular at "
                                    f"{self.digits} digits; velocities and accelerations have no "
                                    "unique solution")
-                    steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i], False, stages,
-                                         Qs[:, i])
+                    steps[i] = at(i, False)
             K = accuracy.condition_of(base_accuracy) * self._gain(steps, status, Xf, Qs, QDs)
             # a step whose exact driver value is a singular position (a dead centre the
             # float64 run, at the rounded value, found merely ill-conditioned)
@@ -568,8 +569,7 @@ class PreciseMechanism(Evaluator):
                                f"run's at its rounding, times the ratio of the group blocks' "
                                f"Hadamard ratios there and here), above {SINGULAR_COND:.0e}; "
                                "velocities and accelerations have no unique solution")
-                steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i], False, stages,
-                                     Qs[:, i])
+                steps[i] = at(i, False)
             records = [None if s is None else self._record(s, stages) for s in steps]
         base.status = status
         base.messages = messages
@@ -656,61 +656,35 @@ class PreciseMechanism(Evaluator):
 
     def _round_into(self, res, records, stages):
         """``res`` (the float64 run's Analysis) with every value replaced by the mpmath one."""
-        N = len(res.status)
-        ok = res.status == OK
-        has_pos = res.status != UNASSEMBLABLE
-
-        def put(arr, i, value):
-            if arr.ndim == 1:
-                arr[i] = float(value)
-            else:
-                arr[i, 0], arr[i, 1] = float(value[0]), float(value[1])
-
-        def blank(arr, mask):
-            arr[~mask] = np.nan
-
-        pairs = []  # (array, getter, needs rates)
-        for name, jk in res.joints.items():
-            pairs.append((jk.position, lambda r, n=name: r["joints"][n]["position"], False))
-            if jk.velocity is not None:
-                pairs.append((jk.velocity, lambda r, n=name: r["joints"][n]["velocity"], True))
-            if jk.acceleration is not None:
-                pairs.append((jk.acceleration, lambda r, n=name: r["joints"][n]["acceleration"], True))
-        for name, pk in res.points.items():
-            for fld, rate in (("position", False), ("velocity", True), ("acceleration", True)):
-                if getattr(pk, fld) is not None:
-                    pairs.append((getattr(pk, fld), lambda r, n=name, f=fld: r["points"][n][f], rate))
-        for name, lk in res.links.items():
-            for fld, rate in (("rotation", False), ("origin", False), ("omega", True),
-                              ("alpha", True), ("origin_velocity", True),
-                              ("origin_acceleration", True), ("com", False),
-                              ("com_velocity", True), ("com_acceleration", True)):
-                arr = getattr(lk, fld)
-                if arr is not None:
-                    pairs.append((arr, lambda r, n=name, f=fld: r["links"][n][f], rate))
+        ok, has_pos = res.status == OK, res.status != UNASSEMBLABLE
+        # (array, its value in a record, whether it needs rates)
+        targets = [(getattr(kin, f), lambda r, s=section, n=name, f=f: r[s][n][f],
+                    f not in _AT_POSITIONS)
+                   for section, fields in _ROUNDED for name, kin in getattr(res, section).items()
+                   for f in fields if getattr(kin, f) is not None]
         fo = res.forces
         if fo is not None:
             fo.method = "mpmath"
             fo.groups = [GroupForces(tuple(g.links), "mpmath") for g in fo.groups]
-            for name in fo.reactions:
-                pairs.append((fo.reactions[name], lambda r, n=name: r["reactions"][n], True))
-                pairs.append((fo.reaction_moments[name], lambda r, n=name: r["reaction_moments"][n], True))
-            for name in fo.driving:
-                pairs.append((fo.driving[name], lambda r, n=name: r["driving"][n], True))
-            pairs.append((fo.frame_force, lambda r: r["frame"][:2], True))
-            pairs.append((fo.frame_moment, lambda r: r["frame"][2], True))
-        for arr, get, rate in pairs:
+            for section in ("reactions", "reaction_moments", "driving"):
+                targets += [(arr, lambda r, s=section, n=name: r[s][n], True)
+                            for name, arr in getattr(fo, section).items()]
+            targets += [(fo.frame_force, lambda r: r["frame"][:2], True),
+                        (fo.frame_moment, lambda r: r["frame"][2], True)]
+        for arr, get, rate in targets:
             if not arr.flags.writeable:
                 continue  # pragma: no cover - results own their arrays
             mask = ok if rate else has_pos
-            blank(arr, mask)
+            arr[~mask] = np.nan
             for i in np.flatnonzero(mask):
                 rec = records[i]
-                if rec is None or (rate and "velocity" not in stages and "F" not in rec
-                                   and "reactions" not in rec):
+                if rec is None or (rate and "velocity" not in stages and "reactions" not in rec):
                     continue
-                put(arr, i, get(rec))
-        del N
+                value = get(rec)
+                if arr.ndim == 1:
+                    arr[i] = float(value)
+                else:
+                    arr[i, 0], arr[i, 1] = float(value[0]), float(value[1])
         return res
 
 
