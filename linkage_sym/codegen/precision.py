@@ -58,7 +58,7 @@ times the float64 solver per position (see ``benchmarks/bench_accuracy.py``).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import mpmath as mp
 import numpy as np
@@ -70,132 +70,26 @@ from linkage_sym.codegen.evaluator import Evaluator, frame_motion, load_function
 from linkage_sym.codegen.runtime import CompiledMechanism
 from linkage_sym.model import Scene
 from linkage_sym.numeric.results import accuracy
-from linkage_sym.numeric.forces.loads import load_factor
 from linkage_sym.numeric.results.result import OK, SINGULAR, UNASSEMBLABLE, GroupForces
 from linkage_sym.numeric.engine.sweep import SINGULAR_COND
-from linkage_sym.structure.recipes import Context, Numbers
+from linkage_sym.codegen.mp_numbers import (
+    DOUBLE,
+    MpBlocks,
+    MpNumbers,
+    NotReal,
+    driver_numbers,
+    driver_step_mp,
+    factor_mp,
+    mp_namespace,
+    parse_precision,
+    real,
+)
+from linkage_sym.structure.recipes import Context
 
-DOUBLE = "double"
-MIN_DIGITS, MAX_DIGITS = 10, 1000
 NEWTON_ITER = 30
 
 _ARTIFACTS: dict[str, Artifact] = {}
 
-
-
-def parse_precision(value) -> int | None:
-    """``None`` for float64 (``"double"`` or ``None``), else the number of digits.
-
-    Raises ``ValueError`` naming the option for anything else.
-    """
-    if value is None or (isinstance(value, str) and value.strip().lower() == DOUBLE):
-        return None
-    if isinstance(value, bool):
-        raise ValueError(f"precision: expected 'double' or a number of digits, got {value!r}")
-    try:
-        digits = int(str(value).strip()) if not isinstance(value, int) else value
-    except ValueError:
-        raise ValueError(
-            f"precision: expected 'double' or a number of digits, got {value!r}") from None
-    if not MIN_DIGITS <= digits <= MAX_DIGITS:
-        raise ValueError(
-            f"precision: {digits} digits is outside {MIN_DIGITS}..{MAX_DIGITS} "
-            "('double' is float64's 16)")
-    return digits
-
-
-# ------------------------------------------------------------------ parameters in mpmath
-
-
-def _mpf_of(v):
-    return mp.mpf(float(v))
-
-
-class MpNumbers(Numbers):
-    """mpmath numbers for the parameters' recipes
-    (:mod:`linkage_sym.structure.recipes`): a scene number is the ``mpf`` of its binary64
-    value (exact), the functions mpmath's at the working precision (``mp.dps``)."""
-
-    number = staticmethod(_mpf_of)
-    atan2 = staticmethod(mp.atan2)
-    hypot = staticmethod(mp.hypot)
-    cos = staticmethod(mp.cos)
-    sin = staticmethod(mp.sin)
-
-
-def _factor_mp(load, x, x_float: float | None = None):
-    """A load's factor at the driver value ``x`` (mpf), as
-    :func:`linkage_sym.numeric.forces.loads.load_factor` defines it, in mpmath.
-
-    ``x_float`` is the step's float64 driver value (``x`` rounded unless given): whether
-    the step lies in the table and in the ``active`` range is decided on it, as the
-    float64 run decides it (a step at an end of the range, in the scene's degrees, is at
-    the end in both: the range's radians are rounded, the step's exact value is not); the
-    table is interpolated at ``x`` (continuous, so a step an ulp beyond a table's end
-    extrapolates by an ulp).
-    """
-    if x_float is None:
-        x_float = float(x)
-    f = mp.mpf(1)
-    period = None if load.period is None else mp.mpf(float(load.period))
-    if load.table is not None:
-        tq = [mp.mpf(float(v)) for v in load.table.q]
-        ts = [mp.mpf(float(v)) for v in load.table.scale]
-        if period is not None:  # periodic: the table's first point again a period on
-            x = tq[0] + mp.fmod(mp.fmod(x - tq[0], period) + period, period)
-            tq, ts = tq + [tq[0] + period], ts + [ts[0]]
-        elif not load.table.q[0] <= x_float <= load.table.q[-1]:
-            raise ValueError(f"load on {load.link}: driver {load.driver} at {x_float:g} is "
-                             "outside its table, where the factor is not defined")
-        k = max([0] + [i for i in range(len(tq) - 1) if tq[i] <= x]) if x < tq[-1] else len(tq) - 2
-        f = ts[k] + (ts[k + 1] - ts[k]) * (x - tq[k]) / (tq[k + 1] - tq[k])
-    if load.active is not None:
-        span = replace(load, table=None)  # the factor of the range alone: 1 inside, 0 outside
-        if not load_factor(span, {load.driver: np.array([x_float])})[0] > 0:
-            f = mp.mpf(0)
-    return f
-
-
-# ------------------------------------------------------------------ driver values in mpmath
-
-
-def _driver_numbers(driver):
-    """``(start, stop, degrees)``: the scene's numbers of a driver's sweep, and whether they
-    are degrees (an ``R`` driver read from a scene, whose radians are their rounding)."""
-    if (driver.kind == "R" and driver.start_deg is not None and driver.stop_deg is not None
-            and math.radians(driver.start_deg) == driver.start
-            and math.radians(driver.stop_deg) == driver.stop):
-        return driver.start_deg, driver.stop_deg, True
-    return driver.start, driver.stop, False
-
-
-def driver_step_mp(driver, i: int):
-    """Step ``i`` of a driver's sweep in mpmath, at the working precision (``mp.dps``).
-
-    ``start + i (stop - start) / (steps - 1)`` from the scene's numbers, each taken as the
-    binary64 number it is: for an ``R`` driver read from a scene its ``start_deg`` and
-    ``stop_deg``, converted to radians with ``mpmath.pi`` (the float64 sweep's radians
-    are their rounding: 180 degrees is ``float(pi)`` there, 1.2e-16 short of pi); else
-    ``start`` and ``stop`` (radians or metres) themselves.
-
-    Examples
-    --------
-    >>> import mpmath as mp
-    >>> from linkage_sym.model import Driver
-    >>> d = Driver("A", "R", math.radians(90.0), math.radians(180.0), 3, 1.0, toward="B",
-    ...            start_deg=90.0, stop_deg=180.0)
-    >>> with mp.workdps(30):
-    ...     print(driver_step_mp(d, 2) - mp.pi, mp.nstr(mp.mpf(d.stop) - mp.pi, 5))
-    0.0 -1.2246e-16
-    """
-    start, stop, degrees = _driver_numbers(driver)
-    a, b = mp.mpf(start), mp.mpf(stop)
-    n = driver.steps
-    v = a if n == 1 else (a * (n - 1 - i) + b * i) / (n - 1)
-    return v * mp.pi / 180 if degrees else v
-
-
-# ------------------------------------------------------------------ the generated functions
 
 
 def mp_artifact(scene: Scene) -> Artifact:
@@ -206,81 +100,6 @@ def mp_artifact(scene: Scene) -> Artifact:
         art = build_artifact(scene, printer="mpmath")
         _ARTIFACTS[key] = art
     return art
-
-
-def _mp_namespace() -> dict:
-    ns: dict = {}
-    exec("from mpmath import *", ns)  # the names SymPy's mpmath printer uses
-    ns["sqrt"] = _real_sqrt  # a closed form's root: real, or no position at this precision
-    return ns
-
-
-class _NotReal(Exception):
-    """A closed form with no real value at this precision (a tangency missed by rounding)."""
-
-
-def _real(v):
-    """``v`` as an ``mpf``; :class:`_NotReal` for a complex value."""
-    if isinstance(v, mp.mpc):
-        if v.imag != 0:
-            raise _NotReal
-        v = v.real
-    return mp.mpf(v)
-
-
-def _real_sqrt(x):
-    """``mpmath.sqrt`` of a real argument; a negative one (a tangency the float64 run took,
-    missed at this precision) raises :class:`_NotReal` instead of giving a complex root
-    that the closed form's ``atan2`` cannot take."""
-    x = _real(x)
-    if x < 0:
-        raise _NotReal
-    return mp.sqrt(x)
-
-
-class _MpBlocks:
-    """``A`` of the rate problems at one step in mpmath, kept as its non-zero entries
-    ``{(i, j): mpf}``: solved group block by group block (mpmath LU), and the blocks'
-    Hadamard ratios (the float64 runtime's indicator,
-    :meth:`~linkage_sym.codegen.blocks.BlockSystem.ratios`, here at this precision)."""
-
-    def __init__(self, entries: dict, blocks, m: int):
-        self.entries, self.blocks, self.m = entries, blocks, m
-
-    def _block(self, r0, c0, n):
-        M = mp.matrix(n, n)
-        for i in range(n):
-            for j in range(n):
-                M[i, j] = self.entries.get((r0 + i, c0 + j), 0)
-        return M
-
-    def ratios(self) -> list:
-        """Each group block's Hadamard ratio: ``|det|`` over the product of its row norms,
-        or of its column norms, whichever is larger (``None`` for a 1x1 block)."""
-        out = []
-        for r0, _, c0, c1 in self.blocks:
-            n = c1 - c0
-            if n < 2:
-                out.append(None)
-                continue
-            M = self._block(r0, c0, n)
-            rows = mp.fprod(mp.norm(M[i, :]) for i in range(n))
-            cols = mp.fprod(mp.norm(M[:, j]) for j in range(n))
-            big = max(rows, cols)
-            out.append(abs(mp.det(M)) / big if big else mp.mpf(0))
-        return out
-
-    def solve(self, rhs) -> list:
-        """``x`` (list of ``m`` mpf) of ``A x = rhs``, from the first group's block on;
-        ``ZeroDivisionError`` where a block is exactly singular."""
-        A, x = self.entries, [mp.mpf(0)] * self.m
-        for r0, r1, c0, c1 in self.blocks:
-            b = [rhs[i] - mp.fsum(A[i, j] * x[j] for j in range(c0) if (i, j) in A)
-                 for i in range(r0, r1)]
-            sol = mp.lu_solve(self._block(r0, c0, c1 - c0), mp.matrix(b))
-            for j in range(c1 - c0):
-                x[c0 + j] = sol[j]
-        return x
 
 
 @dataclass
@@ -359,7 +178,7 @@ class PreciseMechanism(Evaluator):
             sig = cm.params[cm.n_params:cm.n_params + art.sigmas]
             # then each gear mesh's flank, +1 until a tooth load says otherwise (step)
             params += [mp.mpf(float(s)) for s in sig] + [mp.mpf(1)] * len(art.flanks)
-        super().__init__(art, load_functions(art, "mpmath", _mp_namespace()), params)
+        super().__init__(art, load_functions(art, "mpmath", mp_namespace()), params)
         self.scaled = [(i, ld) for i, ld in enumerate(scene.loads) if ld.driver is not None]
         self._steps_of: dict = {}  # a driver's float64 step values -> step (driver_values)
 
@@ -370,7 +189,7 @@ class PreciseMechanism(Evaluator):
         got = self._steps_of.get(name)
         if got is None:
             driver = next(d for d in self.scene.drivers if d.joint == name)
-            start, stop, _ = _driver_numbers(driver)
+            start, stop, _ = driver_numbers(driver)
             values = np.asarray(self.cm.sweep()[0][name], float)
             got = {}
             for i, v in enumerate(values.tolist()):
@@ -418,9 +237,9 @@ class PreciseMechanism(Evaluator):
     # -- one step -------------------------------------------------------------------
     # -- one step: the hooks of the evaluator -----------------------------------------
     def coordinate(self, c, value, ctx):
-        """A closed form's value: real (else :class:`_NotReal`), an angle shifted by whole
+        """A closed form's value: real (else :class:`NotReal`), an angle shifted by whole
         turns toward the float64 run's (the turn the continuation counted)."""
-        v = _real(value)
+        v = real(value)
         if self.art.is_angle[c]:
             v = v + 2 * mp.pi * round(float((ctx.x_float[c] - v) / (2 * mp.pi)))
         return v
@@ -446,10 +265,10 @@ class PreciseMechanism(Evaluator):
                 X[c] -= d[kk]
             if max(abs(d[kk]) / scale[kk] for kk in range(n)) <= tol:
                 return
-        raise _NotReal  # pragma: no cover - Newton from a float64 root converges
+        raise NotReal  # pragma: no cover - Newton from a float64 root converges
 
     def block_system(self, entries, shape):
-        return _MpBlocks(entries, self.art.blocks, self.m)
+        return MpBlocks(entries, self.art.blocks, self.m)
 
     def dense_solve(self, pattern, values, b):
         n = len(b)
@@ -500,7 +319,7 @@ class PreciseMechanism(Evaluator):
         P = self.params
         if self.scaled and "forces" in stages:  # loads over the cycle: scaled at this step
             # every factor, so that a step outside a load's table is refused
-            factors = {i: _factor_mp(ld, Q[self.art.q.index(ld.driver)],
+            factors = {i: factor_mp(ld, Q[self.art.q.index(ld.driver)],
                                      float(q_float[self.art.q.index(ld.driver)]))
                        for i, ld in self.scaled}
             P = self.scaled_loads(P, factors) or P
@@ -548,7 +367,7 @@ class PreciseMechanism(Evaluator):
                     continue
                 try:
                     steps[i] = at(i, status[i] == OK)
-                except _NotReal:
+                except NotReal:
                     status[i] = UNASSEMBLABLE
                     messages[i] = (f"no real position at {self.digits} digits (a closed form's "
                                    "square root is negative: the float64 run took a tangency)")
