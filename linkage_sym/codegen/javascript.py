@@ -31,7 +31,7 @@ from importlib import resources
 from linkage_sym.codegen.artifact import Artifact
 from linkage_sym.codegen.compile import build_artifact
 from linkage_sym.codegen.runtime import ASSEMBLY_MATCH, SCREEN
-from linkage_sym.errors import refuse_symbolic_unsupported
+from linkage_sym.errors import SYMBOLIC_LACKS, SceneError
 from linkage_sym.model import Scene
 from linkage_sym.numeric.continuation import roots
 from linkage_sym.numeric.engine.sweep import MAX_ANGLE_STEP, MAX_SLIDE_STEP, SINGULAR_COND
@@ -75,7 +75,13 @@ def page_artifact(scene: Scene) -> Artifact:
     SceneError
         A scene the symbolic layer does not derive (a cam contact), naming the joint.
     """
-    refuse_symbolic_unsupported(scene)
+    problems = [
+        f"joints[{i}]: a page solves the mechanism with the symbolic layer's equations, which "
+        f"do not support {SYMBOLIC_LACKS[j.type]} yet (joint '{j.name}' is of type {j.type}); "
+        "the numeric solvers analyse it"
+        for i, j in enumerate(scene.joints) if j.type in SYMBOLIC_LACKS]
+    if problems:
+        raise SceneError(problems)
     return build_artifact(scene, printer="javascript")
 
 
