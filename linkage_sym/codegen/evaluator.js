@@ -496,7 +496,10 @@ const LinkageEvaluator = (function () {
         const s = sol[k];
         if (s.failed >= 0) {
           const g = this.art.groups.find((gr) => gr.index === s.failed);
-          return { status: "unassemblable", message: g.label + " (" + g.links.join(", ") + ") cannot be assembled",
+          // worded as the NumPy runtime words it (the continuation's reasons are not kept)
+          const why = g.closed ? ": its closed form has no real solution" :
+            ": no configuration in the assembly mode is reached continuously";
+          return { status: "unassemblable", message: g.label + " (" + g.links.join(", ") + ") cannot be assembled" + why,
             joints: {}, points: {}, X: s.X, Q: s.Q };
         }
         const st = this.status(s.X, s.Q);

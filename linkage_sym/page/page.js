@@ -184,13 +184,16 @@
     drawGrid();
     drawTraces();
     const st = pose();
+    let jp = st.joints;
     if (st.status === "unassemblable") {
+      // the frame says so; the ground stays drawn, nothing that moves is
       ctx.fillStyle = "#b00020";
       ctx.font = "16px sans-serif";
       ctx.fillText("this step cannot be assembled: " + (st.message || ""), 16, 28);
-      return;
+      jp = {};
+      for (const n of model.order)
+        if (model.joints[n].links.includes("ground") && model.joints[n].type !== "G") jp[n] = model.joints[n].at;
     }
-    const jp = st.joints;
     const lw = Math.max(3, Math.min(10, 0.012 * Math.min(w, h)));
     // gears: pitch circles with a spoke that turns with the gear
     for (const g of gears()) {
@@ -257,12 +260,26 @@
       }
     }
     // labels last, with a light halo, so that no link hides them
+    // (joints drawn at one point share one label: "O, O4")
     ctx.font = "bold 13px sans-serif"; ctx.lineWidth = 4; ctx.strokeStyle = "#fbfbf8"; ctx.fillStyle = "#222";
+    const labels = [];
     for (const n of model.order) {
       if (model.joints[n].type === "G" || !jp[n]) continue;
       const [px, py] = toCanvas(jp[n]);
-      ctx.strokeText(n, px + 1.1 * lw, py - 1.1 * lw);
-      ctx.fillText(n, px + 1.1 * lw, py - 1.1 * lw);
+      const near = labels.find((l) => Math.hypot(l.px - px, l.py - py) < 1.0);
+      if (near) near.text += ", " + n; else labels.push({ px: px, py: py, text: n });
+    }
+    for (const l of labels) {
+      ctx.strokeText(l.text, l.px + 1.1 * lw, l.py - 1.1 * lw);
+      ctx.fillText(l.text, l.px + 1.1 * lw, l.py - 1.1 * lw);
+    }
+    if (editing) { // the handles a drag takes
+      ctx.strokeStyle = "#0a66c2"; ctx.lineWidth = 2;
+      for (const n of model.order) {
+        if (!movable(n) || !jp[n]) continue;
+        const [px, py] = toCanvas(jp[n]);
+        ctx.beginPath(); ctx.arc(px, py, 1.5 * lw, 0, 2 * Math.PI); ctx.stroke();
+      }
     }
     for (const [n, p] of Object.entries(st.points)) {
       const [px, py] = toCanvas(p);
@@ -336,6 +353,12 @@
     $("slider").value = String(index);
   }
 
+  function cell(text) {
+    const td = document.createElement("td");
+    td.textContent = text; // scene names are text, never markup
+    return td;
+  }
+
   function fmt(v) { return Number(v.toPrecision(6)).toString(); }
 
   function refreshTables() {
@@ -344,7 +367,7 @@
     for (const n of model.order) {
       const j = model.joints[n];
       const tr = document.createElement("tr");
-      tr.innerHTML = "<td>" + n + "</td><td>" + j.type + "</td>";
+      tr.append(cell(n), cell(j.type));
       [0, 1].forEach((c) => {
         const td = document.createElement("td");
         const inp = document.createElement("input");
@@ -371,11 +394,11 @@
           const d = Math.hypot(B[0] - A[0], B[1] - A[1]);
           if (d <= 1e-12 || !movable(js[b])) continue;
           const tr = document.createElement("tr");
-          tr.innerHTML = "<td>" + link + "</td><td>" + js[a] + js[b] + "</td>";
+          tr.append(cell(link), cell(js[a] + "–" + js[b]));
           const td = document.createElement("td");
           const inp = document.createElement("input");
           inp.type = "number"; inp.step = "any"; inp.min = "0"; inp.value = fmt(d);
-          inp.setAttribute("aria-label", "length " + js[a] + js[b]);
+          inp.setAttribute("aria-label", "length " + js[a] + "–" + js[b]);
           inp.addEventListener("change", () => {
             const v = parseFloat(inp.value);
             if (!(v > 0)) return;
@@ -421,7 +444,11 @@
       $("play").textContent = playing ? "Pause" : "Play";
     });
     $("speed").addEventListener("change", () => { speed = parseFloat($("speed").value); });
-    $("edit").addEventListener("change", () => { editing = $("edit").checked; showStatus(); });
+    $("edit").addEventListener("change", () => {
+      editing = $("edit").checked;
+      $("play").disabled = editing;
+      showStatus();
+    });
     $("download").addEventListener("click", () => {
       const blob = new Blob([JSON.stringify(sceneJSON(), null, 2) + "\n"], { type: "application/json" });
       const a = document.createElement("a");
@@ -463,6 +490,7 @@
     scene: sceneJSON,
     summary: summary,
     step: (k) => { index = k; playing = false; showStatus(); draw(); },
+    canvasPoint: (name) => { if (view === null) fit(); return toCanvas(model.joints[name].at); },
   };
   setup();
 })();

@@ -189,3 +189,43 @@ def test_the_scene_of_the_page_is_the_file_layout(browser, pages):
     open_page(browser, pages("crank_rocker"))
     got = browser.execute_script("return window.linkageSym.scene()")
     assert got == json.loads(json.dumps(dump_scene(load_example("crank_rocker"))))
+
+
+def test_a_drag_moves_a_ground_pivot_and_solves_again(browser, pages):
+    """A pointer drag on the canvas (Selenium's actions) moves the pivot ``D`` of the
+    crank-rocker: the scene's ``D`` moves, the other joints stay, the sweep is solved."""
+    from selenium.webdriver.common.action_chains import ActionChains
+
+    open_page(browser, pages("crank_rocker"))
+    canvas = browser.find_element("id", "view")
+    # D in the canvas's CSS pixels, from the page's own view transform
+    at = browser.execute_script("""
+        const r = arguments[0].getBoundingClientRect();
+        const s = window.linkageSym.canvasPoint("D");
+        return [s[0] * r.width / arguments[0].width - r.width / 2,
+                s[1] * r.height / arguments[0].height - r.height / 2];""", canvas)
+    ActionChains(browser).move_to_element_with_offset(canvas, round(at[0]), round(at[1])) \
+        .click_and_hold().move_by_offset(15, -10).move_by_offset(5, 0).release().perform()
+    scene = browser.execute_script("return window.linkageSym.scene()")
+    joints = {j["name"]: j["at"] for j in scene["joints"]}
+    before = {j.name: list(j.at) for j in load_example("crank_rocker").joints}
+    assert joints["D"][0] > before["D"][0] and joints["D"][1] > before["D"][1]
+    assert {n: joints[n] for n in "ABC"} == {n: before[n] for n in "ABC"}
+    assert browser.execute_script("return window.linkageSym.summary()")["error"] is None
+
+
+def test_a_typed_length_moves_the_second_joint_along_the_line(browser, pages):
+    """Typing a length of the crank-rocker's A–B puts B at that distance from A on the line
+    A B (A at the origin, B on the x-axis); the sweep is solved again, with the statuses
+    of ``analyze`` of the edited scene (a longer crank: some steps no longer assemble)."""
+    open_page(browser, pages("crank_rocker"))
+    box = browser.find_element("css selector", "input[aria-label='length A–B']")
+    box.clear()
+    box.send_keys("0.03\n")  # Enter commits the value: its change event re-solves
+    scene = browser.execute_script("return window.linkageSym.scene()")
+    B = next(j["at"] for j in scene["joints"] if j["name"] == "B")
+    assert B == pytest.approx([0.03, 0.0], abs=1e-15)
+    status = linkage_sym.analyze(parse_scene(scene)).status
+    want = {str(s): int(np.sum(status == s)) for s in set(status)}
+    assert browser.execute_script("return window.linkageSym.summary()")["counts"] == want
+    assert want["unassemblable"] > 0
