@@ -32,7 +32,7 @@
   const ctx = canvas.getContext("2d");
 
   // -- solving --------------------------------------------------------------------------
-  function rebuild() {
+  function rebuild(tables = true) {
     try {
       mech = new E.Mechanism(model.artifact, GENERATED, model);
       problem = null;
@@ -44,7 +44,7 @@
       cycle = [];
     }
     view = null;
-    refreshTables();
+    if (tables) refreshTables(); // a drag refreshes them once, when it ends
     showStatus();
   }
 
@@ -70,7 +70,7 @@
     rec.at = [x, y];
   }
 
-  function moveJoint(name, x, y) {
+  function moveJoint(name, x, y, tables = true) {
     // a drag: the joint's assembly position, with every joint at the same point
     if (!(name in model.joints)) throw new Error("no joint named " + JSON.stringify(name));
     const moved = together(name);
@@ -79,7 +79,7 @@
       throw new Error("joint " + JSON.stringify(pivot) + " is a gear's pivot: its distance " +
         "from the meshing gear's pivot is the sum (or difference) of their pitch radii; it does not move");
     for (const n of moved) setJoint(n, x, y);
-    rebuild();
+    rebuild(tables);
     return summary();
   }
 
@@ -476,17 +476,21 @@
       if (dragging === null) return;
       const [px, py] = pick(ev);
       const keep = view;
-      moveJoint(dragging, ...toWorld(px, py));
+      const [x, y] = toWorld(px, py);
+      moveJoint(dragging, x, y, false);
       view = keep; // the view stays put while dragging
     });
-    canvas.addEventListener("pointerup", () => { dragging = null; view = null; });
+    canvas.addEventListener("pointerup", () => {
+      if (dragging !== null) refreshTables();
+      dragging = null; view = null;
+    });
     rebuild();
     requestAnimationFrame(tick);
   }
 
   window.linkageSym = {
     solve: solve,
-    moveJoint: moveJoint,
+    moveJoint: (name, x, y) => moveJoint(name, x, y),
     scene: sceneJSON,
     summary: summary,
     step: (k) => { index = k; playing = false; showStatus(); draw(); },
