@@ -16,10 +16,11 @@
 //   configuration (at most 2 degrees or 2 % of the size a point): damped Newton with
 //   polishing to the scaled residual TOL, a linear predictor, acceptance only with the
 //   assembly's Jacobian-determinant sign and within MAX_CORRECTION of the predictor,
-//   bisected sub-steps down to MIN_FRACTION.  Simpler than the policy: after a point that
-//   cannot be solved (a gap), re-entry is tried by Newton from the configuration where the
-//   continuation stopped, the last solved one and the assembly one only (no turned seeds),
-//   and the first root of the assembly sign is taken (no ambiguity note);
+//   bisected sub-steps down to MIN_FRACTION; past a limit or a gap, the re-entry search
+//   (seeds around the known configurations and turned by fixed offsets, bounded Newton
+//   steps, the nearest root of the assembly's sign).  Simpler than the policy: one point
+//   at a time (no batched walk), and no notes (a jump or an ambiguous re-entry is taken
+//   silently: the page has no warnings list; the result file has them);
 // - statuses: `unassemblable` where a closed form has no real value or the continuation
 //   fails; `singular` where a group block of A (the rate matrix) has a Hadamard ratio below
 //   SCREEN and the dimensionless A's condition number (one-sided Jacobi SVD) exceeds
@@ -385,16 +386,14 @@ const LinkageEvaluator = (function () {
       }
       let jumped = false;
       if (!ok) {
-        const seeds = [];
-        if (w.stop !== null) seeds.push(w.stop);
-        if (w.last !== null) seeds.push(w.last.u);
-        seeds.push(uAsm);
-        for (const s of seeds) {
-          const got = newton(pb, s.slice(), ctx);
-          if (got.res <= CONST.TOL && Math.sign(det(got.J)) === w.sign) {
-            u = got.u; ok = true; jumped = true;
-            break;
-          }
+        // no continuous path from the last solved point (a gap, or a limit or singular
+        // position passed): the roots near the known configurations, in the assembly's
+        // determinant sign, the nearest taken (continuation.Walk.search_from, roots_near)
+        const ref = w.stop !== null ? w.stop : (w.last !== null ? w.last.u : uAsm);
+        const others = (w.last !== null ? [w.last.u] : []).concat([uAsm]);
+        const same = rootsNear(pb, ctx, ref, others, w.sign);
+        if (same.length) {
+          u = same[0]; ok = true; jumped = true;
         }
       }
       if (!ok) {
@@ -539,6 +538,82 @@ const LinkageEvaluator = (function () {
       u = un; r = got.r; J = got.J; res = resn;
     }
     return { u: u, res: res, J: J };
+  }
+
+  // -- the re-entry search (continuation.roots: roots_near and its pieces) ---------------
+  function turnedSeeds(u, angles) {
+    // u with its angles turned by fixed offsets over the circle (a golden-ratio sequence)
+    const phi = (Math.sqrt(5.0) - 1) / 2;
+    const idx = [];
+    angles.forEach((a, i) => { if (a) idx.push(i); });
+    const out = [];
+    for (let m = 1; m <= CONST.TURNED_SEEDS; m++) {
+      const v = u.slice();
+      idx.forEach((i, k) => {
+        const f = (m * phi * (1 + k) + 0.5 * k) % 1.0;
+        v[i] += 2 * Math.PI * (f - 0.5);
+      });
+      out.push(v);
+    }
+    return out;
+  }
+
+  function project(pb, u, ctx) {
+    // u with its lengths fitted to its angles (least squares: the normal equations)
+    const lin = [];
+    pb.angles.forEach((a, i) => { if (!a) lin.push(i); });
+    if (!lin.length) return u;
+    const { r, J } = pb.evaluate(u, ctx);
+    const N = lin.map((a) => lin.map((b) => J.reduce((s, row) => s + row[a] * row[b], 0)));
+    const g = lin.map((a) => -J.reduce((s, row, i) => s + row[a] * r[i], 0));
+    const d = luSolve(N, g).x;
+    if (d === null || !d.every(Number.isFinite)) return u;
+    const v = u.slice();
+    lin.forEach((i, k) => { v[i] += d[k]; });
+    return v;
+  }
+
+  function searchNewton(pb, u, ctx) {
+    // undamped Newton with steps bounded to SEARCH_STEP from one seed; the root or null
+    let res0 = null;
+    for (let it = 0; it < CONST.SEARCH_ITER; it++) {
+      const { r, J } = pb.evaluate(u, ctx);
+      const res = norm(r);
+      if (res0 === null) res0 = Math.max(res, 1.0);
+      if (res <= CONST.TOL) return u;
+      if (!Number.isFinite(res) || res > 1e6 * res0 || !J.every((row) => row.every(Number.isFinite))) return null;
+      const sol = luSolve(J, r);
+      if (sol.x === null || !Number.isFinite(sol.det) || sol.det === 0) return null;
+      const length = Math.max(...sol.x.map(Math.abs));
+      const scale = length > CONST.SEARCH_STEP ? CONST.SEARCH_STEP / length : 1.0;
+      u = u.map((v, k) => v - scale * sol.x[k]);
+    }
+    return null;
+  }
+
+  function nearestTurns(u, ref, angles) {
+    return u.map((v, i) => (angles[i] ? v - TWO_PI * Math.round((v - ref[i]) / TWO_PI) : v));
+  }
+
+  function rootsNear(pb, ctx, ref, others, sign) {
+    // the roots of the assembly's sign found from seeds around ref, nearest first
+    const seeds = [ref].concat(others, turnedSeeds(ref, pb.angles)).map((v) => project(pb, v, ctx));
+    const found = [];
+    for (const seed of seeds) {
+      const hit = searchNewton(pb, seed.slice(), ctx);
+      if (hit === null) continue;
+      const got = newton(pb, hit, ctx); // polish
+      if (!(got.res <= CONST.TOL)) continue;
+      const u = nearestTurns(got.u, ref, pb.angles);
+      if (!found.some((z) => maxAbsDiff(u, z.u) <= CONST.SAME_ROOT)) found.push({ u: u, J: got.J });
+    }
+    const angleDistance = (u) => u.reduce((m, v, i) => (pb.angles[i] ? Math.max(m, Math.abs(v - ref[i])) : m), 0);
+    const key = (u) => [Math.round(angleDistance(u) * 1e9) / 1e9, maxAbsDiff(u, ref)];
+    found.sort((a, b) => {
+      const ka = key(a.u), kb = key(b.u);
+      return ka[0] - kb[0] || ka[1] - kb[1];
+    });
+    return found.filter((f) => Math.sign(det(f.J)) === sign).map((f) => f.u);
   }
 
   function accept(got, sign, seed) {

@@ -11,7 +11,10 @@ symbolic layer derives:
   from the assembly configuration, statuses) at 12 driver values across the sweep against
   the numeric solver (:func:`linkage_sym.numeric.plan.compile_plan`, which shares no code
   with the generated functions): joint positions to ``1e-9`` of the mechanism's size,
-  statuses equal.
+  statuses equal;
+* the same over whole sweeps with a singular step, a run of unassemblable steps and a
+  Newton group that passes a limit and re-enters (the re-entry search), against both
+  Python runtimes.
 """
 
 from __future__ import annotations
@@ -23,7 +26,10 @@ import subprocess
 import numpy as np
 import pytest
 
+from tests.support import scenes
 from tests.support.example_sets import symbolic_examples
+
+import linkage_sym
 
 from linkage_sym.codegen.compile import build_artifact
 from linkage_sym.codegen.javascript import mechanism_script
@@ -104,3 +110,49 @@ console.log(JSON.stringify(got.map((g) => ({{status: g.status, joints: g.joints}
         for j in scene.joints:
             err = np.max(np.abs(np.array(g["joints"][j.name]) - res.joints[j.name].position[k]))
             assert err <= POSITION_TOL * L, (name, k, j.name)
+
+
+def _long_crank():
+    from linkage_sym.examples import example_dict
+
+    d = example_dict("crank_rocker")
+    next(j for j in d["joints"] if j["name"] == "B")["at"] = [0.03, 0.0]  # no longer Grashof
+    return d
+
+
+HARD = {
+    # a step exactly at the change point: singular (screened, then the condition number)
+    "change point": lambda: scenes.change_point_fourbar(),
+    # a crank too long for its coupler and rocker: a run of unassemblable steps
+    "long crank": _long_crank,
+    # a class-III triad whose branch ends at a limit and re-enters in another configuration
+    # of the assembly's determinant sign (the re-entry search)
+    "triad jump": lambda: scenes.triad_jump(),
+}
+
+
+@pytest.mark.parametrize("case", sorted(HARD))
+def test_the_page_evaluator_statuses_at_singular_unassemblable_and_jumping_steps(case, tmp_path):
+    """Every step of the sweep: statuses as both Python runtimes give them (the NumPy
+    runtime and the numeric solver), positions of the solved steps to 1e-9 of the size."""
+    from linkage_sym.codegen.compile import compile_mechanism
+
+    scene = linkage_sym.load_scene(HARD[case]())
+    Q = np.array([np.linspace(d.start, d.stop, d.steps) for d in scene.drivers])
+    script = mechanism_script(scene) + f"""
+const mech = new LinkageEvaluator.Mechanism(MODEL.artifact, GENERATED, MODEL);
+const got = mech.solveSteps({json.dumps(Q.T.tolist())});
+console.log(JSON.stringify(got.map((g) => ({{status: g.status, joints: g.joints}}))));
+"""
+    got = node(script, tmp_path)
+    L = scene.characteristic_length()
+    if case != "triad jump":  # the jump is ok everywhere; the others are there for their statuses
+        assert {g["status"] for g in got} != {"ok"}
+    for res in (linkage_sym.analyze(scene), compile_mechanism(scene).run()):
+        assert [g["status"] for g in got] == [str(s) for s in res.status], case
+        for k, g in enumerate(got):
+            if g["status"] == "unassemblable":
+                continue
+            for j in scene.joints:
+                err = np.max(np.abs(np.array(g["joints"][j.name]) - res.joints[j.name].position[k]))
+                assert err <= POSITION_TOL * L, (case, k, j.name)
