@@ -46,3 +46,10 @@ def test_a_cam_scene_is_refused_naming_the_joint(tmp_path):
     assert "joint 'K'" in p.stderr and "cam" in p.stderr
     assert "Traceback" not in p.stderr
     assert not out.exists()
+
+
+def test_view_to_standard_output(capsys):
+    """``-o -``: the page itself on standard output (nothing else there)."""
+    assert main(["view", str(example_path("slider_crank_offset")), "-o", "-"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("<!DOCTYPE html>") and out.rstrip().endswith("</html>")
