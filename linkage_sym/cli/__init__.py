@@ -2,7 +2,7 @@
 
 One module a command (``linkage_sym.cli.analyze`` with its ``.accuracy`` options,
 ``.derive``, ``.structure``, ``.demo`` with ``examples``, ``.synthesize`` with ``new``,
-``.balance``, ``.centres``, ``.sweep``), each with its ``register`` and ``cmd_*``,
+``.balance``, ``.centres``, ``.sweep``, ``.view``), each with its ``register`` and ``cmd_*``,
 reading options and printing; what they compute is the library's.  What they share
 is in :mod:`linkage_sym.cli.common`, with the one mapping of the library's parameter
 names to options.  This module builds the parser and runs the command; no command's
@@ -62,6 +62,11 @@ demo [-o DIR] [--example NAME]
     force and moment (the same motion with inertia as the only effect).
 examples
     List the shipped example scenes.
+view SCENE.json -o PAGE.html
+    Write one self-contained HTML page (no network) that solves the mechanism in the
+    browser with the equations the symbolic layer prints in JavaScript: play the sweep,
+    drag a joint or type a length and the whole sweep is solved again, download the
+    edited scene (``linkage_sym.page``).
 
 Plot files are named after the scene's ``name`` (made safe for a path) in
 every command.
@@ -90,7 +95,8 @@ from linkage_sym.errors import BalanceError, SceneError
 __all__ = ["BROKEN_PIPE", "EXIT_STATUS", "NO_STEP_ASSEMBLED", "build_parser", "main"]
 
 # the command modules, in the order of the help's list
-COMMANDS = ("analyze", "derive", "structure", "demo", "synthesize", "balance", "centres", "sweep")
+COMMANDS = ("analyze", "derive", "structure", "demo", "synthesize", "balance", "centres", "sweep",
+            "view")
 
 
 def build_parser() -> CommandParser:

@@ -4,7 +4,7 @@
 generates, or loads from the cache; everything else here runs compiled mechanisms
 without SymPy.
 
-- ``compile``: the derived equations printed as NumPy (or mpmath) functions (SymPy's
+- ``compile``: the derived equations printed as NumPy (or mpmath, or JavaScript) functions (SymPy's
   ``cse`` and printers), with a fixed argument order written into each docstring;
 - ``artifact``: what the generator wrote, as records (steps, groups, force blocks,
   parameter recipes, the generated sources); the JSON only at the cache's edge;
@@ -18,7 +18,10 @@ without SymPy.
   backend run over a scene's sweep (the solving path and its continuation, the
   singularity screen, the result; the bookkeeping the numeric plan shares:
   :mod:`linkage_sym.numeric.engine`);
-- ``precision``: the mpmath backend, at any precision (``--precision``).
+- ``precision``: the mpmath backend, at any precision (``--precision``);
+- ``javascript``: the JavaScript backend (``evaluator.js``: the walk, Newton's
+  continuation, the statuses and the recipes of joint positions, in a browser), written
+  into the page of :mod:`linkage_sym.page` (``linkage-sym view``).
 
 The batched-designs backend is :class:`linkage_sym.design.evaluate.Model`.
 """

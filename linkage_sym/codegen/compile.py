@@ -44,9 +44,17 @@ def _names(symbols) -> list[str]:
     return [s.name for s in symbols]
 
 
-PRINTERS = ("numpy", "mpmath")
-"""What generated code evaluates with: NumPy arrays (the compiled runtime) or mpmath numbers
-(arbitrary precision, :mod:`linkage_sym.codegen.precision`)."""
+PRINTERS = ("numpy", "mpmath", "javascript")
+"""What generated code evaluates with: NumPy arrays (the compiled runtime), mpmath numbers
+(arbitrary precision, :mod:`linkage_sym.codegen.precision`) or JavaScript numbers (the page
+that solves a mechanism in a browser, :mod:`linkage_sym.codegen.javascript`)."""
+
+JS_RESERVED = frozenset(
+    "break case catch class const continue debugger default delete do else enum export extends "
+    "false finally for function if import in instanceof new null return super switch this throw "
+    "true try typeof var void while with yield let static implements interface package private "
+    "protected public await arguments eval Math NaN Infinity undefined".split())
+"""Names a generated JavaScript function may not bind (reserved words and the globals it reads)."""
 
 
 def _printer(kind="numpy"):
@@ -57,6 +65,13 @@ def _printer(kind="numpy"):
         from sympy.printing.pycode import MpmathPrinter
 
         return MpmathPrinter(settings)
+    if kind == "javascript":
+        from sympy.printing.jscode import JavascriptCodePrinter
+
+        # strict: a function without a JavaScript form is an error, never a comment
+        return JavascriptCodePrinter({"user_functions": {}, "strict": True})
+    if kind != "numpy":
+        raise ValueError(f"unknown printer {kind!r}: one of {', '.join(PRINTERS)}")
     from sympy.printing.numpy import NumPyPrinter
 
     return NumPyPrinter(settings)
@@ -69,9 +84,12 @@ def generate(name: str, args: list, outputs: list, doc: str, printer: str = "num
     ``lambdify``'s text): ``args`` are the symbol lists of :data:`ARGS`, each
     unpacked only if the function reads one of its entries (the others may be
     ``None``); a symbol whose name is not a Python identifier is bound to a
-    name of its own.  ``doc`` becomes the docstring.  ``printer``: ``"numpy"`` or
-    ``"mpmath"`` (rationals as quotients of ``mpf``, so no digit is lost to a float).
+    name of its own.  ``doc`` becomes the docstring.  ``printer``: ``"numpy"``,
+    ``"mpmath"`` (rationals as quotients of ``mpf``, so no digit is lost to a float) or
+    ``"javascript"`` (a JavaScript ``function`` of the same arguments and outputs, ``doc``
+    its leading comment; SymPy's ``JavascriptCodePrinter``).
     """
+    js = printer == "javascript"
     printer = _printer(printer)
     outputs = [sp.sympify(e) for e in outputs]
     used = set().union(*(e.free_symbols for e in outputs)) if outputs else set()
@@ -84,7 +102,8 @@ def generate(name: str, args: list, outputs: list, doc: str, printer: str = "num
         names = []
         for k, sym in enumerate(syms):
             nm = sym.name
-            if not nm.isidentifier() or keyword.iskeyword(nm) or nm in ARGS:
+            if (not nm.isidentifier() or keyword.iskeyword(nm) or nm in ARGS
+                    or (js and (nm in JS_RESERVED or not nm.isascii()))):
                 nm = f"{arg}_{k}"
                 while nm in taken:
                     nm += "_"
@@ -97,12 +116,26 @@ def generate(name: str, args: list, outputs: list, doc: str, printer: str = "num
     taken |= {str(s) for s in rename.values()}
     cse_names = (sp.Symbol(n) for n in (f"x{i}" for i in itertools.count()) if n not in taken)
     repl, reduced = sp.cse(outputs, symbols=cse_names)
+    if js:
+        return _javascript_function(name, lines, repl, reduced, doc, printer)
     for sym, e in repl:
         lines.append(f"    {sym} = {printer.doprint(e)}")
     lines.append(f"    return [{', '.join(printer.doprint(e) for e in reduced)}]")
     quoted = '    """' + doc.replace('"""', "'''").replace("\n", "\n    ") + '\n    """\n'
     sig = ", ".join(ARGS[:-2]) + ", CX=None, SX=None"
     return f"def {name}({sig}):\n" + quoted + "\n".join(lines) + "\n"
+
+
+def _javascript_function(name, unpack, repl, reduced, doc, printer) -> str:
+    """The JavaScript text of :func:`generate`'s function (``unpack``: its Python
+    unpacking lines, the same destructuring in JavaScript)."""
+    body = [f"  const {line.strip().split(' = ')[0]} = {line.strip().split(' = ')[1]};"
+            for line in unpack]
+    body += [f"  const {sym} = {printer.doprint(e)};" for sym, e in repl]
+    body.append(f"  return [{', '.join(printer.doprint(e) for e in reduced)}];")
+    comment = "\n".join(("  // " + ln).rstrip() for ln in doc.splitlines())
+    sig = ", ".join(ARGS)
+    return f"function {name}({sig}) {{\n{comment}\n" + "\n".join(body) + "\n}\n"
 
 
 def _describe(kind: str, eqs: MechanismEquations, p_syms, outputs_desc: str) -> str:
@@ -139,7 +172,8 @@ def build_artifact(scene: Scene, printer: str = "numpy", key: str | None = None,
     """Derive ``scene`` with symbolic parameters and generate its functions.
 
     ``printer="mpmath"`` prints the same functions for mpmath numbers (one step at a
-    time, any precision) instead of NumPy arrays.  ``key`` and ``signature``: the
+    time, any precision) instead of NumPy arrays; ``printer="javascript"`` as JavaScript
+    functions (one step at a time, in a browser: :mod:`linkage_sym.codegen.javascript`).  ``key`` and ``signature``: the
     cache's, recorded in the artifact.
     """
     return _Builder(scene, printer).artifact(key, signature)
