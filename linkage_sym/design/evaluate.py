@@ -251,14 +251,13 @@ class Model(NumpyEvaluator):
         with np.errstate(invalid="ignore", divide="ignore"):
             pts = self.call("points", P, X=list(X0), XD=z, XDD=z, Q=Q, QD=zq, QDD=zq,
                             CS=(list(np.cos(X0)), list(np.sin(X0))))
-        joints0 = {}
-        for j in self.scene.joints:
-            a, _ = self.art.layout[f"joint:{j.name}:0"]
-            joints0[j.name] = np.array([full(pts[a], n), full(pts[a + 1], n)])
+        def at(key):  # a point's position (2, n)
+            return np.array([full(v, n) for v in self.art.rows(pts, key)])
+
+        joints0 = {j.name: at(f"joint:{j.name}:0") for j in self.scene.joints}
         xy = np.array(list(joints0.values()))  # (J, 2, n)
         for lk in self.scene.link_names:  # the link frames' origins (a P joint's moves along it)
-            a, _ = self.art.layout[f"origin:{lk}:0"]
-            joints0["origin:" + lk] = np.array([full(pts[a], n), full(pts[a + 1], n)])
+            joints0["origin:" + lk] = at(f"origin:{lk}:0")
         L = np.zeros(n)
         for i in range(len(xy)):
             for k in range(i + 1, len(xy)):
