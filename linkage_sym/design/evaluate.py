@@ -165,6 +165,11 @@ class Model(NumpyEvaluator):
         determinant and solve compute it once per step."""
         return BlockSystem(entries, self.art.blocks, self.m, shape)
 
+    def vector(self, values, shape):
+        """A generated function's outputs as it returned them: a design-independent row of
+        a right-hand side stays (N,) (or a number), as :meth:`block_system`'s entries."""
+        return list(values)
+
     def newton_step(self, step, X, ctx):
         """A group without a closed form: ``ctx.newton`` (the parameter continuation)."""
         for c, v in zip(step.x, ctx.newton(step, X)):
