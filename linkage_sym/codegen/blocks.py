@@ -51,7 +51,7 @@ class BlockSystem:
     def __init__(self, entries: dict, blocks, m: int, shape):
         self.entries, self.blocks, self.m = entries, blocks, m
         self.shape = _shape(shape)
-        zero = np.zeros(self.shape)
+        zero = 0.0  # a structural zero: broadcasts, no array of the entries' shape
         self._solvers = []
         for r0, r1, c0, c1 in blocks:
             n = c1 - c0
@@ -143,8 +143,8 @@ class BlockSystem:
                 b = [rhs[r0 + i] for i in range(r1 - r0)]
                 for i, j, v in coupling:
                     b[i] = b[i] - v * x[j]
-                if n == 1:
-                    np.divide(b[0], own[0], out=x[c0])
+                if n == 1:  # over the right-hand side's own shape (a driver's row: the steps')
+                    x[c0] = np.divide(b[0], own[0])
                 elif n == 2:
                     a, bb, c, d, det = own
                     x[c0] = (b[0] * d - b[1] * bb) / det

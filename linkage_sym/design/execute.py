@@ -81,7 +81,7 @@ def _state(spec: Spec):
 def evaluate_chunk(spec: Spec, values: np.ndarray) -> dict:
     """The metric columns of the designs ``values`` (n, k) of one chunk."""
     model, plan = _state(spec)
-    P = model.params(spec.names, values)
+    P = model.design_params(spec.names, values)
     sol = model.solve(P, len(values), plan.need, plan.unwrap(model))
     return plan.compute(model, sol)
 

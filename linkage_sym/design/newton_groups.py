@@ -56,22 +56,20 @@ class ParameterContinuation:
     size ``L``; scaled rows: loop projections over ``L``)."""
 
     def __init__(self, model, step):
-        cm = model.cm
-        self.f = cm.functions[step["function"]]
-        self.cols = list(step["x"])
+        cm, art = model.cm, model.art
+        self.f = model.functions[step.function]
+        self.cols = list(step.x)
         self.n = len(self.cols)
-        self.m = cm.m
-        steps = model.art["steps"]
-        k = steps.index(step)
-        self.known = [c for st in steps[:k] for c in st["x"]]
-        group = next(g for g in model.art["groups"] if g["index"] == step["group"])
-        self.scale = np.where(cm.is_angle[self.cols], 1.0, cm.L)
-        self.angles = cm.is_angle[self.cols]
-        r0, r1 = group["rows"]
-        self.row_scale = np.where(np.array(model.art["rows_length"][r0:r1], bool), 1.0 / cm.L, 1.0)
+        self.m = model.m
+        k = art.steps.index(step)
+        self.known = [c for st in art.steps[:k] for c in st.x]
+        self.scale = np.where(art.is_angle[self.cols], 1.0, cm.L)
+        self.angles = art.is_angle[self.cols]
+        r0, r1 = art.group(step.group).rows
+        self.row_scale = np.where(np.array(art.rows_length[r0:r1], bool), 1.0 / cm.L, 1.0)
         # the scene's own assembly configuration: where every design's continuation starts
         self.u_scene = cm.x0[self.cols] / self.scale
-        self.ctx_scene = (np.array(model.base, float), np.array(model.q0, float),
+        self.ctx_scene = (np.array(model.params, float), np.array(model.q0, float),
                           cm.x0[self.known].astype(float))
         _, J = self.evaluate(self.u_scene, self.ctx_scene)
         self.sign = float(np.sign(np.linalg.det(J)))
@@ -184,7 +182,7 @@ def _rates_along(model, t):
     i = np.clip(np.floor(t).astype(int), 0, max(N - 2, 0))
     f = t - i
     q, qd, qdd = {}, {}, {}
-    for k, name in enumerate(model.qnames):
+    for k, name in enumerate(model.art.q):
         r = model.Q[k]
         q[name] = r[i] + f * (r[np.minimum(i + 1, N - 1)] - r[i])
         qd[name] = np.full(len(t), model.slope[k])
