@@ -35,6 +35,7 @@ import numpy as np
 
 from linkage_sym.codegen.artifact import Artifact
 from linkage_sym.codegen.blocks import BlockSystem, full
+from linkage_sym.numeric.forces.loads import load_factor
 from linkage_sym.numeric.kinematics.loci import clamp_tangent, coordinate_size
 from linkage_sym.structure.parameters import ident
 
@@ -292,6 +293,14 @@ class NumpyEvaluator(Evaluator):
 
     def force_zeros(self, like):
         return list(np.zeros((len(self.art.force_names),) + np.shape(like)))
+
+    def loads_at(self, scene, q: dict, P=None):
+        """``P`` (:attr:`params` unless given) with the forces and torques of the loads that
+        vary over the cycle scaled by their factors at the driver values ``q`` (arrays over
+        the entries, :func:`~linkage_sym.numeric.forces.loads.load_factor`); ``None`` when
+        the scene has no such load."""
+        return self.scaled_loads(P, {i: load_factor(ld, q) for i, ld in enumerate(scene.loads)
+                                     if ld.driver is not None})
 
     def condition_numbers(self, A, L):
         """Dimensionless condition numbers of ``A`` (K, m, m): rows of lengths over ``L``,

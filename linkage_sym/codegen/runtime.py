@@ -44,7 +44,6 @@ from linkage_sym.numeric.results import accuracy
 from linkage_sym.numeric import continuation
 from linkage_sym.numeric.continuation import messages as continuation_messages
 from linkage_sym.numeric.engine.block import ResultLayout
-from linkage_sym.numeric.forces.loads import load_factor
 from linkage_sym.numeric.kinematics.constraints import jacobian
 from linkage_sym.numeric.kinematics.joint_rows import scene_constraints
 from linkage_sym.numeric.kinematics.gears import pulling_note
@@ -450,8 +449,7 @@ class CompiledMechanism(NumpyEvaluator):
         scaled by their factors at the driver values ``q`` (``None``: no such load)."""
         if "forces" not in self.art.stages:
             return None
-        return self.scaled_loads(None, {i: load_factor(ld, q) for i, ld in enumerate(self.scene.loads)
-                                        if ld.driver is not None})
+        return self.loads_at(self.scene, q)
 
     def _forces(self, pts, points, Xk, CS, rate_ok, idx, N):
         """Forces at the steps with rates.  A gear mesh's tooth load must press: solved with

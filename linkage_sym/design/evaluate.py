@@ -411,8 +411,11 @@ class Model(NumpyEvaluator):
         sol.XDD = self._spread_rows(XDD, idx, n)
         if not ({"points", "forces"} & need):
             return sol
+        # loads over the cycle scaled at each entry's driver values, as the runtimes do
+        Pf = (self.loads_at(self.scene, dict(zip(self.art.q, Qk)), Pk) if "forces" in need
+              else None) or Pk
         with np.errstate(invalid="ignore", divide="ignore"):
-            pts = self.call("points", Pk, X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk,
+            pts = self.call("points", Pf, X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk,
                             QD=QDo, QDD=QDDo, CS=CSk)
         pts = [full(v, Ko) for v in pts]
         sol.points = list(self._spread_rows(np.array(pts), idx, n))
@@ -467,13 +470,21 @@ class Model(NumpyEvaluator):
         d = next(d for d in self.scene.drivers if d.joint == driver)
         return sol.forces[self.art.force_index()[("tau_" if d.kind == "R" else "f_") + ident(driver)]]
 
+    def drivers_at(self, t) -> list:
+        """The driver values (a row per driver) at fractional steps ``t`` (B,), linear
+        between the steps; NaN where ``t`` is not a number."""
+        t = np.asarray(t, float)
+        known = np.isfinite(t)
+        i = np.clip(np.floor(np.where(known, t, 0.0)).astype(int), 0, max(self.N - 2, 0))
+        f = np.where(known, t - i, np.nan)
+        return [r[i] + f * (r[np.minimum(i + 1, self.N - 1)] - r[i]) for r in self.Q]
+
     def rate_at(self, P, d, t, col):
         """The rate along the steps of coordinate ``col`` of designs ``d`` at fractional
         steps ``t`` (arrays (B,)), the positions by the closed forms there; with the rate's
-        own rate and the coordinate's value."""
-        i = np.clip(np.floor(t).astype(int), 0, max(self.N - 2, 0))
-        f = t - i
-        Q = [r[i] + f * (r[np.minimum(i + 1, self.N - 1)] - r[i]) for r in self.Q]
+        own rate and the coordinate's value; NaN where ``t`` is (a root the metrics did
+        not find)."""
+        Q = self.drivers_at(t)
         B = len(t)
         Pd = [v[d] if np.ndim(v) else v for v in P]
         X = self.positions(_Designs(Pd, Q), B)

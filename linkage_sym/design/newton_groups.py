@@ -163,7 +163,7 @@ class PlanSolution(Solution):
         rate, drate, value = (np.full(len(t), np.nan) for _ in range(3))
         link = next(k for k, c in model.angle_of.items() if c == col)
         for k in np.unique(d):
-            sel = np.flatnonzero(d == k)
+            sel = np.flatnonzero((d == k) & np.isfinite(t))  # NaN: a root not found
             uniq, inv = np.unique(t[sel], return_inverse=True)
             plan = self.kin[k]
             r = plan.run(*_rates_along(model, uniq))
@@ -178,13 +178,8 @@ class PlanSolution(Solution):
 def _rates_along(model, t):
     """Driver values at fractional steps ``t`` with the rates along the steps
     (``qd = dq/dt``, ``qdd = 0``): dicts for ``Plan.run``."""
-    N = model.N
-    i = np.clip(np.floor(t).astype(int), 0, max(N - 2, 0))
-    f = t - i
-    q, qd, qdd = {}, {}, {}
+    q, qd, qdd = dict(zip(model.art.q, model.drivers_at(t))), {}, {}
     for k, name in enumerate(model.art.q):
-        r = model.Q[k]
-        q[name] = r[i] + f * (r[np.minimum(i + 1, N - 1)] - r[i])
         qd[name] = np.full(len(t), model.slope[k])
         qdd[name] = np.zeros(len(t))
     return q, qd, qdd
