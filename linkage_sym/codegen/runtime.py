@@ -226,7 +226,7 @@ class CompiledMechanism(NumpyEvaluator):
         Qpath, failed = ctx.Qpath, ctx.failed
         g = step.group
         group = self.art.group(g)
-        problem = GroupPathProblem(self, step, group, X, Qpath, failed)
+        problem = GroupPathProblem(self, step, X, Qpath, failed)
         sol = continuation.solve_path(problem, Qpath.shape[1], self.x0[list(step.x)] / problem.scale)
         x = (sol.u * problem.scale).T
         for k, c in enumerate(step.x):

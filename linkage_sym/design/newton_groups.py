@@ -37,6 +37,7 @@ import dataclasses
 
 import numpy as np
 
+from linkage_sym.codegen.path import ScaledGroup
 from linkage_sym.design.solution import Solution
 from linkage_sym.model import OUTPUTS
 from linkage_sym.numeric import continuation
@@ -49,7 +50,7 @@ DEFAULT_CHUNK = 8
 moves, and chunks small enough to share among workers)."""
 
 
-class ParameterContinuation:
+class ParameterContinuation(ScaledGroup):
     """One Newton group of a compiled mechanism at fixed driver values, its inputs
     ``(P, Q, known coordinates)`` blended between two designs: a
     :class:`linkage_sym.numeric.continuation.Problem` (scaled unknowns: slides over the
@@ -57,16 +58,8 @@ class ParameterContinuation:
 
     def __init__(self, model, step):
         cm, art = model.cm, model.art
-        self.f = model.functions[step.function]
-        self.cols = list(step.x)
-        self.n = len(self.cols)
-        self.m = model.m
         k = art.steps.index(step)
-        self.known = [c for st in art.steps[:k] for c in st.x]
-        self.scale = np.where(art.is_angle[self.cols], 1.0, cm.L)
-        self.angles = art.is_angle[self.cols]
-        r0, r1 = art.group(step.group).rows
-        self.row_scale = np.where(np.array(art.rows_length[r0:r1], bool), 1.0 / cm.L, 1.0)
+        super().__init__(model, step, [c for st in art.steps[:k] for c in st.x], cm.L)
         # the scene's own assembly configuration: where every design's continuation starts
         self.u_scene = cm.x0[self.cols] / self.scale
         self.ctx_scene = (np.array(model.params, float), np.array(model.q0, float),
@@ -77,24 +70,9 @@ class ParameterContinuation:
     def blend(self, a, b, t):
         return tuple((1 - t) * x + t * y for x, y in zip(a, b))
 
-    def evaluate(self, u, ctx):
-        r, J = self.evaluate_many(np.asarray(u, float)[None, :], ctx)
-        return r[0], J[0]
-
     def evaluate_many(self, U, ctx):
         P, Q, xk = ctx
-        Xs = [None] * self.m
-        for c, v in zip(self.known, xk):
-            Xs[c] = v
-        for c, v in zip(self.cols, (U * self.scale).T):
-            Xs[c] = v
-        out = self.f(Xs, None, None, list(Q), None, None, None, list(P))
-        vals = np.empty((len(out), len(U)))
-        for i, v in enumerate(out):
-            vals[i] = v
-        R = vals[: self.n].T * self.row_scale
-        J = vals[self.n:].T.reshape(len(U), self.n, self.n) * self.row_scale[:, None] * self.scale[None, :]
-        return R, J
+        return self.scaled(U, list(P), Q, xk)
 
     def solve(self, P, Q, X, n, start=None):
         """The group's coordinates (len(cols), n) for ``n`` designs (parameters ``P``,
