@@ -91,7 +91,7 @@ def loop_scenes(scene, axes, count):
     d = linkage_sym.design.grid(axes)
     pick = np.linspace(0, len(d) - 1, count).astype(int)
     vals = d.values[pick]
-    P = model.params(d.names, vals)
+    P = model.design_params(d.names, vals)
     P, X0, ok, joints0, _ = model.assemble(P, len(vals))
     return [design_scene(model, P, X0, joints0, i, f"d{i}") for i in range(len(vals)) if ok[i]]
 

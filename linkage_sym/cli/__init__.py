@@ -2,7 +2,7 @@
 
 One module a command (``linkage_sym.cli.analyze`` with its ``.accuracy`` options,
 ``.derive``, ``.structure``, ``.demo`` with ``examples``, ``.synthesize`` with ``new``,
-``.balance``, ``.centres``, ``.sweep``, ``.animate``), each with its ``register`` and ``cmd_*``,
+``.balance``, ``.centres``, ``.sweep``, ``.animate``, ``.view``), each with its ``register`` and ``cmd_*``,
 reading options and printing; what they compute is the library's.  What they share
 is in :mod:`linkage_sym.cli.common`, with the one mapping of the library's parameter
 names to options.  This module builds the parser and runs the command; no command's
@@ -69,6 +69,11 @@ animate SCENE.json -o motion.gif|.mp4|.html [--frames N] [--fps F]
     growing, the layers asked for; a frame of a step that is not ``ok`` says
     so.  GIF by Pillow, MP4 by ffmpeg where it is found, HTML as one
     self-contained file.
+view SCENE.json -o PAGE.html
+    Write one self-contained HTML page (no network) that solves the mechanism in the
+    browser with the equations the symbolic layer prints in JavaScript: play the sweep,
+    drag a joint or type a length and the whole sweep is solved again, download the
+    edited scene (``linkage_sym.page``).
 
 Plot files are named after the scene's ``name`` (made safe for a path) in
 every command.
@@ -98,7 +103,7 @@ __all__ = ["BROKEN_PIPE", "EXIT_STATUS", "NO_STEP_ASSEMBLED", "build_parser", "m
 
 # the command modules, in the order of the help's list
 COMMANDS = ("analyze", "derive", "structure", "demo", "synthesize", "balance", "centres", "sweep",
-            "animate")
+            "animate", "view")
 
 
 def build_parser() -> CommandParser:

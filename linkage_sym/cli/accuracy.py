@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import math
 
+from linkage_sym.numeric.results.wording import driver_values_text
+
 PRECISION_HELP = (
     "double (float64, default) or a number of significant digits, e.g. 50: the derived "
     "equations evaluated in mpmath and rounded to float64 -- the answer near a dead centre "
@@ -65,11 +67,7 @@ def _digits(args) -> int | None:
 
 
 def _drivers_text(scene, drivers: dict) -> str:
-    out = []
-    for n, v in drivers.items():
-        kind = scene.joint(n).type
-        out.append(f"{n} = {math.degrees(v):.4g}°" if kind == "R" else f"{n} = {v:.4g} m")
-    return ", ".join(out)
+    return driver_values_text(drivers, {n: scene.joint(n).type for n in drivers})
 
 
 class Report:

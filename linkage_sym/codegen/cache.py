@@ -32,6 +32,7 @@ import warnings
 from importlib import metadata
 from pathlib import Path
 
+from linkage_sym.codegen.artifact import Artifact
 from linkage_sym.model import Scene
 from linkage_sym.structure.parameters import ParameterTable
 
@@ -160,3 +161,25 @@ def _unusable(folder: Path, err: OSError) -> None:
 def clear_memory() -> None:
     """Forget the in-memory artifacts (the disk cache stays)."""
     _MEMORY.clear()
+    _ARTIFACTS.clear()
+
+
+_ARTIFACTS: dict = {}
+
+
+def load_artifact(key: str):
+    """The :class:`~linkage_sym.codegen.artifact.Artifact` stored under ``key``, or ``None``:
+    :func:`load`'s JSON read into records once per process."""
+    got = _ARTIFACTS.get(key)
+    if got is None:
+        d = load(key)
+        if d is None:
+            return None
+        got = _ARTIFACTS[key] = Artifact.from_dict(d)
+    return got
+
+
+def store_artifact(key: str, artifact) -> None:
+    """Keep ``artifact`` (records) in memory and its JSON (:func:`store`)."""
+    _ARTIFACTS[key] = artifact
+    store(key, artifact.to_dict())

@@ -30,6 +30,7 @@ import keyword
 import sympy as sp
 
 from linkage_sym.codegen import cache
+from linkage_sym.codegen.artifact import Artifact
 from linkage_sym.codegen.runtime import CompiledMechanism, load_compiled
 from linkage_sym.errors import refuse_symbolic_unsupported
 from linkage_sym.model import Scene
@@ -43,9 +44,17 @@ def _names(symbols) -> list[str]:
     return [s.name for s in symbols]
 
 
-PRINTERS = ("numpy", "mpmath")
-"""What generated code evaluates with: NumPy arrays (the compiled runtime) or mpmath numbers
-(arbitrary precision, :mod:`linkage_sym.codegen.precision`)."""
+PRINTERS = ("numpy", "mpmath", "javascript")
+"""What generated code evaluates with: NumPy arrays (the compiled runtime), mpmath numbers
+(arbitrary precision, :mod:`linkage_sym.codegen.precision`) or JavaScript numbers (the page
+that solves a mechanism in a browser, :mod:`linkage_sym.codegen.javascript`)."""
+
+JS_RESERVED = frozenset(
+    "break case catch class const continue debugger default delete do else enum export extends "
+    "false finally for function if import in instanceof new null return super switch this throw "
+    "true try typeof var void while with yield let static implements interface package private "
+    "protected public await arguments eval Math NaN Infinity undefined".split())
+"""Names a generated JavaScript function may not bind (reserved words and the globals it reads)."""
 
 
 def _printer(kind="numpy"):
@@ -56,6 +65,13 @@ def _printer(kind="numpy"):
         from sympy.printing.pycode import MpmathPrinter
 
         return MpmathPrinter(settings)
+    if kind == "javascript":
+        from sympy.printing.jscode import JavascriptCodePrinter
+
+        # strict: a function without a JavaScript form is an error, never a comment
+        return JavascriptCodePrinter({"user_functions": {}, "strict": True})
+    if kind != "numpy":
+        raise ValueError(f"unknown printer {kind!r}: one of {', '.join(PRINTERS)}")
     from sympy.printing.numpy import NumPyPrinter
 
     return NumPyPrinter(settings)
@@ -68,9 +84,12 @@ def generate(name: str, args: list, outputs: list, doc: str, printer: str = "num
     ``lambdify``'s text): ``args`` are the symbol lists of :data:`ARGS`, each
     unpacked only if the function reads one of its entries (the others may be
     ``None``); a symbol whose name is not a Python identifier is bound to a
-    name of its own.  ``doc`` becomes the docstring.  ``printer``: ``"numpy"`` or
-    ``"mpmath"`` (rationals as quotients of ``mpf``, so no digit is lost to a float).
+    name of its own.  ``doc`` becomes the docstring.  ``printer``: ``"numpy"``,
+    ``"mpmath"`` (rationals as quotients of ``mpf``, so no digit is lost to a float) or
+    ``"javascript"`` (a JavaScript ``function`` of the same arguments and outputs, ``doc``
+    its leading comment; SymPy's ``JavascriptCodePrinter``).
     """
+    js = printer == "javascript"
     printer = _printer(printer)
     outputs = [sp.sympify(e) for e in outputs]
     used = set().union(*(e.free_symbols for e in outputs)) if outputs else set()
@@ -83,7 +102,8 @@ def generate(name: str, args: list, outputs: list, doc: str, printer: str = "num
         names = []
         for k, sym in enumerate(syms):
             nm = sym.name
-            if not nm.isidentifier() or keyword.iskeyword(nm) or nm in ARGS:
+            if (not nm.isidentifier() or keyword.iskeyword(nm) or nm in ARGS
+                    or (js and (nm in JS_RESERVED or not nm.isascii()))):
                 nm = f"{arg}_{k}"
                 while nm in taken:
                     nm += "_"
@@ -96,12 +116,26 @@ def generate(name: str, args: list, outputs: list, doc: str, printer: str = "num
     taken |= {str(s) for s in rename.values()}
     cse_names = (sp.Symbol(n) for n in (f"x{i}" for i in itertools.count()) if n not in taken)
     repl, reduced = sp.cse(outputs, symbols=cse_names)
+    if js:
+        return _javascript_function(name, lines, repl, reduced, doc, printer)
     for sym, e in repl:
         lines.append(f"    {sym} = {printer.doprint(e)}")
     lines.append(f"    return [{', '.join(printer.doprint(e) for e in reduced)}]")
     quoted = '    """' + doc.replace('"""', "'''").replace("\n", "\n    ") + '\n    """\n'
     sig = ", ".join(ARGS[:-2]) + ", CX=None, SX=None"
     return f"def {name}({sig}):\n" + quoted + "\n".join(lines) + "\n"
+
+
+def _javascript_function(name, unpack, repl, reduced, doc, printer) -> str:
+    """The JavaScript text of :func:`generate`'s function (``unpack``: its Python
+    unpacking lines, the same destructuring in JavaScript)."""
+    body = [f"  const {line.strip().split(' = ')[0]} = {line.strip().split(' = ')[1]};"
+            for line in unpack]
+    body += [f"  const {sym} = {printer.doprint(e)};" for sym, e in repl]
+    body.append(f"  return [{', '.join(printer.doprint(e) for e in reduced)}];")
+    comment = "\n".join(("  // " + ln).rstrip() for ln in doc.splitlines())
+    sig = ", ".join(ARGS)
+    return f"function {name}({sig}) {{\n{comment}\n" + "\n".join(body) + "\n}\n"
 
 
 def _describe(kind: str, eqs: MechanismEquations, p_syms, outputs_desc: str) -> str:
@@ -133,148 +167,173 @@ def _pattern(M) -> list:
     return [(i, j) for i in range(M.rows) for j in range(M.cols) if M[i, j] != 0]
 
 
-def build_artifact(scene: Scene, printer: str = "numpy") -> dict:
+def build_artifact(scene: Scene, printer: str = "numpy", key: str | None = None,
+                   signature: dict | None = None) -> Artifact:
     """Derive ``scene`` with symbolic parameters and generate its functions.
 
     ``printer="mpmath"`` prints the same functions for mpmath numbers (one step at a
-    time, any precision) instead of NumPy arrays.
+    time, any precision) instead of NumPy arrays; ``printer="javascript"`` as JavaScript
+    functions (one step at a time, in a browser: :mod:`linkage_sym.codegen.javascript`).  ``key`` and ``signature``: the
+    cache's, recorded in the artifact.
     """
-    stages = needed_stages(scene)
-    forces = "forces" in stages
-    eqs = MechanismEquations(scene, symbolic=True, forces=forces)
-    params = eqs.parameters
-    p_syms = params + eqs.sigmas + eqs.flanks
-    F = eqs.all_forces if forces else []
-    cx = [sp.Symbol("cos_" + s.name, real=True) for s in eqs.x]
-    sx = [sp.Symbol("sin_" + s.name, real=True) for s in eqs.x]
-    args = [eqs.x, eqs.xd, eqs.xdd, eqs.q, eqs.qd, eqs.qdd, F, p_syms, cx, sx]
-    trig = {}
-    for s, c, si in zip(eqs.x, cx, sx):
-        if s.name.startswith("theta_"):
-            trig[sp.cos(s)] = c
-            trig[sp.sin(s)] = si
-    angles = {s for s in eqs.x if s.name.startswith("theta_")}
+    return _Builder(scene, printer).artifact(key, signature)
 
-    def shared_trig(e):
+
+class _Builder:
+    """One derivation printed stage by stage: the position steps, the rates, the points
+    and force blocks (each a method), into the records of an :class:`Artifact`."""
+
+    def __init__(self, scene: Scene, printer: str):
+        self.scene, self.printer = scene, printer
+        self.stages = needed_stages(scene)
+        self.forces = "forces" in self.stages
+        self.eqs = eqs = MechanismEquations(scene, symbolic=True, forces=self.forces)
+        self.p_syms = eqs.parameters + eqs.sigmas + eqs.flanks
+        self.F = eqs.all_forces if self.forces else []
+        cx = [sp.Symbol("cos_" + s.name, real=True) for s in eqs.x]
+        sx = [sp.Symbol("sin_" + s.name, real=True) for s in eqs.x]
+        self.args = [eqs.x, eqs.xd, eqs.xdd, eqs.q, eqs.qd, eqs.qdd, self.F, self.p_syms, cx, sx]
+        self.trig = {}
+        for s, c, si in zip(eqs.x, cx, sx):
+            if s.name.startswith("theta_"):
+                self.trig[sp.cos(s)] = c
+                self.trig[sp.sin(s)] = si
+        self.angles = {s for s in eqs.x if s.name.startswith("theta_")}
+        self.xi = {s: i for i, s in enumerate(eqs.x)}
+        self.funcs: dict = {}
+
+    def shared_trig(self, e):
         """``e`` with the sines and cosines of the link angles as inputs."""
+        angles = self.angles
         e = e.replace(
             lambda n: isinstance(n, (sp.sin, sp.cos)) and bool(n.args[0].free_symbols & angles),
             lambda n: sp.expand_trig(n),
         )
-        return e.xreplace(trig)
-    xi = {s: i for i, s in enumerate(eqs.x)}
-    funcs, steps = {}, []
+        return e.xreplace(self.trig)
 
-    def add(name, outputs, what, share=False):
+    def add(self, name, outputs, what, share=False):
         if share:
-            outputs = [shared_trig(sp.sympify(e)) for e in outputs]
-        funcs[name] = generate(name, args, outputs, _describe(name, eqs, p_syms, what), printer)
+            outputs = [self.shared_trig(sp.sympify(e)) for e in outputs]
+        self.funcs[name] = generate(name, self.args, outputs,
+                                    _describe(name, self.eqs, self.p_syms, what), self.printer)
 
-    # positions: closed-form segments between groups that need a numeric root
-    segment: list = []
-    defs = dict(eqs.closed_forms)
+    def positions(self):
+        """The position steps (closed-form segments between groups that need a numeric
+        root) and the groups' records."""
+        eqs, xi = self.eqs, self.xi
+        steps, groups, segment = [], [], []
+        defs = dict(eqs.closed_forms)
 
-    def flush():
-        if not segment:
-            return
-        name = f"positions_{len(steps)}"
-        nested: dict = {}
-        for s, e in eqs.closed_forms:
-            if s in segment:
-                nested[s] = e.xreplace(nested)
-        add(name, [nested[s] for s in segment], "[" + ", ".join(_names(segment)) + "]")
-        steps.append({"kind": "closed", "function": name, "x": [xi[s] for s in segment]})
-        segment.clear()
+        def flush():
+            if not segment:
+                return
+            name = f"positions_{len(steps)}"
+            nested: dict = {}
+            for s, e in eqs.closed_forms:
+                if s in segment:
+                    nested[s] = e.xreplace(nested)
+            self.add(name, [nested[s] for s in segment], "[" + ", ".join(_names(segment)) + "]")
+            steps.append({"kind": "closed", "function": name, "x": [xi[s] for s in segment]})
+            segment.clear()
 
-    groups = []
-    for ge in eqs.groups:
-        cols = [xi[s] for s in ge.x]
-        if ge.closed:
-            segment.extend(s for s in ge.x if s in defs)
-        else:
-            flush()
-            name = f"newton_{ge.index}"
-            rows = eqs.Phi[ge.rows, :]
-            Jg = eqs.A[ge.rows, cols]
-            add(name, list(rows) + list(Jg), f"residual ({rows.rows}) then jacobian (row-major)")
-            steps.append({"kind": "newton", "function": name, "group": ge.index, "x": cols})
-        groups.append(
-            {
-                "index": ge.index,
-                "links": list(ge.group.links),
-                "label": ge.group.label,
-                "closed": ge.closed,
-                "cols": cols,
-                "rows": [ge.rows.start, ge.rows.stop],
-                "sigma": None if ge.sigma is None else len(params) + eqs.sigmas.index(ge.sigma),
-            }
-        )
-    flush()
-    # rows and columns, for the dimensionless condition number
-    col_len = [s.name.startswith("s_") for s in eqs.x]
-    # rates
-    pattern = _pattern(eqs.A)
-    Bqd = eqs.B * sp.Matrix(eqs.qd)
-    add("rates", [eqs.A[i, j] for i, j in pattern] + list(Bqd), "nonzero entries of A, then B qd", True)
-    if "acceleration" in stages:
-        add("accelerations", list(eqs.acc_rhs), "right-hand side of A xdd = rhs", True)
-    # points (and the force blocks)
-    outs, layout = [], {}
+        for ge in eqs.groups:
+            cols = [xi[s] for s in ge.x]
+            if ge.closed:
+                segment.extend(s for s in ge.x if s in defs)
+            else:
+                flush()
+                name = f"newton_{ge.index}"
+                rows = eqs.Phi[ge.rows, :]
+                Jg = eqs.A[ge.rows, cols]
+                self.add(name, list(rows) + list(Jg), f"residual ({rows.rows}) then jacobian (row-major)")
+                steps.append({"kind": "newton", "function": name, "group": ge.index, "x": cols})
+            groups.append({
+                "index": ge.index, "links": list(ge.group.links), "label": ge.group.label,
+                "closed": ge.closed, "cols": cols, "rows": [ge.rows.start, ge.rows.stop],
+                "sigma": (None if ge.sigma is None
+                          else len(eqs.parameters) + eqs.sigmas.index(ge.sigma)),
+            })
+        flush()
+        return steps, groups
 
-    def put(key, values):
-        layout[key] = [len(outs), len(outs) + len(values)]
-        outs.extend(values)
+    def rates(self):
+        """``A``'s non-zero entries and ``B qd``; the accelerations' right-hand side."""
+        eqs = self.eqs
+        pattern = _pattern(eqs.A)
+        Bqd = eqs.B * sp.Matrix(eqs.qd)
+        self.add("rates", [eqs.A[i, j] for i, j in pattern] + list(Bqd),
+                 "nonzero entries of A, then B qd", True)
+        if "acceleration" in self.stages:
+            self.add("accelerations", list(eqs.acc_rhs), "right-hand side of A xdd = rhs", True)
+        return pattern
 
-    levels = [0] + ([1] if "velocity" in stages else []) + ([2] if "acceleration" in stages else [])
-    for lev in levels:
+    def points(self):
+        """The points function (joints, frame origins, centres of mass by level, slide
+        units, lines of action, the force blocks' entries) and its layout; the frame
+        function and the force blocks' records."""
+        eqs, scene, stages = self.eqs, self.scene, self.stages
+        outs, layout = [], {}
+
+        def put(key, values):
+            layout[key] = [len(outs), len(outs) + len(values)]
+            outs.extend(values)
+
+        levels = [0] + ([1] if "velocity" in stages else []) + ([2] if "acceleration" in stages else [])
+        for lev in levels:
+            for j in scene.joints:
+                put(f"joint:{j.name}:{lev}", eqs.joint_kin[j.name][lev])
+            for n in scene.link_names:
+                put(f"origin:{n}:{lev}", eqs.origin_kin[n][lev])
+            for n, kin in eqs.com_kin.items():
+                put(f"com:{n}:{lev}", kin[lev])
         for j in scene.joints:
-            put(f"joint:{j.name}:{lev}", eqs.joint_kin[j.name][lev])
-        for n in scene.link_names:
-            put(f"origin:{n}:{lev}", eqs.origin_kin[n][lev])
-        for n, kin in eqs.com_kin.items():
-            put(f"com:{n}:{lev}", kin[lev])
-    for j in scene.joints:
-        if j.type == "P":
-            put(f"slide:{j.name}", list(eqs.slide_unit(j.name)))
-        elif j.type == "G":  # the line of action, with the flank an input
-            put(f"mesh:{j.name}", list(eqs.line_of_action(j)))
-    force_layout = []
-    if forces:
-        fi = {s: i for i, s in enumerate(F)}
-        for ge, (Ag, bg, Cg, later) in zip(eqs.groups, eqs.force_blocks):
-            pa, pc = _pattern(Ag), _pattern(Cg)
-            k = ge.index
-            put(f"A:{k}", [Ag[i, j] for i, j in pa])
-            put(f"b:{k}", list(bg))
-            put(f"C:{k}", [Cg[i, j] for i, j in pc])
-            force_layout.append(
-                {
-                    "unknowns": [fi[s] for s in ge.forces],
-                    "A": pa,
-                    "C": [(i, fi[later[j]]) for i, j in pc],
-                }
-            )
-        add("frame", list(eqs.frame), "frame force x, y and moment about the origin", True)
-    add("points", outs, "joint, origin and centre-of-mass kinematics, slide units, force blocks", True)
-    table = eqs.table
-    return {
-        "scene": scene.name,
-        "stages": list(stages),
-        "x": _names(eqs.x),
-        "q": [d.joint for d in scene.drivers],
-        "params": [[s.name, list(_jsonable(table.params[s.name].recipe))] for s in params],
-        "sigmas": len(eqs.sigmas),
-        "flanks": [j.name for j in scene.meshes],
-        "steps": steps,
-        "groups": groups,
-        "rows_length": eqs.row_is_length,
-        "cols_length": col_len,
-        "pattern": pattern,
-        "layout": layout,
-        "forces": force_layout,
-        "force_names": _names(F),
-        "functions": funcs,
-    }
+            if j.type == "P":
+                put(f"slide:{j.name}", list(eqs.slide_unit(j.name)))
+            elif j.type == "G":  # the line of action, with the flank an input
+                put(f"mesh:{j.name}", list(eqs.line_of_action(j)))
+        force_layout = []
+        if self.forces:
+            fi = {s: i for i, s in enumerate(self.F)}
+            for ge, (Ag, bg, Cg, later) in zip(eqs.groups, eqs.force_blocks):
+                pa, pc = _pattern(Ag), _pattern(Cg)
+                k = ge.index
+                put(f"A:{k}", [Ag[i, j] for i, j in pa])
+                put(f"b:{k}", list(bg))
+                put(f"C:{k}", [Cg[i, j] for i, j in pc])
+                force_layout.append({"unknowns": [fi[s] for s in ge.forces], "A": pa,
+                                     "C": [(i, fi[later[j]]) for i, j in pc]})
+            self.add("frame", list(eqs.frame), "frame force x, y and moment about the origin", True)
+        self.add("points", outs, "joint, origin and centre-of-mass kinematics, slide units, force blocks",
+                 True)
+        return layout, force_layout
+
+    def artifact(self, key, signature) -> Artifact:
+        eqs, scene = self.eqs, self.scene
+        steps, groups = self.positions()
+        pattern = self.rates()
+        layout, force_layout = self.points()
+        table = eqs.table
+        return Artifact.from_dict({
+            "scene": scene.name,
+            "stages": list(self.stages),
+            "x": _names(eqs.x),
+            "q": [d.joint for d in scene.drivers],
+            "params": [[s.name, list(_jsonable(table.params[s.name].recipe))] for s in eqs.parameters],
+            "sigmas": len(eqs.sigmas),
+            "flanks": [j.name for j in scene.meshes],
+            "steps": steps,
+            "groups": groups,
+            "rows_length": eqs.row_is_length,
+            # rows and columns of lengths, for the dimensionless condition number
+            "cols_length": [s.name.startswith("s_") for s in eqs.x],
+            "pattern": pattern,
+            "layout": layout,
+            "forces": force_layout,
+            "force_names": _names(self.F),
+            "functions": self.funcs,
+            "key": key,
+            "signature": signature,
+        })
 
 
 def _jsonable(recipe):
@@ -299,9 +358,7 @@ def compile_mechanism(scene: Scene, use_cache: bool = True) -> CompiledMechanism
             return got
     sig = cache.signature(scene)
     key = cache.key_of(sig)
-    art = build_artifact(scene)
-    art["key"] = key
-    art["signature"] = sig
+    art = build_artifact(scene, key=key, signature=sig)
     if use_cache:
-        cache.store(key, art)
+        cache.store_artifact(key, art)
     return CompiledMechanism(art, scene)

@@ -5,7 +5,7 @@ evaluates the mechanism's SymPy-derived equations (:mod:`linkage_sym.symbolic.me
 with mpmath at the given number of significant decimal digits, one step at a time:
 
 1. **parameters** (lengths, angles, coordinates, masses, loads) from the scene's numbers
-   by the same recipes as :func:`linkage_sym.structure.parameters.evaluate`, in mpmath:
+   by the same recipes as float64 (:mod:`linkage_sym.structure.recipes`), in mpmath:
    the binary64 numbers of the scene are the mechanism, converted exactly; and each
    step's **driver values** from the scene's numbers too: step ``i`` is
    ``start + i (stop - start) / (steps - 1)`` (an ``R`` driver's ``start_deg`` and
@@ -46,220 +46,53 @@ mpmath from the link's rotation too).  The result is the same
 
 The functions are the ones :func:`linkage_sym.codegen.compile.build_artifact` generates
 for NumPy, printed for mpmath instead (rationals as quotients of ``mpf``), built once
-per topology in a process.  Cost: mpmath in pure Python, about 10^3--10^4 times the
-float64 solver per position (see ``benchmarks/bench_accuracy.py``).
+per topology in a process.  :class:`PreciseMechanism` is their mpmath backend of the one
+evaluator of generated code (:class:`~linkage_sym.codegen.evaluator.Evaluator`: the
+calls, the walk over the position steps, the rate and force solves, the loads, the
+reactions, a link's frame and its points written once); it says what a number is
+(:class:`MpNumbers`, for the parameters' recipes too) and how a step, a block and a
+group's forces are solved in mpmath.  Cost: mpmath in pure Python, about 10^3--10^4
+times the float64 solver per position (see ``benchmarks/bench_accuracy.py``).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import mpmath as mp
 import numpy as np
 
 from linkage_sym.codegen import cache
+from linkage_sym.codegen.artifact import Artifact
 from linkage_sym.codegen.compile import build_artifact, compile_mechanism
+from linkage_sym.codegen.evaluator import Evaluator, frame_motion, load_functions, rigid_point
 from linkage_sym.codegen.runtime import CompiledMechanism
-from linkage_sym.model import GROUND, Scene
+from linkage_sym.model import Scene
 from linkage_sym.numeric.results import accuracy
-from linkage_sym.numeric.forces.loads import load_factor
 from linkage_sym.numeric.results.result import OK, SINGULAR, UNASSEMBLABLE, GroupForces
 from linkage_sym.numeric.engine.run import SINGULAR_COND
-from linkage_sym.structure.parameters import ident
+from linkage_sym.codegen.mp_numbers import (
+    DOUBLE,
+    MpBlocks,
+    MpNumbers,
+    NotReal,
+    driver_numbers,
+    driver_step_mp,
+    factor_mp,
+    mp_namespace,
+    parse_precision,
+    real,
+)
+from linkage_sym.structure.recipes import Context
 
-DOUBLE = "double"
-MIN_DIGITS, MAX_DIGITS = 10, 1000
 NEWTON_ITER = 30
 
-_ARTIFACTS: dict[str, dict] = {}
+_ARTIFACTS: dict[str, Artifact] = {}
 
 
-def parse_precision(value) -> int | None:
-    """``None`` for float64 (``"double"`` or ``None``), else the number of digits.
 
-    Raises ``ValueError`` naming the option for anything else.
-    """
-    if value is None or (isinstance(value, str) and value.strip().lower() == DOUBLE):
-        return None
-    if isinstance(value, bool):
-        raise ValueError(f"precision: expected 'double' or a number of digits, got {value!r}")
-    try:
-        digits = int(str(value).strip()) if not isinstance(value, int) else value
-    except ValueError:
-        raise ValueError(
-            f"precision: expected 'double' or a number of digits, got {value!r}") from None
-    if not MIN_DIGITS <= digits <= MAX_DIGITS:
-        raise ValueError(
-            f"precision: {digits} digits is outside {MIN_DIGITS}..{MAX_DIGITS} "
-            "('double' is float64's 16)")
-    return digits
-
-
-# ------------------------------------------------------------------ parameters in mpmath
-
-
-def _mpf_point(p):
-    return mp.mpf(float(p[0])), mp.mpf(float(p[1]))
-
-
-def _frames_mp(scene: Scene, frames) -> dict:
-    """Each moving link's frame origin (mpf pair) and assembly angle ``theta0`` in mpmath.
-
-    The joints ``u`` and ``v`` are those of :func:`~linkage_sym.structure.parameters.link_frames`
-    (the same choice, made in float64, of which joint sets the x-axis).
-    """
-    out = {}
-    for link, fr in frames.items():
-        U = _mpf_point(scene.joint(fr.u).at)
-        if fr.v is None:
-            th = mp.mpf(0)
-        else:
-            V = _mpf_point(scene.joint(fr.v).at)
-            th = mp.atan2(V[1] - U[1], V[0] - U[0])
-        out[link] = (U, th)
-    return out
-
-
-def _local_mp(mframes, link, at):
-    (ox, oy), th = mframes[link]
-    x, y = _mpf_point(at)
-    dx, dy = x - ox, y - oy
-    c, s = mp.cos(th), mp.sin(th)
-    return c * dx + s * dy, -s * dx + c * dy
-
-
-def _wrap_mp(a):
-    return mp.atan2(mp.sin(a), mp.cos(a))
-
-
-def parameter_mp(scene: Scene, recipe: tuple, mframes):
-    """The value of a parameter recipe in mpmath (mirrors ``structure.parameters.evaluate``)."""
-    k = recipe[0]
-    if k in ("l", "beta"):
-        _, link, point = recipe
-        x, y = _local_mp(mframes, link, scene.joint(point).at)
-        return mp.hypot(x, y) if k == "l" else mp.atan2(y, x)
-    if k in ("x", "y"):
-        return mp.mpf(float(scene.joint(recipe[1]).at[0 if k == "x" else 1]))
-    if k == "theta0":
-        return mframes[recipe[1]][1]
-    if k == "gamma":
-        j = scene.joint(recipe[1])
-        a = j.links[0]
-        return _wrap_mp(mp.mpf(float(j.axis)) - (0 if a == GROUND else mframes[a][1]))
-    if k == "delta":
-        j, t = scene.joint(recipe[1]), scene.joint(recipe[2])
-        b = j.links[1]
-        J, T = _mpf_point(j.at), _mpf_point(t.at)
-        ang = mp.atan2(T[1] - J[1], T[0] - J[0])
-        return _wrap_mp(ang - (0 if b == GROUND else mframes[b][1]))
-    if k in ("m", "I"):
-        link = scene.link(recipe[1])
-        return mp.mpf(float(link.mass if k == "m" else link.inertia))
-    if k in ("p", "q"):
-        link = scene.link(recipe[1])
-        x, y = _local_mp(mframes, link.name, link.com)
-        return x if k == "p" else y
-    if k in ("gx", "gy"):
-        g = scene.effects.gravity or (0.0, 0.0)
-        return mp.mpf(float(g[0 if k == "gx" else 1]))
-    if k in ("radius", "phi", "epsilon"):
-        j = scene.joint(recipe[1])
-        if k == "radius":
-            return mp.mpf(float(j.radii[recipe[2]]))
-        if k == "phi":
-            return mp.mpf(float(j.pressure_angle))
-        A, B = (_mpf_point(p.at) for p in scene.gear_pivots(j))
-        c = j.carrier
-        return _wrap_mp(mp.atan2(B[1] - A[1], B[0] - A[0]) - (0 if c == GROUND else mframes[c][1]))
-    ld = scene.loads[recipe[1]]
-    if k in ("Fx", "Fy"):
-        return mp.mpf(float(ld.force[0 if k == "Fx" else 1]))
-    if k in ("xi", "eta"):
-        x, y = _local_mp(mframes, ld.link, ld.at)
-        return x if k == "xi" else y
-    if k == "T":
-        return mp.mpf(float(ld.torque))
-    raise ValueError(f"unknown parameter recipe {recipe!r}")
-
-
-def _factor_mp(load, x, x_float: float | None = None):
-    """A load's factor at the driver value ``x`` (mpf), as
-    :func:`linkage_sym.numeric.forces.loads.load_factor` defines it, in mpmath.
-
-    ``x_float`` is the step's float64 driver value (``x`` rounded unless given): whether
-    the step lies in the table and in the ``active`` range is decided on it, as the
-    float64 run decides it (a step at an end of the range, in the scene's degrees, is at
-    the end in both: the range's radians are rounded, the step's exact value is not); the
-    table is interpolated at ``x`` (continuous, so a step an ulp beyond a table's end
-    extrapolates by an ulp).
-    """
-    if x_float is None:
-        x_float = float(x)
-    f = mp.mpf(1)
-    period = None if load.period is None else mp.mpf(float(load.period))
-    if load.table is not None:
-        tq = [mp.mpf(float(v)) for v in load.table.q]
-        ts = [mp.mpf(float(v)) for v in load.table.scale]
-        if period is not None:  # periodic: the table's first point again a period on
-            x = tq[0] + mp.fmod(mp.fmod(x - tq[0], period) + period, period)
-            tq, ts = tq + [tq[0] + period], ts + [ts[0]]
-        elif not load.table.q[0] <= x_float <= load.table.q[-1]:
-            raise ValueError(f"load on {load.link}: driver {load.driver} at {x_float:g} is "
-                             "outside its table, where the factor is not defined")
-        k = max([0] + [i for i in range(len(tq) - 1) if tq[i] <= x]) if x < tq[-1] else len(tq) - 2
-        f = ts[k] + (ts[k + 1] - ts[k]) * (x - tq[k]) / (tq[k + 1] - tq[k])
-    if load.active is not None:
-        span = replace(load, table=None)  # the factor of the range alone: 1 inside, 0 outside
-        if not load_factor(span, {load.driver: np.array([x_float])})[0] > 0:
-            f = mp.mpf(0)
-    return f
-
-
-# ------------------------------------------------------------------ driver values in mpmath
-
-
-def _driver_numbers(driver):
-    """``(start, stop, degrees)``: the scene's numbers of a driver's sweep, and whether they
-    are degrees (an ``R`` driver read from a scene, whose radians are their rounding)."""
-    if (driver.kind == "R" and driver.start_deg is not None and driver.stop_deg is not None
-            and math.radians(driver.start_deg) == driver.start
-            and math.radians(driver.stop_deg) == driver.stop):
-        return driver.start_deg, driver.stop_deg, True
-    return driver.start, driver.stop, False
-
-
-def driver_step_mp(driver, i: int):
-    """Step ``i`` of a driver's sweep in mpmath, at the working precision (``mp.dps``).
-
-    ``start + i (stop - start) / (steps - 1)`` from the scene's numbers, each taken as the
-    binary64 number it is: for an ``R`` driver read from a scene its ``start_deg`` and
-    ``stop_deg``, converted to radians with ``mpmath.pi`` (the float64 sweep's radians
-    are their rounding: 180 degrees is ``float(pi)`` there, 1.2e-16 short of pi); else
-    ``start`` and ``stop`` (radians or metres) themselves.
-
-    Examples
-    --------
-    >>> import mpmath as mp
-    >>> from linkage_sym.model import Driver
-    >>> d = Driver("A", "R", math.radians(90.0), math.radians(180.0), 3, 1.0, toward="B",
-    ...            start_deg=90.0, stop_deg=180.0)
-    >>> with mp.workdps(30):
-    ...     print(driver_step_mp(d, 2) - mp.pi, mp.nstr(mp.mpf(d.stop) - mp.pi, 5))
-    0.0 -1.2246e-16
-    """
-    start, stop, degrees = _driver_numbers(driver)
-    a, b = mp.mpf(start), mp.mpf(stop)
-    n = driver.steps
-    v = a if n == 1 else (a * (n - 1 - i) + b * i) / (n - 1)
-    return v * mp.pi / 180 if degrees else v
-
-
-# ------------------------------------------------------------------ the generated functions
-
-
-def mp_artifact(scene: Scene) -> dict:
+def mp_artifact(scene: Scene) -> Artifact:
     """The mechanism's functions printed for mpmath (built once per topology and process)."""
     key = cache.key_of(cache.signature(scene))
     art = _ARTIFACTS.get(key)
@@ -269,43 +102,15 @@ def mp_artifact(scene: Scene) -> dict:
     return art
 
 
-def _load_mp_functions(art: dict) -> dict:
-    ns: dict = {}
-    exec("from mpmath import *", ns)  # the names SymPy's mpmath printer uses
-    ns["sqrt"] = _real_sqrt  # a closed form's root: real, or no position at this precision
-    out = {}
-    for name, src in art["functions"].items():
-        exec(compile(src, f"<linkage_sym mpmath:{name}>", "exec"), ns)
-        out[name] = ns[name]
-    return out
+@dataclass
+class _StepContext:
+    """What the position steps of one step read: the parameters, the driver values (mpf)
+    and the float64 run's coordinates there (the root a group's Newton starts from, the
+    turn an angle is counted in)."""
 
-
-class _NotReal(Exception):
-    """A closed form with no real value at this precision (a tangency missed by rounding)."""
-
-
-def _real_sqrt(x):
-    """``mpmath.sqrt`` of a real argument; a negative one (a tangency the float64 run took,
-    missed at this precision) raises :class:`_NotReal` instead of giving a complex root
-    that the closed form's ``atan2`` cannot take."""
-    if isinstance(x, mp.mpc):
-        if x.imag != 0:
-            raise _NotReal
-        x = x.real
-    if x < 0:
-        raise _NotReal
-    return mp.sqrt(x)
-
-
-def _real(values):
-    out = []
-    for v in values:
-        if isinstance(v, mp.mpc):
-            if v.imag != 0:
-                raise _NotReal
-            v = v.real
-        out.append(mp.mpf(v))
-    return out
+    P: list
+    Q: list
+    x_float: object
 
 
 @dataclass
@@ -334,32 +139,47 @@ class PreciseResult:
     x_names: list = field(default_factory=list)
 
 
-class PreciseMechanism:
-    """A scene's derived equations in mpmath (see the module docstring)."""
+_ROUNDED = (("joints", ("position", "velocity", "acceleration")),
+            ("points", ("position", "velocity", "acceleration")),
+            ("links", ("rotation", "origin", "omega", "alpha", "origin_velocity",
+                       "origin_acceleration", "com", "com_velocity", "com_acceleration")))
+"""The kinematics an Analysis holds per joint, traced point and link, by record section."""
+_AT_POSITIONS = {"position", "rotation", "origin", "com"}
+"""Those of :data:`_ROUNDED` that every step with positions has (the others need rates)."""
+
+
+class PreciseMechanism(Evaluator):
+    """A scene's derived equations in mpmath (see the module docstring): the mpmath
+    backend of :class:`~linkage_sym.codegen.evaluator.Evaluator`, one step at a time.
+
+    Attributes
+    ----------
+    cm : CompiledMechanism
+        The float64 run of the same mechanism (statuses, messages, the roots the
+        continuation reached, the accuracy estimate).
+    context : linkage_sym.structure.recipes.Context
+        The scene with its link frames in mpmath (:class:`MpNumbers`).
+    """
 
     def __init__(self, scene: Scene, digits: int, compiled: CompiledMechanism | None = None):
         self.scene = scene
         self.digits = digits
-        self.cm = compiled if compiled is not None else compile_mechanism(scene)
-        self.art = mp_artifact(scene)
-        if (self.art["x"] != self.cm.art["x"]
-                or [tuple(p) for p in self.art["pattern"]] != [tuple(p) for p in self.cm.art["pattern"]]):
+        self.cm = cm = compiled if compiled is not None else compile_mechanism(scene)
+        art = mp_artifact(scene)
+        if art.x != cm.art.x or art.pattern != cm.art.pattern:
             raise RuntimeError(  # pragma: no cover - both are built from one derivation
                 "mpmath and NumPy functions of one mechanism disagree in layout")
-        self.f = _load_mp_functions(self.art)
-        cm = self.cm
         with mp.workdps(digits):
-            mframes = _frames_mp(scene, cm.frames)
-            self.mframes = mframes
-            params = [parameter_mp(scene, tuple(r), mframes) for _, r in self.art["params"]]
-            k = self.art["sigmas"]
-            sig = cm.params[cm.n_params:cm.n_params + k]
+            numbers = MpNumbers()
+            self.context = Context(scene, cm.frames, numbers)
+            for link in cm.frames:
+                self.context.frame(link)  # the frames at this precision, made once
+            params = [p.recipe.value(scene, cm.frames, numbers) for p in art.params]
+            sig = cm.params[cm.n_params:cm.n_params + art.sigmas]
             # then each gear mesh's flank, +1 until a tooth load says otherwise (step)
-            self.P = params + [mp.mpf(float(s)) for s in sig] + [mp.mpf(1)] * len(cm.flanks)
-            self.flank_at = len(params) + k
-        self.m = cm.m
-        self.pattern = [tuple(p) for p in self.art["pattern"]]
-        self.scaled = [(i, ld) for i, ld in enumerate(cm.scene.loads) if ld.driver is not None]
+            params += [mp.mpf(float(s)) for s in sig] + [mp.mpf(1)] * len(art.flanks)
+        super().__init__(art, load_functions(art, "mpmath", mp_namespace()), params)
+        self.scaled = [(i, ld) for i, ld in enumerate(scene.loads) if ld.driver is not None]
         self._steps_of: dict = {}  # a driver's float64 step values -> step (driver_values)
 
     # -- driver values --------------------------------------------------------------
@@ -369,7 +189,7 @@ class PreciseMechanism:
         got = self._steps_of.get(name)
         if got is None:
             driver = next(d for d in self.scene.drivers if d.joint == name)
-            start, stop, _ = _driver_numbers(driver)
+            start, stop, _ = driver_numbers(driver)
             values = np.asarray(self.cm.sweep()[0][name], float)
             got = {}
             for i, v in enumerate(values.tolist()):
@@ -400,13 +220,13 @@ class PreciseMechanism:
             amplifies as it does the arithmetic's rounding.
         """
         drivers = {d.joint: d for d in self.scene.drivers}
-        index = [self._step_index(n) for n in self.art["q"]]
-        scale = [1.0 if drivers[n].kind == "R" else self.cm.L for n in self.art["q"]]
+        index = [self._step_index(n) for n in self.art.q]
+        scale = [1.0 if drivers[n].kind == "R" else self.cm.L for n in self.art.q]
         Q = np.asarray(Q, float)
         out, rounding = [], np.zeros(Q.shape[1])
         for k, col in enumerate(Q.T):
             vals = []
-            for n, idx, sc, v in zip(self.art["q"], index, scale, col.tolist()):
+            for n, idx, sc, v in zip(self.art.q, index, scale, col.tolist()):
                 i = idx.get(v)
                 vals.append(mp.mpf(v) if i is None or i < 0 else driver_step_mp(drivers[n], i))
                 if i is not None and i < 0:
@@ -415,73 +235,55 @@ class PreciseMechanism:
         return out, rounding
 
     # -- one step -------------------------------------------------------------------
-    def _scaled_params(self, q, q_float) -> list:
-        """The parameters with each load over the cycle scaled by its factor at ``q`` (mpf;
-        ``q_float``: the step's float64 values, see :func:`_factor_mp`)."""
-        P = list(self.P)
-        for i, ld in self.scaled:
-            k = _factor_mp(ld, q[ld.driver], float(q_float[ld.driver]))
-            for j, (_, recipe) in enumerate(self.art["params"]):
-                if recipe[0] in ("Fx", "Fy", "T") and recipe[1] == i:
-                    P[j] = P[j] * k
-        return P
+    # -- one step: the hooks of the evaluator -----------------------------------------
+    def coordinate(self, c, value, ctx):
+        """A closed form's value: real (else :class:`NotReal`), an angle shifted by whole
+        turns toward the float64 run's (the turn the continuation counted)."""
+        v = real(value)
+        if self.art.is_angle[c]:
+            v = v + 2 * mp.pi * round(float((ctx.x_float[c] - v) / (2 * mp.pi)))
+        return v
 
-    def _call(self, name, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, CS=(None, None)):
-        return self.f[name](X, XD, XDD, Q, QD, QDD, F, self.P, CS[0], CS[1])
+    def newton_step(self, step, X, ctx):
+        """A group without a closed form: Newton's method on its loop equations in mpmath,
+        from the float64 run's root (quadratic convergence: that root, to every digit)."""
+        cols = step.x
+        for c in cols:
+            X[c] = mp.mpf(float(ctx.x_float[c]))
+        n = len(cols)
+        tol = mp.mpf(10) ** (-self.digits + 2)
+        scale = [1 if self.art.is_angle[c] else self.cm.L for c in cols]
+        for _ in range(NEWTON_ITER):
+            out = self.call(step.function, ctx.P, X=X, Q=ctx.Q)
+            r = mp.matrix(out[:n])
+            J = mp.matrix(n, n)
+            for a in range(n):
+                for b in range(n):
+                    J[a, b] = out[n + a * n + b]
+            d = mp.lu_solve(J, r)
+            for kk, c in enumerate(cols):
+                X[c] -= d[kk]
+            if max(abs(d[kk]) / scale[kk] for kk in range(n)) <= tol:
+                return
+        raise NotReal  # pragma: no cover - Newton from a float64 root converges
+
+    def block_system(self, entries, shape):
+        return MpBlocks(entries, self.art.blocks, self.m)
+
+    def dense_solve(self, pattern, values, b):
+        n = len(b)
+        A = mp.matrix(n, n)
+        for (i, j), v in zip(pattern, values):
+            A[i, j] = v
+        sol = mp.lu_solve(A, mp.matrix(b))
+        return [sol[j] for j in range(n)]
+
+    def force_zeros(self, like):
+        return [mp.mpf(0)] * len(self.art.force_names)
 
     def positions(self, Q, x_float):
         """Coordinates (list of mpf) at driver values ``Q`` (mpf), near ``x_float``."""
-        X = [None] * self.m
-        tol = mp.mpf(10) ** (-self.digits + 2)
-        for step in self.art["steps"]:
-            cols = step["x"]
-            if step["kind"] == "closed":
-                out = _real(self._call(step["function"], X=X, Q=Q))
-                for c, v in zip(cols, out):
-                    if self.cm.is_angle[c]:
-                        v = v + 2 * mp.pi * round(float((x_float[c] - v) / (2 * mp.pi)))
-                    X[c] = v
-                continue
-            for c in cols:
-                X[c] = mp.mpf(float(x_float[c]))
-            n = len(cols)
-            for _ in range(NEWTON_ITER):
-                out = self._call(step["function"], X=X, Q=Q)
-                r = mp.matrix(out[:n])
-                J = mp.matrix(n, n)
-                for a in range(n):
-                    for b in range(n):
-                        J[a, b] = out[n + a * n + b]
-                d = mp.lu_solve(J, r)
-                for kk, c in enumerate(cols):
-                    X[c] -= d[kk]
-                scale = [1 if self.cm.is_angle[c] else self.cm.L for c in cols]
-                if max(abs(d[kk]) / scale[kk] for kk in range(n)) <= tol:
-                    break
-            else:
-                raise _NotReal  # pragma: no cover - Newton from a float64 root converges
-        return X
-
-    def _ratio(self, A: dict):
-        """The smallest Hadamard ratio of the group blocks of ``A`` (mpf; ``None`` with only
-        1x1 blocks): ``|det|`` over the product of its row norms, or of its column norms,
-        whichever is larger -- the float64 runtime's indicator
-        (``_RateSystem.ratios``), here at this precision."""
-        out = None
-        for r0, r1, c0, c1 in self.cm.blocks:
-            n = c1 - c0
-            if n < 2:
-                continue
-            M = mp.matrix(n, n)
-            for i in range(n):
-                for j in range(n):
-                    M[i, j] = A.get((r0 + i, c0 + j), 0)
-            rows = mp.fprod(mp.norm(M[i, :]) for i in range(n))
-            cols = mp.fprod(mp.norm(M[:, j]) for j in range(n))
-            big = max(rows, cols)
-            r = abs(mp.det(M)) / big if big else mp.mpf(0)
-            out = r if out is None else min(out, r)
-        return out
+        return self.walk([None] * self.m, _StepContext(self.params, Q, x_float))
 
     def _float_ratios(self, Xf, Qs, QDs, steps) -> np.ndarray:
         """The float64 runtime's indicator (the smallest Hadamard ratio of a group block) at
@@ -492,21 +294,6 @@ class PreciseMechanism:
             if r is not None:
                 out = np.fmin(out, r)
         return out
-
-    def _solve_blocks(self, A: dict, rhs):
-        x = [mp.mpf(0)] * self.m
-        for r0, r1, c0, c1 in self.cm.blocks:
-            b = [rhs[i] - mp.fsum(A[i, j] * x[j] for j in range(c0) if (i, j) in A)
-                 for i in range(r0, r1)]
-            n = c1 - c0
-            M = mp.matrix(n, n)
-            for i in range(n):
-                for j in range(n):
-                    M[i, j] = A.get((r0 + i, c0 + j), 0)
-            sol = mp.lu_solve(M, mp.matrix(b))
-            for j in range(n):
-                x[c0 + j] = sol[j]
-        return x
 
     def step(self, q, qd, qdd, x_float, rates: bool, stages, q_float=None) -> dict:
         """Every value at one step (mpf), from driver values ``q`` (mpf, or floats taken as
@@ -523,64 +310,36 @@ class PreciseMechanism:
         XD, XDD = zero, zero
         ratio = None
         if rates:  # the rate system: its blocks' indicator, and the rates if asked
-            out = self._call("rates", X=X, Q=Q, QD=QD, CS=CS)
-            npat = len(self.pattern)
-            A = dict(zip(self.pattern, out[:npat]))
-            ratio = self._ratio(A)
+            A, Bqd = self.rate_system(X, Q, QD, CS)
+            ratio = min((r for r in A.ratios() if r is not None), default=None)
         if rates and "velocity" in stages:
-            XD = self._solve_blocks(A, out[npat:])
+            XD = A.solve(Bqd)
             if "acceleration" in stages:
-                r = self._call("accelerations", X=X, XD=XD, Q=Q, QD=QD, QDD=QDD, CS=CS)
-                XDD = self._solve_blocks(A, r)
-        P = self.P
+                XDD = A.solve(self.accelerations_rhs(X, XD, Q, QD, QDD, CS))
+        P = self.params
         if self.scaled and "forces" in stages:  # loads over the cycle: scaled at this step
-            self.P = self._scaled_params(dict(zip(self.art["q"], Q)),
-                                         dict(zip(self.art["q"], q_float)))
-        try:
-            pts = self._call("points", X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
-            rec = {"x": X, "xd": XD, "xdd": XDD, "pts": pts, "ratio": ratio}
-            if rates and "forces" in stages:
-                F = self._forces(pts, X, CS)
-                # a gear mesh's tooth load must press: the other flank where it pulls, as
-                # the float64 runtime does (CompiledMechanism._forces)
-                flanks = self.cm.flanks
-                fidx = {nm: i for i, nm in enumerate(self.art["force_names"])}
-                for _ in range(2 * len(flanks)):
-                    pull = [m for m, nm in enumerate(flanks) if F[fidx[f"Fn_{ident(nm)}"]] < 0]
-                    if not pull:
-                        break
-                    self.P = list(self.P)
-                    for m in pull:
-                        self.P[self.flank_at + m] = -self.P[self.flank_at + m]
-                    pts = self._call("points", X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
-                    F = self._forces(pts, X, CS)
-                rec["pts"], rec["F"] = pts, F
-                rec["frame"] = self._call("frame", X=X, F=F, CS=CS)
-        finally:
-            self.P = P
+            # every factor, so that a step outside a load's table is refused
+            factors = {i: factor_mp(ld, Q[self.art.q.index(ld.driver)],
+                                     float(q_float[self.art.q.index(ld.driver)]))
+                       for i, ld in self.scaled}
+            P = self.scaled_loads(P, factors) or P
+        pts = self.call("points", P, X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
+        rec = {"x": X, "xd": XD, "xdd": XDD, "pts": pts, "ratio": ratio}
+        if rates and "forces" in stages:
+            F = self.solve_forces(pts)
+            # a gear mesh's tooth load must press: the other flank where it pulls, as the
+            # float64 runtime does (CompiledMechanism._forces)
+            at, n = self.art.flank_at, len(self.art.flanks)
+            for _ in range(2 * n):
+                pull = self.pulling(F)
+                if not any(pull):
+                    break
+                P = self.with_flanks(P, [-f if p else f for f, p in zip(P[at:at + n], pull)])
+                pts = self.call("points", P, X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
+                F = self.solve_forces(pts)
+            rec["pts"], rec["F"] = pts, F
+            rec["frame"] = self.call("frame", P, X=X, F=F, CS=CS)
         return rec
-
-    def _get(self, pts, key):
-        a, b = self.art["layout"][key]
-        return pts[a:b]
-
-    def _forces(self, pts, X, CS):
-        art = self.art
-        F = [mp.mpf(0)] * len(art["force_names"])
-        for g, lay in reversed(list(zip(art["groups"], art["forces"]))):
-            k = g["index"]
-            unk = lay["unknowns"]
-            n = len(unk)
-            A = mp.matrix(n, n)
-            for (i, j), v in zip(lay["A"], self._get(pts, f"A:{k}")):
-                A[i, j] = v
-            b = list(self._get(pts, f"b:{k}"))
-            for (i, fi), v in zip(lay["C"], self._get(pts, f"C:{k}")):
-                b[i] -= v * F[fi]
-            sol = mp.lu_solve(A, mp.matrix(b))
-            for j, u in enumerate(unk):
-                F[u] = sol[j]
-        return F
 
     # -- the sweep ------------------------------------------------------------------
     def run(self, q=None, qd=None, qdd=None) -> PreciseResult:
@@ -594,17 +353,21 @@ class PreciseMechanism:
         Qs, QDs, QDDs, Xf, _, _ = cm.step_positions(q, qd, qdd)
         status = base.status.copy()
         messages = list(base.messages)
-        stages = tuple(art["stages"])
+        stages = art.stages
         steps: list = [None] * len(status)
         with mp.workdps(self.digits):
             Qmp, rounding = self.driver_values(Qs)
+
+            def at(i, rates):  # step i, with rates or positions only
+                return self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i], rates, stages,
+                                 Qs[:, i])
+
             for i in range(len(status)):
                 if status[i] == UNASSEMBLABLE:
                     continue
                 try:
-                    steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i],
-                                         status[i] == OK, stages, Qs[:, i])
-                except _NotReal:
+                    steps[i] = at(i, status[i] == OK)
+                except NotReal:
                     status[i] = UNASSEMBLABLE
                     messages[i] = (f"no real position at {self.digits} digits (a closed form's "
                                    "square root is negative: the float64 run took a tangency)")
@@ -613,8 +376,7 @@ class PreciseMechanism:
                     messages[i] = (f"singular position: a group block is exactly singular at "
                                    f"{self.digits} digits; velocities and accelerations have no "
                                    "unique solution")
-                    steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i], False, stages,
-                                         Qs[:, i])
+                    steps[i] = at(i, False)
             K = accuracy.condition_of(base_accuracy) * self._gain(steps, status, Xf, Qs, QDs)
             # a step whose exact driver value is a singular position (a dead centre the
             # float64 run, at the rounded value, found merely ill-conditioned)
@@ -626,14 +388,13 @@ class PreciseMechanism:
                                f"run's at its rounding, times the ratio of the group blocks' "
                                f"Hadamard ratios there and here), above {SINGULAR_COND:.0e}; "
                                "velocities and accelerations have no unique solution")
-                steps[i] = self.step(Qmp[i], QDs[:, i], QDDs[:, i], Xf[:, i], False, stages,
-                                     Qs[:, i])
+                steps[i] = at(i, False)
             records = [None if s is None else self._record(s, stages) for s in steps]
         base.status = status
         base.messages = messages
         analysis = self._round_into(base, records, stages)
         analysis.accuracy = self._accuracy(analysis, K, stages, rounding)
-        return PreciseResult(analysis, self.digits, records, list(art["x"]))
+        return PreciseResult(analysis, self.digits, records, list(art.x))
 
     def _gain(self, steps, status, Xf, Qs, QDs) -> np.ndarray:
         """How much worse conditioned each ``ok`` step is at its exact driver value than the
@@ -672,139 +433,77 @@ class PreciseMechanism:
 
     def _record(self, s, stages) -> dict:
         """The step's values by name (mpf), as in :attr:`PreciseResult.steps`."""
-        scene, cm = self.scene, self.cm
+        scene, cm, art = self.scene, self.cm, self.art
         pts = s["pts"]
         levels = [0] + ([1] if "velocity" in stages else []) + ([2] if "acceleration" in stages else [])
         X, XD, XDD = s["x"], s["xd"], s["xdd"]
         rec: dict = {"x": X, "xd": XD, "xdd": XDD, "joints": {}, "links": {}, "points": {}}
         lev_names = {0: "position", 1: "velocity", 2: "acceleration"}
         for j in scene.joints:
-            rec["joints"][j.name] = {lev_names[v]: tuple(self._get(pts, f"joint:{j.name}:{v}"))
+            rec["joints"][j.name] = {lev_names[v]: tuple(art.rows(pts, f"joint:{j.name}:{v}"))
                                      for v in levels}
+        motion = {}
         for link in scene.links:
             n = link.name
             c = cm.angle_of[n]
-            (Ux, Uy), th0 = self.mframes[n]
+            origin, th0 = self.context.frame(n)
             rot = X[c] - th0
-            cr, sr = mp.cos(rot), mp.sin(rot)
-            # the link point at the global origin in the assembly configuration
-            dx, dy = -(cr * Ux - sr * Uy), -(sr * Ux + cr * Uy)
-            ux, uy = self._get(pts, f"origin:{n}:0")
-            lk = {"rotation": rot, "origin": (ux + dx, uy + dy)}
+            motion[n] = m = frame_motion(
+                mp.cos(rot), mp.sin(rot), origin, lambda v, n=n: art.rows(pts, f"origin:{n}:{v}"),
+                XD[c] if 1 in levels else None, XDD[c] if 2 in levels else None)
+            lk = {"rotation": rot, "origin": tuple(m[2:4])}
             if 1 in levels:
-                w = XD[c]
-                vx, vy = self._get(pts, f"origin:{n}:1")
-                lk["omega"] = w
-                lk["origin_velocity"] = (vx - w * dy, vy + w * dx)
+                lk["omega"], lk["origin_velocity"] = m[4], tuple(m[5:7])
             if 2 in levels:
-                w, al = XD[c], XDD[c]
-                ax, ay = self._get(pts, f"origin:{n}:2")
-                lk["alpha"] = al
-                lk["origin_acceleration"] = (ax - al * dy - w * w * dx, ay + al * dx - w * w * dy)
+                lk["alpha"], lk["origin_acceleration"] = m[7], tuple(m[8:10])
             if link.com is not None:
                 for v in levels:
                     key = "com" if v == 0 else f"com_{lev_names[v]}"
-                    lk[key] = tuple(self._get(pts, f"com:{n}:{v}"))
+                    lk[key] = tuple(art.rows(pts, f"com:{n}:{v}"))
             rec["links"][n] = lk
         for pt in scene.points:
-            lk = rec["links"][pt.link]
-            x, y = _mpf_point(pt.at)
-            c, s_ = mp.cos(lk["rotation"]), mp.sin(lk["rotation"])
-            rx, ry = c * x - s_ * y, s_ * x + c * y
-            ox, oy = lk["origin"]
-            p = {"position": (ox + rx, oy + ry)}
-            if 1 in levels:
-                w = lk["omega"]
-                vx, vy = lk["origin_velocity"]
-                p["velocity"] = (vx - w * ry, vy + w * rx)
-            if 2 in levels:
-                w, al = lk["omega"], lk["alpha"]
-                ax, ay = lk["origin_acceleration"]
-                p["acceleration"] = (ax - al * ry - w * w * rx, ay + al * rx - w * w * ry)
-            rec["points"][pt.name] = p
+            got = rigid_point(motion[pt.link], self.context.num.point(pt.at))
+            rec["points"][pt.name] = {lev_names[v]: got[v] for v in levels}
         if "F" in s:
-            F = s["F"]
-            fidx = {nm: i for i, nm in enumerate(self.art["force_names"])}
-            reactions, moments = {}, {}
-            for j in scene.joints:
-                n = ident(j.name)
-                if j.type == "R":
-                    reactions[j.name] = (F[fidx[f"R_{n}x"]], F[fidx[f"R_{n}y"]])
-                    moments[j.name] = mp.mpf(0)
-                elif j.type == "G":  # the tooth load on the line of action (gear a on gear b)
-                    ux, uy = self._get(pts, f"mesh:{j.name}")
-                    Fn = F[fidx[f"Fn_{n}"]]
-                    reactions[j.name] = (ux * Fn, uy * Fn)
-                    moments[j.name] = mp.mpf(0)
-                else:
-                    ux, uy = self._get(pts, f"slide:{j.name}")
-                    Nn = F[fidx[f"N_{n}"]]
-                    reactions[j.name] = (-uy * Nn, ux * Nn)
-                    moments[j.name] = F[fidx[f"M_{n}"]]
-            rec["reactions"] = reactions
-            rec["reaction_moments"] = moments
-            rec["driving"] = {d.joint: F[fidx[("tau_" if d.kind == "R" else "f_") + ident(d.joint)]]
-                              for d in scene.drivers}
+            reactions, driving = self.reactions(scene, s["F"], lambda key: art.rows(pts, key),
+                                                mp.mpf(0))
+            rec["reactions"] = {name: r[:2] for name, r in reactions.items()}
+            rec["reaction_moments"] = {name: r[2] for name, r in reactions.items()}
+            rec["driving"] = driving
             rec["frame"] = tuple(s["frame"])
         return rec
 
     def _round_into(self, res, records, stages):
         """``res`` (the float64 run's Analysis) with every value replaced by the mpmath one."""
-        N = len(res.status)
-        ok = res.status == OK
-        has_pos = res.status != UNASSEMBLABLE
-
-        def put(arr, i, value):
-            if arr.ndim == 1:
-                arr[i] = float(value)
-            else:
-                arr[i, 0], arr[i, 1] = float(value[0]), float(value[1])
-
-        def blank(arr, mask):
-            arr[~mask] = np.nan
-
-        pairs = []  # (array, getter, needs rates)
-        for name, jk in res.joints.items():
-            pairs.append((jk.position, lambda r, n=name: r["joints"][n]["position"], False))
-            if jk.velocity is not None:
-                pairs.append((jk.velocity, lambda r, n=name: r["joints"][n]["velocity"], True))
-            if jk.acceleration is not None:
-                pairs.append((jk.acceleration, lambda r, n=name: r["joints"][n]["acceleration"], True))
-        for name, pk in res.points.items():
-            for fld, rate in (("position", False), ("velocity", True), ("acceleration", True)):
-                if getattr(pk, fld) is not None:
-                    pairs.append((getattr(pk, fld), lambda r, n=name, f=fld: r["points"][n][f], rate))
-        for name, lk in res.links.items():
-            for fld, rate in (("rotation", False), ("origin", False), ("omega", True),
-                              ("alpha", True), ("origin_velocity", True),
-                              ("origin_acceleration", True), ("com", False),
-                              ("com_velocity", True), ("com_acceleration", True)):
-                arr = getattr(lk, fld)
-                if arr is not None:
-                    pairs.append((arr, lambda r, n=name, f=fld: r["links"][n][f], rate))
+        ok, has_pos = res.status == OK, res.status != UNASSEMBLABLE
+        # (array, its value in a record, whether it needs rates)
+        targets = [(getattr(kin, f), lambda r, s=section, n=name, f=f: r[s][n][f],
+                    f not in _AT_POSITIONS)
+                   for section, fields in _ROUNDED for name, kin in getattr(res, section).items()
+                   for f in fields if getattr(kin, f) is not None]
         fo = res.forces
         if fo is not None:
             fo.method = "mpmath"
             fo.groups = [GroupForces(tuple(g.links), "mpmath") for g in fo.groups]
-            for name in fo.reactions:
-                pairs.append((fo.reactions[name], lambda r, n=name: r["reactions"][n], True))
-                pairs.append((fo.reaction_moments[name], lambda r, n=name: r["reaction_moments"][n], True))
-            for name in fo.driving:
-                pairs.append((fo.driving[name], lambda r, n=name: r["driving"][n], True))
-            pairs.append((fo.frame_force, lambda r: r["frame"][:2], True))
-            pairs.append((fo.frame_moment, lambda r: r["frame"][2], True))
-        for arr, get, rate in pairs:
+            for section in ("reactions", "reaction_moments", "driving"):
+                targets += [(arr, lambda r, s=section, n=name: r[s][n], True)
+                            for name, arr in getattr(fo, section).items()]
+            targets += [(fo.frame_force, lambda r: r["frame"][:2], True),
+                        (fo.frame_moment, lambda r: r["frame"][2], True)]
+        for arr, get, rate in targets:
             if not arr.flags.writeable:
                 continue  # pragma: no cover - results own their arrays
             mask = ok if rate else has_pos
-            blank(arr, mask)
+            arr[~mask] = np.nan
             for i in np.flatnonzero(mask):
                 rec = records[i]
-                if rec is None or (rate and "velocity" not in stages and "F" not in rec
-                                   and "reactions" not in rec):
+                if rec is None or (rate and "velocity" not in stages and "reactions" not in rec):
                     continue
-                put(arr, i, get(rec))
-        del N
+                value = get(rec)
+                if arr.ndim == 1:
+                    arr[i] = float(value)
+                else:
+                    arr[i, 0], arr[i, 1] = float(value[0]), float(value[1])
         return res
 
 

@@ -47,7 +47,7 @@ def scene_parameters(scene) -> list:
 
     scene = _as_scene(scene)
     model = Model(scene, forces=_has_forces(scene))
-    return parameter_list(scene, model.names, model.base)
+    return parameter_list(scene, model.names, model.params)
 
 
 def _has_forces(scene) -> bool:
@@ -222,7 +222,7 @@ def _designs(scene, parameters) -> Designs:
                                        "MonteCarlo or the path of a CSV file is expected, got "
                                        f"{type(parameters).__name__}")
     model, _ = compiled_state(Spec(scene, (), ("assemblable",), forces=True))
-    base = {n: v for n, v in zip(model.names, model.base)}
+    base = {n: v for n, v in zip(model.names, model.params)}
     for n in (parameters.tolerance or {}):
         if n not in base or n.startswith("theta0_"):
             check_names(Designs((n,), np.zeros((1, 1)), "monte-carlo"), model.names, "tolerance")
@@ -272,7 +272,7 @@ def _write_scenes(model, designs, folder: Path, size: int, rows=None, problems=N
     for a in range(0, len(rows), size):
         which = rows[a:a + size]
         vals = designs.values[which]
-        P = model.params(designs.names, vals)
+        P = model.design_params(designs.names, vals)
         P, X0, ok, joints0, _ = model.assemble(P, len(vals))
         for d, i in enumerate(which.tolist()):
             if not ok[d]:

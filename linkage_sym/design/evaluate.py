@@ -1,10 +1,15 @@
 """Solve many designs of one topology at once with the compiled mechanism's functions.
 
 The compiled mechanism (:mod:`linkage_sym.codegen.runtime`) takes every named
-parameter as an argument; passing arrays (designs x steps, flattened design by
-design) evaluates a whole chunk of designs in one call of each generated
-function.  For a chunk of designs :meth:`Model.solve` does what
-``CompiledMechanism.run`` does for one scene, with the same functions:
+parameter as an argument; passing arrays evaluates a whole chunk of designs in one
+call of each generated function.  :class:`Model` is the designs' backend of the one
+evaluator of generated code (:class:`~linkage_sym.codegen.evaluator.NumpyEvaluator`:
+the calls, the walk over the position steps, the block solves
+(:class:`~linkage_sym.codegen.blocks.BlockSystem`), the condition numbers, the force
+blocks), its numbers arrays over designs x steps: (n, 1) parameters broadcast against
+(N,) driver values, so that a value that does not depend on the design (the crank's
+angle) is computed once per step.  For a chunk of designs :meth:`Model.solve` does
+what ``CompiledMechanism.run`` does for one scene, with the same functions:
 
 1. **the design's assembly configuration**: the closed forms at the scene's
    driver values ``q0`` with the scene's assembly-mode signs.  The assembly
@@ -12,13 +17,14 @@ function.  For a chunk of designs :meth:`Model.solve` does what
    joints) are then the design's own: set to that configuration's angles and
    the closed forms evaluated again.  A design whose closed forms have no real
    root at ``q0`` cannot be assembled (every metric NaN, ``assemblable`` 0);
-2. **positions** along the scene's solving path (:func:`~linkage_sym.numeric.engine.sweep.solving_path`:
+2. **positions** along the scene's solving path (:func:`~linkage_sym.numeric.engine.run.solving_path`:
    from ``q0`` through the steps), angles unwrapped along it from the assembly
    configuration, as the runtimes do;
 3. **the singularity screen**: each group block's Hadamard ratio
-   (:data:`~linkage_sym.numeric.engine.sweep.SCREEN`), then the dimensionless
+   (:meth:`~linkage_sym.codegen.blocks.BlockSystem.ratios`) against
+   :data:`~linkage_sym.numeric.engine.run.SCREEN`, then the dimensionless
    condition number (the design's own size) against
-   :data:`~linkage_sym.numeric.engine.sweep.SINGULAR_COND`; a step is ``ok`` when it
+   :data:`~linkage_sym.numeric.engine.run.SINGULAR_COND`; a step is ``ok`` when it
    is assembled and not singular;
 4. only what the metrics need: the velocities (along the sweep for limit
    positions, at the scene's speeds for forces), accelerations, the points
@@ -32,7 +38,7 @@ actuator groups) are continued from the scene's assembly configuration to each
 design's, and such designs are then solved one at a time by the numeric plan
 (:mod:`linkage_sym.design.newton_groups`).
 
-Size: about 600 lines, one class -- :class:`Model` holds a chunk's broadcast
+Size: about 530 lines, one class -- :class:`Model` holds a chunk's broadcast
 parameters, assembly signs and work arrays, which each of the four stages
 above reads; the solved chunk (:class:`~linkage_sym.design.solution.Solution`),
 the metrics (:mod:`~linkage_sym.design.metrics`) and the groups without a
@@ -46,6 +52,8 @@ import math
 
 import numpy as np
 
+from linkage_sym.codegen.blocks import BlockSystem, full
+from linkage_sym.codegen.evaluator import NumpyEvaluator
 from linkage_sym.design.solution import Solution
 from linkage_sym.model import OUTPUTS
 from linkage_sym.numeric.engine.run import (
@@ -58,6 +66,7 @@ from linkage_sym.numeric.engine.run import (
     solving_path,
 )
 from linkage_sym.structure.parameters import driver_q0, ident
+from linkage_sym.structure.recipes import AssemblyAngle
 
 __all__ = ["Model", "Solution", "compiled"]
 
@@ -74,56 +83,61 @@ def compiled(scene):
     return cm
 
 
-def _full(v, E):
-    return np.broadcast_to(np.asarray(v, float), (E,))
+class _Designs:
+    """What the position steps of a chunk read (:meth:`Model.positions`): the designs'
+    parameters ``P``, the driver values ``Q`` and ``newton(step, X)``, a Newton group's
+    coordinates (at assembly only)."""
+
+    def __init__(self, P, Q, newton=None):
+        self.P, self.Q, self.newton = P, Q, newton
 
 
-class Model:
-    """The compiled mechanism of a scene's topology, ready to solve chunks of designs.
+class Model(NumpyEvaluator):
+    """The compiled mechanism of a scene's topology, ready to solve chunks of designs: the
+    designs' backend of the evaluator (:class:`~linkage_sym.codegen.evaluator.NumpyEvaluator`),
+    its numbers arrays over designs x steps.
 
     Parameters
     ----------
     scene : Scene
     forces : bool
         Compile the force blocks (reactions, efforts) too.
+
+    Attributes
+    ----------
+    params : list of float
+        The scene's ``P`` (its parameters, then the assembly-mode signs); a chunk's is
+        :meth:`design_params`.
     """
 
     def __init__(self, scene, forces: bool = False):
         self.scene = scene
         kin = dataclasses.replace(scene, outputs=OUTPUTS if forces else ("kinematics",))
         self.cm = cm = compiled(kin)
-        art = self.art = cm.art
-        self.newton_groups = [g["label"] for g in art["groups"] if not g["closed"]]
+        super().__init__(cm.art, cm.functions, [float(v) for v in cm.params])
+        art = self.art
+        self.newton_groups = [g.label for g in art.groups if not g.closed]
         self.one_at_a_time = bool(self.newton_groups)
         self._continuations = None  # the Newton groups' ParameterContinuation, made on first use
         self.names = list(cm.param_names)
         self.index = {n: i for i, n in enumerate(self.names)}
-        self.recipes = {tuple(tuple(x) if isinstance(x, list) else x for x in r): i
-                        for i, (_, r) in enumerate(art["params"])}
-        self.base = [float(v) for v in cm.params]
-        self.m = cm.m
-        self.qnames = list(art["q"])
+        self.recipes = {p.recipe.key: i for i, p in enumerate(art.params)}
         q, qd, qdd = scene_sweep(scene)
-        self.Q = np.array([q[k] for k in self.qnames])
-        self.QD = np.array([qd[k] for k in self.qnames])
-        self.QDD = np.array([qdd[k] for k in self.qnames])
+        self.Q = np.array([q[k] for k in art.q])
+        self.QD = np.array([qd[k] for k in art.q])
+        self.QDD = np.array([qdd[k] for k in art.q])
         self.N = self.Q.shape[1]
         q0 = driver_q0(scene)
-        self.q0 = np.array([q0[k] for k in self.qnames])
-        self.path, self.out, _ = solving_path(scene, self.qnames, q0, cm.L, self.Q)
-        self.slope = (np.zeros(len(self.qnames)) if self.N == 1
+        self.q0 = np.array([q0[k] for k in art.q])
+        self.path, self.out, _ = solving_path(scene, art.q, q0, cm.L, self.Q)
+        self.slope = (np.zeros(len(art.q)) if self.N == 1
                       else (self.Q[:, -1] - self.Q[:, 0]) / (self.N - 1))
-        self.theta0 = [(i, cm.angle_of[r[1]]) for r, i in self.recipes.items() if r[0] == "theta0"]
-        self.angle_cols = np.flatnonzero(cm.is_angle)
+        self.theta0 = [(i, cm.angle_of[p.recipe.args[0]]) for i, p in enumerate(art.params)
+                       if isinstance(p.recipe, AssemblyAngle)]
         self.angle_of = dict(cm.angle_of)
         # the angles of links turned by a driver on the ground: the driver's value at every
         # step, never moved by the rule for rotations across a gap
         self.driven_angles = {cm.angle_of[n] for n in ground_driven(scene)}
-        self.blocks = list(cm.blocks)
-        self.layout = art["layout"]
-        self.stages = tuple(art["stages"])
-        self.rows_length = np.array(art["rows_length"], bool)
-        self.cols_length = np.array(art["cols_length"], bool)
         self.frames = cm.frames
         self.simple_path = (self.path.shape[1] == self.N + 1
                             and np.array_equal(self.out, np.arange(1, self.N + 1)))
@@ -131,44 +145,49 @@ class Model:
 
     # -- parameters -------------------------------------------------------------------------
     def value(self, P, recipe, default):
-        """A parameter of the designs by its recipe (``default`` when the derivation has no
-        such parameter: a constant of the topology's scene)."""
+        """A parameter of the designs by its recipe's key (``default`` when the derivation
+        has no such parameter: a constant of the topology's scene)."""
         i = self.recipes.get(recipe)
         return default if i is None else P[i]
 
-    def params(self, names, values) -> list:
+    def design_params(self, names, values) -> list:
         """The ``P`` argument of a chunk: the scene's values with ``names`` set to the
         columns of ``values`` (n, k)."""
-        P = list(self.base)
+        P = list(self.params)
         for k, n in enumerate(names):
             P[self.index[n]] = np.ascontiguousarray(values[:, k], dtype=float)
         return P
 
-    # -- generated functions -------------------------------------------------------------------
-    def call(self, name, P, X=None, XD=None, XDD=None, Q=None, QD=None, QDD=None, F=None, CS=(None, None)):
-        return self.cm.functions[name](X, XD, XDD, Q, QD, QDD, F, P, CS[0], CS[1])
+    # -- the evaluator's hooks ----------------------------------------------------------------
+    def block_system(self, entries, shape):
+        """``A`` with its entries as the generated function returned them: one that does
+        not depend on the design ((N,), or a number) is not broadcast, so that a block's
+        determinant and solve compute it once per step."""
+        return BlockSystem(entries, self.art.blocks, self.m, shape)
 
-    def positions(self, P, Q, E, newton=None, keep=False):
-        """Coordinates (m, *E) from the closed forms at driver values ``Q`` (``E``: the
-        entries' shape, an int or (n, N) with (n, 1) parameters and (N,) driver values);
-        ``newton(step, X)`` gives a Newton group's coordinates (at assembly only).  With
-        ``keep``, also each coordinate as the closed forms returned it (unbroadcast)."""
-        X = [None] * self.m
+    def vector(self, values, shape):
+        """A generated function's outputs as it returned them: a design-independent row of
+        a right-hand side stays (N,) (or a number), as :meth:`block_system`'s entries."""
+        return list(values)
+
+    def newton_step(self, step, X, ctx):
+        """A group without a closed form: ``ctx.newton`` (the parameter continuation)."""
+        for c, v in zip(step.x, ctx.newton(step, X)):
+            X[c] = v
+
+    def positions(self, ctx: _Designs, E, keep=False):
+        """Coordinates (m, *E) by the position steps at ``ctx`` (``E``: the entries' shape,
+        an int or (n, N) with (n, 1) parameters and (N,) driver values).  With ``keep``,
+        also each coordinate as the closed forms returned it (unbroadcast)."""
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            for st in self.art["steps"]:
-                if st["kind"] == "newton":
-                    vals = newton(st, X)
-                else:
-                    vals = self.call(st["function"], P, X=X, Q=Q)
-                for c, v in zip(st["x"], vals):
-                    X[c] = v
+            X = self.walk([None] * self.m, ctx)
         out = np.empty((self.m,) + ((E,) if isinstance(E, int) else tuple(E)))
         for c, v in enumerate(X):
             out[c] = v
         return (out, X) if keep else out
 
     def _newton_at_q0(self, P, Q, n, first=None):
-        """A ``newton`` argument of :meth:`positions` at the scene's driver values: each
+        """A ``newton`` hook of :class:`_Designs` at the scene's driver values: each
         design's Newton groups continued in the parameters from the scene's assembly
         configuration (:class:`~linkage_sym.design.newton_groups.ParameterContinuation`),
         or from ``first`` (a previous call's record) when given.  Records the designs'
@@ -176,109 +195,44 @@ class Model:
         from linkage_sym.design.newton_groups import ParameterContinuation
 
         if self._continuations is None:
-            self._continuations = {st["function"]: ParameterContinuation(self, st)
-                                   for st in self.art["steps"] if st["kind"] == "newton"}
+            self._continuations = {st.function: ParameterContinuation(self, st)
+                                   for st in self.art.newton_steps}
         record = {}
 
         def solve(step, X):
-            pc = self._continuations[step["function"]]
+            pc = self._continuations[step.function]
             start = None
             if first is not None:
-                x1, c1 = first[step["function"]]
+                x1, c1 = first[step.function]
                 start = lambda d: ((None, None) if c1[d] is None or not np.isfinite(x1[:, d]).all()  # noqa: E731
                                    else (x1[:, d] / pc.scale, c1[d]))
             x, ctxs = pc.solve(P, Q, X, n, start)
-            record[step["function"]] = (x, ctxs)
+            record[step.function] = (x, ctxs)
             return list(x)
 
         return solve, record
 
-    def rates(self, P, X, Q, QD, CS, E):
-        """The nonzero entries of ``A`` (dict ``(i, j) -> array``) and ``B qd`` (list), as
-        the generated function returns them (arrays or numbers broadcasting to ``E``)."""
-        with np.errstate(invalid="ignore", over="ignore"):
-            out = self.call("rates", P, X=X, Q=Q, QD=QD, CS=CS)
-        pat = self.art["pattern"]
-        return {(i, j): v for (i, j), v in zip(pat, out)}, list(out[len(pat):])
-
-    def solve_blocks(self, A, rhs, E):
-        """The block lower-triangular ``A x = rhs`` (group by group, Cramer for 2x2), ``A``
-        and ``rhs`` as :meth:`rates` returns them; ``x`` (m, *E)."""
-        x = np.zeros((self.m,) + ((E,) if isinstance(E, int) else tuple(E)))
-        zero = 0.0
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            for r0, r1, c0, c1 in self.blocks:
-                b = []
-                for i in range(r0, r1):
-                    v = rhs[i]
-                    for j in range(c0):
-                        a = A.get((i, j))
-                        if a is not None:
-                            v = v - a * x[j]
-                    b.append(v)
-                k = c1 - c0
-                M = [[A.get((i, j), zero) for j in range(c0, c1)] for i in range(r0, r1)]
-                if k == 1:
-                    x[c0] = b[0] / M[0][0]
-                elif k == 2:
-                    det = M[0][0] * M[1][1] - M[0][1] * M[1][0]
-                    x[c0] = (b[0] * M[1][1] - b[1] * M[0][1]) / det
-                    x[c0 + 1] = (M[0][0] * b[1] - M[1][0] * b[0]) / det
-                else:
-                    shp = x.shape[1:]
-                    Md = np.moveaxis(np.array([[np.broadcast_to(v, shp) for v in row] for row in M]),
-                                     (0, 1), (-2, -1))
-                    bd = np.moveaxis(np.array([np.broadcast_to(v, shp) for v in b]), 0, -1)
-                    x[c0:c1] = np.moveaxis(np.linalg.solve(Md, bd[..., None])[..., 0], -1, 0)
-        return x
-
-    def screen(self, A, L, E, valid=None):
-        """Singular entries (bool, shape ``E``), or ``None`` when there is none: a block's
-        Hadamard ratio (by rows, by columns) below :data:`SCREEN`, then, at those entries
-        only, the dimensionless condition number (size ``L``, broadcasting to ``E``) above
-        :data:`SINGULAR_COND`.  ``valid``: the entries with positions (default all)."""
-        shp = (E,) if isinstance(E, int) else tuple(E)
+    def screen(self, A, L, valid=None):
+        """Singular entries (bool, ``A.shape``), or ``None`` when there is none: a block's
+        Hadamard ratio (:meth:`~linkage_sym.codegen.blocks.BlockSystem.ratios`) below
+        :data:`SCREEN`, then, at those entries only, the dimensionless condition number
+        (size ``L``, broadcasting to the entries) above :data:`SINGULAR_COND`.  ``valid``:
+        the entries with positions (default all)."""
         flag = None
-        s2 = SCREEN * SCREEN
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            for r0, r1, c0, c1 in self.blocks:
-                if c1 - c0 < 2:
-                    continue
-                M = [[A.get((i, j), 0.0) for j in range(c0, c1)] for i in range(r0, r1)]
-                if c1 - c0 == 2:
-                    (a, b), (c, d) = M
-                    det = a * d - b * c
-                    det2 = det * det
-                    aa, bb, cc, dd = a * a, b * b, c * c, d * d
-                    low = (det2 < s2 * ((aa + bb) * (cc + dd))) | (det2 < s2 * ((aa + cc) * (bb + dd)))
-                else:
-                    Md = np.moveaxis(np.array([[np.broadcast_to(v, shp) for v in row] for row in M]),
-                                     (0, 1), (-2, -1))
-                    det = np.abs(np.linalg.det(Md))
-                    low = (det / np.prod(np.linalg.norm(Md, axis=-1), axis=-1) < SCREEN) | (
-                        det / np.prod(np.linalg.norm(Md, axis=-2), axis=-1) < SCREEN)
+        for ratio in A.ratios():
+            if ratio is not None:
+                with np.errstate(invalid="ignore"):
+                    low = ratio < SCREEN
                 flag = low if flag is None else flag | low
         if flag is None:
             return None
-        flag = np.broadcast_to(flag, shp)
+        flag = np.broadcast_to(flag, A.shape)
         if valid is not None:
             flag = flag & valid
         if not flag.any():
             return None
-        Md = np.zeros((int(flag.sum()), self.m, self.m))
-        for (i, j), v in A.items():
-            Md[:, i, j] = np.broadcast_to(v, shp)[flag]
-        Ls = np.broadcast_to(L, shp)[flag]
-        rl = np.where(self.rows_length[None, :], 1.0 / Ls[:, None], 1.0)
-        cl = np.where(self.cols_length[None, :], Ls[:, None], 1.0)
-        Ms = Md * rl[:, :, None] * cl[:, None, :]
-        good = np.isfinite(Ms).all(axis=(1, 2))
-        cond = np.full(len(Ms), np.inf)
-        if good.any():
-            sv = np.linalg.svd(Ms[good], compute_uv=False)
-            with np.errstate(divide="ignore"):
-                cond[good] = sv[:, 0] / sv[:, -1]
-        sing = np.zeros(shp, bool)
+        cond = self.condition_numbers(A.dense(flag), np.broadcast_to(L, A.shape)[flag])
+        sing = np.zeros(A.shape, bool)
         sing[flag] = ~(cond <= SINGULAR_COND)
         return sing if sing.any() else None
 
@@ -288,28 +242,27 @@ class Model:
         ``(P with the designs' theta0, X0 (m, n), assembled (n,), joints0, L)``."""
         Q = [np.full(n, v) for v in self.q0]
         newton, first = self._newton_at_q0(P, Q, n) if self.one_at_a_time else (None, None)
-        X0 = self.positions(P, Q, n, newton)
+        X0 = self.positions(_Designs(P, Q, newton), n)
         if self.theta0:
             P = list(P)
             for i, c in self.theta0:
                 P[i] = X0[c].copy()
             if self.one_at_a_time:
                 newton, _ = self._newton_at_q0(P, Q, n, first)
-            X0 = self.positions(P, Q, n, newton)
+            X0 = self.positions(_Designs(P, Q, newton), n)
         assembled = np.isfinite(X0).all(axis=0)
         z = [np.zeros(n)] * self.m
-        zq = [np.zeros(n)] * len(self.qnames)
+        zq = [np.zeros(n)] * len(self.q0)
         with np.errstate(invalid="ignore", divide="ignore"):
             pts = self.call("points", P, X=list(X0), XD=z, XDD=z, Q=Q, QD=zq, QDD=zq,
                             CS=(list(np.cos(X0)), list(np.sin(X0))))
-        joints0 = {}
-        for j in self.scene.joints:
-            a, _ = self.layout[f"joint:{j.name}:0"]
-            joints0[j.name] = np.array([_full(pts[a], n), _full(pts[a + 1], n)])
+        def at(key):  # a point's position (2, n)
+            return np.array([full(v, n) for v in self.art.rows(pts, key)])
+
+        joints0 = {j.name: at(f"joint:{j.name}:0") for j in self.scene.joints}
         xy = np.array(list(joints0.values()))  # (J, 2, n)
         for lk in self.scene.link_names:  # the link frames' origins (a P joint's moves along it)
-            a, _ = self.layout[f"origin:{lk}:0"]
-            joints0["origin:" + lk] = np.array([_full(pts[a], n), _full(pts[a + 1], n)])
+            joints0["origin:" + lk] = at(f"origin:{lk}:0")
         L = np.zeros(n)
         for i in range(len(xy)):
             for k in range(i + 1, len(xy)):
@@ -321,8 +274,7 @@ class Model:
         if self._tiles.get("n") != n:
             self._tiles = {"n": n, "Q": [np.tile(r, n) for r in self.Q],
                            "QD": [np.tile(r, n) for r in self.QD],
-                           "QDD": [np.tile(r, n) for r in self.QDD],
-                           "slope": [np.full(n * self.N, s) for s in self.slope]}
+                           "QDD": [np.tile(r, n) for r in self.QDD]}
         return self._tiles
 
     def positions_at_steps(self, P, X0, assembled, n, unwrap):
@@ -339,7 +291,7 @@ class Model:
         simple = self.simple_path  # the path is the assembly configuration, then the steps
         K = N if simple else self.path.shape[1]
         Q = list(self.Q) if simple else list(self.path)
-        X, raw = self.positions(P, Q, (n, K), keep=True)
+        X, raw = self.positions(_Designs(P, Q), (n, K), keep=True)
         with np.errstate(invalid="ignore"):
             valid = np.isfinite(X).all(axis=0)
         valid &= assembled[:, None]
@@ -398,7 +350,8 @@ class Model:
         return C, S
 
     def solve(self, P, n, need, unwrap=()) -> Solution:
-        """Solve ``n`` designs (parameters ``P``, from :meth:`params`) at the sweep's steps.
+        """Solve ``n`` designs (parameters ``P``, from :meth:`design_params`) at the sweep's
+        steps.
 
         ``need``: a set of ``"rate_t"`` (rates along the steps), ``"velocity"``,
         ``"acceleration"``, ``"points"``, ``"forces"``; ``unwrap``: the coordinates
@@ -424,16 +377,15 @@ class Model:
         sol = Solution(n, N, P, assembled, X0, joints0, L, X, pos_ok, pos_ok, model=self)
         C, S = self._trig(X, raw, pos_ok, every)
         sol.C, sol.S = C, S
-        CS = (list(C), list(S))
-        Xl = list(X)
-        Qb = list(self.Q)
-        A, Bqt = self.rates(Pb, Xl, Qb, [float(s) for s in self.slope], CS, shape)
-        sing = self.screen(A, L[:, None], shape, None if every else pos_ok)
+        with np.errstate(invalid="ignore", over="ignore"):
+            A, Bqt = self.rate_system(list(X), list(self.Q), [float(s) for s in self.slope],
+                                      (list(C), list(S)), Pb, shape)
+        sing = self.screen(A, L[:, None], None if every else pos_ok)
         ok = pos_ok if sing is None else pos_ok & ~sing
         sol.ok = ok
         all_ok = sing is None and every
         if "rate_t" in need:
-            rt = self.solve_blocks(A, Bqt, shape)
+            rt = A.solve(Bqt)
             if not all_ok:
                 rt[:, ~ok] = np.nan
             sol.rate_t = rt
@@ -444,27 +396,28 @@ class Model:
         idx = None if all_ok else np.flatnonzero(ok.ravel())
         sel = (lambda r: r) if idx is None else (lambda r: r[idx])
         Ko = E if idx is None else len(idx)
-        Xk = X.reshape(m, E) if idx is None else X.reshape(m, E)[:, idx]
-        Ck = C.reshape(m, E) if idx is None else C.reshape(m, E)[:, idx]
-        Sk = S.reshape(m, E) if idx is None else S.reshape(m, E)[:, idx]
+        Xk, Ck, Sk = (V.reshape(m, E) if idx is None else V.reshape(m, E)[:, idx] for V in (X, C, S))
         CSk = (list(Ck), list(Sk))
         Pk = [sel(np.repeat(v, N)) if np.ndim(v) else v for v in P]
-        Qk = [sel(r) for r in tiles["Q"]]
-        Ak = {k: sel(np.broadcast_to(v, shape).reshape(E)) for k, v in A.items()}
-        QDo = [sel(r) for r in tiles["QD"]]
-        QDDo = [sel(r) for r in tiles["QDD"]]
-        _, Bqd = self.rates(Pk, list(Xk), Qk, QDo, CSk, Ko)
-        XD = self.solve_blocks(Ak, Bqd, Ko)
-        r = self.call("accelerations", Pk, X=list(Xk), XD=list(XD), Q=Qk, QD=QDo, QDD=QDDo, CS=CSk)
-        XDD = self.solve_blocks(Ak, [_full(v, Ko) for v in r], Ko)
+        Qk, QDo, QDDo = ([sel(r) for r in tiles[k]] for k in ("Q", "QD", "QDD"))
+        # A at the ok entries, flattened design by design: the first rate system's entries
+        Ak = BlockSystem({ij: sel(np.broadcast_to(v, shape).reshape(E)) for ij, v in A.entries.items()},
+                         self.art.blocks, m, Ko)
+        with np.errstate(invalid="ignore", over="ignore"):
+            _, Bqd = self.rate_system(list(Xk), Qk, QDo, CSk, Pk, Ko)
+        XD = Ak.solve(Bqd)
+        XDD = Ak.solve(self.accelerations_rhs(list(Xk), list(XD), Qk, QDo, QDDo, CSk, Pk, Ko))
         sol.XD = self._spread_rows(XD, idx, n)
         sol.XDD = self._spread_rows(XDD, idx, n)
         if not ({"points", "forces"} & need):
             return sol
+        # loads over the cycle scaled at each entry's driver values, as the runtimes do
+        Pf = (self.loads_at(self.scene, dict(zip(self.art.q, Qk)), Pk) if "forces" in need
+              else None) or Pk
         with np.errstate(invalid="ignore", divide="ignore"):
-            pts = self.call("points", Pk, X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk,
+            pts = self.call("points", Pf, X=list(Xk), XD=list(XD), XDD=list(XDD), Q=Qk,
                             QD=QDo, QDD=QDDo, CS=CSk)
-        pts = [_full(v, Ko) for v in pts]
+        pts = [full(v, Ko) for v in pts]
         sol.points = list(self._spread_rows(np.array(pts), idx, n))
         if sing is not None:  # a singular step keeps its positions (as the runtimes' results do)
             bad = np.flatnonzero((pos_ok & sing).ravel())
@@ -474,8 +427,7 @@ class Model:
                                    [r[bad] for r in tiles["Q"]], C.reshape(m, E)[:, bad],
                                    S.reshape(m, E)[:, bad])
         if "forces" in need:
-            F = self.forces(Pk, pts, Xk, CSk, Ko)
-            sol.forces = self._spread_rows(F, idx, n)
+            sol.forces = self._spread_rows(np.array(self.solve_forces(pts)), idx, n)
         return sol
 
     def _positions_at(self, sol, where, X, P, Q, C, S):
@@ -483,14 +435,14 @@ class Model:
         at the entries ``where`` of ``sol.points``, whose rates are not defined (singular
         steps); the other rows stay NaN there."""
         k = len(where)
-        z, zq = [np.zeros(k)] * self.m, [np.zeros(k)] * len(self.qnames)
+        z, zq = [np.zeros(k)] * self.m, [np.zeros(k)] * len(self.q0)
         with np.errstate(invalid="ignore", divide="ignore"):
             pts = self.call("points", P, X=list(X), XD=z, XDD=z, Q=Q, QD=zq, QDD=zq,
                             CS=(list(C), list(S)))
-        for key, (a, b) in self.layout.items():
+        for key, (a, b) in self.art.layout.items():
             if key.endswith(":0") and key.startswith(("joint:", "origin:", "com:")):
                 for r in range(a, b):
-                    sol.points[r].ravel()[where] = _full(pts[r], k)
+                    sol.points[r].ravel()[where] = full(pts[r], k)
 
     def _spread_rows(self, V, idx, n):
         """Rows (r, E') at the entries ``idx`` (None: every entry) as (r, n, N), NaN elsewhere."""
@@ -500,69 +452,49 @@ class Model:
         out[:, idx] = V
         return out.reshape(len(V), n, self.N)
 
-    def forces(self, P, pts, X, CS, K):
-        """Reactions and efforts (nF, K): each group's block from the last group back."""
-        art = self.art
-        Fv = np.zeros((len(art["force_names"]), K))
-        for g, lay in reversed(list(zip(art["groups"], art["forces"]))):
-            k = g["index"]
-            unk = lay["unknowns"]
-            A = np.zeros((K, len(unk), len(unk)))
-            a0, _ = self.layout[f"A:{k}"]
-            for e, (i, j) in enumerate(lay["A"]):
-                A[:, i, j] = pts[a0 + e]
-            b0, b1 = self.layout[f"b:{k}"]
-            b = np.stack(pts[b0:b1], axis=1)
-            c0, _ = self.layout[f"C:{k}"]
-            for e, (i, fi) in enumerate(lay["C"]):
-                b[:, i] -= pts[c0 + e] * Fv[fi]
-            with np.errstate(invalid="ignore", divide="ignore"):
-                Fv[unk] = np.linalg.solve(A, b[..., None])[..., 0].T
-        return Fv
-
-    def force_index(self, name):
-        return self.art["force_names"].index(name)
-
-    def slide_unit(self, sol, joint):
-        a, _ = self.layout[f"slide:{joint}"]
-        return sol.points[a], sol.points[a + 1]
-
+    # -- what the metrics read -----------------------------------------------------------------
     def point_rows(self, key):
-        a, b = self.layout[key]
-        return a, b
+        """Rows ``(a, b)`` of the points function's outputs under a layout key."""
+        return self.art.layout[key]
 
     def reaction(self, sol, joint) -> np.ndarray:
         """Magnitude (n, N) of the reaction at ``joint`` (an ``R`` joint's force, a ``P``
         joint's normal force)."""
-        n = ident(joint)
-        j = self.scene.joint(joint)
-        if j.type == "R":
-            return np.hypot(sol.forces[self.force_index(f"R_{n}x")],
-                            sol.forces[self.force_index(f"R_{n}y")])
-        return np.abs(sol.forces[self.force_index(f"N_{n}")])
+        n, fidx = ident(joint), self.art.force_index()
+        if self.scene.joint(joint).type == "R":
+            return np.hypot(sol.forces[fidx[f"R_{n}x"]], sol.forces[fidx[f"R_{n}y"]])
+        return np.abs(sol.forces[fidx[f"N_{n}"]])
 
     def effort(self, sol, driver) -> np.ndarray:
+        """The driving torque or force (n, N) at ``driver``."""
         d = next(d for d in self.scene.drivers if d.joint == driver)
-        return sol.forces[self.force_index(("tau_" if d.kind == "R" else "f_") + ident(driver))]
+        return sol.forces[self.art.force_index()[("tau_" if d.kind == "R" else "f_") + ident(driver)]]
+
+    def drivers_at(self, t) -> list:
+        """The driver values (a row per driver) at fractional steps ``t`` (B,), linear
+        between the steps; NaN where ``t`` is not a number."""
+        t = np.asarray(t, float)
+        known = np.isfinite(t)
+        i = np.clip(np.floor(np.where(known, t, 0.0)).astype(int), 0, max(self.N - 2, 0))
+        f = np.where(known, t - i, np.nan)
+        return [r[i] + f * (r[np.minimum(i + 1, self.N - 1)] - r[i]) for r in self.Q]
 
     def rate_at(self, P, d, t, col):
         """The rate along the steps of coordinate ``col`` of designs ``d`` at fractional
         steps ``t`` (arrays (B,)), the positions by the closed forms there; with the rate's
-        own rate and the coordinate's value."""
-        i = np.clip(np.floor(t).astype(int), 0, max(self.N - 2, 0))
-        f = t - i
-        Q = [r[i] + f * (r[np.minimum(i + 1, self.N - 1)] - r[i]) for r in self.Q]
+        own rate and the coordinate's value; NaN where ``t`` is (a root the metrics did
+        not find)."""
+        Q = self.drivers_at(t)
         B = len(t)
         Pd = [v[d] if np.ndim(v) else v for v in P]
-        X = self.positions(Pd, Q, B)
+        X = self.positions(_Designs(Pd, Q), B)
         CS = (list(np.cos(X)), list(np.sin(X)))
         QD = [np.full(B, s) for s in self.slope]
-        A, rhs = self.rates(Pd, list(X), Q, QD, CS, B)
-        XD = self.solve_blocks(A, rhs, B)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            r = self.call("accelerations", Pd, X=list(X), XD=list(XD), Q=Q, QD=QD,
-                          QDD=[np.zeros(B)] * len(Q), CS=CS)
-        XDD = self.solve_blocks(A, [_full(v, B) for v in r], B)
+            A, rhs = self.rate_system(list(X), Q, QD, CS, Pd, B)
+            XD = A.solve(rhs)
+            XDD = A.solve(self.accelerations_rhs(list(X), list(XD), Q, QD, [np.zeros(B)] * len(Q),
+                                                 CS, Pd, B))
         return XD[col], XDD[col], X[col]
 
 

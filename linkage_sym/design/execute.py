@@ -120,7 +120,7 @@ def compiled_state(spec: Spec):
 def evaluate_chunk(spec: Spec, values: np.ndarray) -> dict:
     """The metric columns of the designs ``values`` (n, k) of one chunk."""
     model, plan = compiled_state(spec)
-    P = model.params(spec.names, values)
+    P = model.design_params(spec.names, values)
     sol = model.solve(P, len(values), plan.need, plan.unwrap(model))
     return plan.compute(model, sol)
 

@@ -37,6 +37,7 @@ import dataclasses
 
 import numpy as np
 
+from linkage_sym.codegen.path import ScaledGroup
 from linkage_sym.design.solution import Solution
 from linkage_sym.model import OUTPUTS
 from linkage_sym.numeric import continuation
@@ -49,29 +50,19 @@ DEFAULT_CHUNK = 8
 moves, and chunks small enough to share among workers)."""
 
 
-class ParameterContinuation:
+class ParameterContinuation(ScaledGroup):
     """One Newton group of a compiled mechanism at fixed driver values, its inputs
     ``(P, Q, known coordinates)`` blended between two designs: a
     :class:`linkage_sym.numeric.continuation.Problem` (scaled unknowns: slides over the
     size ``L``; scaled rows: loop projections over ``L``)."""
 
     def __init__(self, model, step):
-        cm = model.cm
-        self.f = cm.functions[step["function"]]
-        self.cols = list(step["x"])
-        self.n = len(self.cols)
-        self.m = cm.m
-        steps = model.art["steps"]
-        k = steps.index(step)
-        self.known = [c for st in steps[:k] for c in st["x"]]
-        group = next(g for g in model.art["groups"] if g["index"] == step["group"])
-        self.scale = np.where(cm.is_angle[self.cols], 1.0, cm.L)
-        self.angles = cm.is_angle[self.cols]
-        r0, r1 = group["rows"]
-        self.row_scale = np.where(np.array(model.art["rows_length"][r0:r1], bool), 1.0 / cm.L, 1.0)
+        cm, art = model.cm, model.art
+        k = art.steps.index(step)
+        super().__init__(model, step, [c for st in art.steps[:k] for c in st.x], cm.L)
         # the scene's own assembly configuration: where every design's continuation starts
         self.u_scene = cm.x0[self.cols] / self.scale
-        self.ctx_scene = (np.array(model.base, float), np.array(model.q0, float),
+        self.ctx_scene = (np.array(model.params, float), np.array(model.q0, float),
                           cm.x0[self.known].astype(float))
         _, J = self.evaluate(self.u_scene, self.ctx_scene)
         self.sign = float(np.sign(np.linalg.det(J)))
@@ -79,24 +70,9 @@ class ParameterContinuation:
     def blend(self, a, b, t):
         return tuple((1 - t) * x + t * y for x, y in zip(a, b))
 
-    def evaluate(self, u, ctx):
-        r, J = self.evaluate_many(np.asarray(u, float)[None, :], ctx)
-        return r[0], J[0]
-
     def evaluate_many(self, U, ctx):
         P, Q, xk = ctx
-        Xs = [None] * self.m
-        for c, v in zip(self.known, xk):
-            Xs[c] = v
-        for c, v in zip(self.cols, (U * self.scale).T):
-            Xs[c] = v
-        out = self.f(Xs, None, None, list(Q), None, None, None, list(P))
-        vals = np.empty((len(out), len(U)))
-        for i, v in enumerate(out):
-            vals[i] = v
-        R = vals[: self.n].T * self.row_scale
-        J = vals[self.n:].T.reshape(len(U), self.n, self.n) * self.row_scale[:, None] * self.scale[None, :]
-        return R, J
+        return self.scaled(U, list(P), Q, xk)
 
     def solve(self, P, Q, X, n, start=None):
         """The group's coordinates (len(cols), n) for ``n`` designs (parameters ``P``,
@@ -165,7 +141,7 @@ class PlanSolution(Solution):
         rate, drate, value = (np.full(len(t), np.nan) for _ in range(3))
         link = next(k for k, c in model.angle_of.items() if c == col)
         for k in np.unique(d):
-            sel = np.flatnonzero(d == k)
+            sel = np.flatnonzero((d == k) & np.isfinite(t))  # NaN: a root not found
             uniq, inv = np.unique(t[sel], return_inverse=True)
             plan = self.kin[k]
             r = plan.run(*_rates_along(model, uniq))
@@ -180,13 +156,8 @@ class PlanSolution(Solution):
 def _rates_along(model, t):
     """Driver values at fractional steps ``t`` with the rates along the steps
     (``qd = dq/dt``, ``qdd = 0``): dicts for ``Plan.run``."""
-    N = model.N
-    i = np.clip(np.floor(t).astype(int), 0, max(N - 2, 0))
-    f = t - i
-    q, qd, qdd = {}, {}, {}
-    for k, name in enumerate(model.qnames):
-        r = model.Q[k]
-        q[name] = r[i] + f * (r[np.minimum(i + 1, N - 1)] - r[i])
+    q, qd, qdd = dict(zip(model.art.q, model.drivers_at(t))), {}, {}
+    for k, name in enumerate(model.art.q):
         qd[name] = np.full(len(t), model.slope[k])
         qdd[name] = np.zeros(len(t))
     return q, qd, qdd

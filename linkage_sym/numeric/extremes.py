@@ -39,6 +39,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkage_sym.numeric.results.result import OK, UNASSEMBLABLE
+from linkage_sym.numeric.results.wording import driver_number
 
 XTOL = 1e-11
 """Brent's tolerance on the location, in steps (kinematic rates)."""
@@ -480,16 +481,13 @@ def summary_lines(scene, ext: Extremes) -> list[str]:
     """
     L = scene.characteristic_length() or 1.0
 
-    def deg(v):
-        text = f"{math.degrees(_shown(v, NOISE)):.6f}"
-        return (text.lstrip("-") if float(text) == 0 else text) + "°"  # -1e-9° shows as 0
+    def deg(v):  # -1e-9° shows as 0
+        return driver_number(_shown(v, NOISE), "R", decimals=6)
 
     def at(drivers):
-        vals = []
-        for n, v in drivers.items():
-            kind = scene.joint(n).type
-            vals.append(f"{n} = {deg(v)}" if kind == "R" else f"{n} = {_shown(v, NOISE * L):.6g} m")
-        return ", ".join(vals)
+        return ", ".join(f"{n} = {deg(v)}" if scene.joint(n).type == "R"
+                         else f"{n} = {driver_number(_shown(v, NOISE * L), 'P')}"
+                         for n, v in drivers.items())
 
     def end(e) -> bool:
         return e["located"] == "sample" and e["step"] in (0.0, float(ext.n_steps - 1))
@@ -501,7 +499,7 @@ def summary_lines(scene, ext: Extremes) -> list[str]:
             rotation = c.startswith("rotation")
 
             def value(e, rotation=rotation):
-                return deg(e["value"]) if rotation else f"{_shown(e['value'], NOISE * L):.6g} m"
+                return deg(e["value"]) if rotation else driver_number(_shown(e["value"], NOISE * L), "P")
 
             if it.get("turns_fully"):
                 first, last = sorted((it["min"], it["max"]), key=lambda e: e["step"])

@@ -373,9 +373,7 @@ def plan_sweep(plan, method: str = "dyad") -> Sweep:
 def compiled_sweep(mechanism) -> Sweep:
     """The scene's sweep evaluated by a compiled mechanism (``compile_mechanism``)."""
     art = mechanism.art
-    groups = {g["index"]: g for g in art["groups"]}
-    heads = [f"{groups[st['group']]['label']} ({', '.join(groups[st['group']]['links'])})"
-             for st in art["steps"] if st["kind"] != "closed"]
+    heads = [art.group(st.group).title for st in art.newton_steps]
     q, qd, qdd = mechanism.sweep()
     return Sweep(lambda q, qd, qdd: mechanism.run(q, qd, qdd), q, qd, qdd, "symbolic", heads,
                  dict(mechanism.q0), _limits(mechanism.scene, mechanism.L))

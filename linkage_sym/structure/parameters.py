@@ -50,6 +50,7 @@ import math
 from dataclasses import dataclass
 
 from linkage_sym.model import GROUND, Scene
+from linkage_sym.structure.recipes import Recipe
 
 COINCIDENT = 1e-12
 """Relative distance (to the mechanism size) below which two points coincide."""
@@ -88,10 +89,6 @@ def ident(n: str) -> str:
 def _pair(a: str, b: str) -> str:
     a, b = ident(a), ident(b)
     return a + b if len(a) == 1 and len(b) == 1 else f"{a}_{b}"
-
-
-def _wrap(a: float) -> float:
-    return math.atan2(math.sin(a), math.cos(a))
 
 
 def link_frames(scene: Scene) -> dict[str, LinkFrame]:
@@ -258,64 +255,8 @@ class ParameterTable:
         )
 
 
-def _local(scene: Scene, frames, link: str, at) -> tuple[float, float]:
-    """Coordinates of the assembly point ``at`` in ``link``'s frame."""
-    fr = frames[link]
-    dx, dy = at[0] - fr.origin[0], at[1] - fr.origin[1]
-    c, s = math.cos(fr.theta0), math.sin(fr.theta0)
-    return c * dx + s * dy, -s * dx + c * dy
-
-
 def evaluate(scene: Scene, recipe: tuple, frames=None) -> float:
-    """The value of the parameter described by ``recipe`` in ``scene``."""
+    """The value of the parameter described by ``recipe`` in ``scene`` (binary64; any
+    number type: :meth:`linkage_sym.structure.recipes.Recipe.value`)."""
     frames = link_frames(scene) if frames is None else frames
-    k = recipe[0]
-    if k == "l":
-        _, link, point = recipe
-        return math.hypot(*_local(scene, frames, link, scene.joint(point).at))
-    if k == "beta":
-        _, link, point = recipe
-        x, y = _local(scene, frames, link, scene.joint(point).at)
-        return math.atan2(y, x)
-    if k in ("x", "y"):
-        return float(scene.joint(recipe[1]).at[0 if k == "x" else 1])
-    if k == "theta0":
-        return frames[recipe[1]].theta0
-    if k == "gamma":
-        j = scene.joint(recipe[1])
-        a = j.links[0]
-        return _wrap(j.axis - (0.0 if a == GROUND else frames[a].theta0))
-    if k == "delta":
-        j, t = scene.joint(recipe[1]), scene.joint(recipe[2])
-        b = j.links[1]
-        ang = math.atan2(t.at[1] - j.at[1], t.at[0] - j.at[0])
-        return _wrap(ang - (0.0 if b == GROUND else frames[b].theta0))
-    if k in ("m", "I", "p", "q"):
-        link = scene.link(recipe[1])
-        if k == "m":
-            return link.mass
-        if k == "I":
-            return link.inertia
-        x, y = _local(scene, frames, link.name, link.com)
-        return x if k == "p" else y
-    if k in ("gx", "gy"):
-        g = scene.effects.gravity or (0.0, 0.0)
-        return float(g[0 if k == "gx" else 1])
-    if k in ("radius", "phi", "epsilon"):
-        j = scene.joint(recipe[1])
-        if k == "radius":
-            return float(j.radii[recipe[2]])
-        if k == "phi":
-            return float(j.pressure_angle)
-        (ax, ay), (bx, by) = (p.at for p in scene.gear_pivots(j))
-        c = j.carrier
-        return _wrap(math.atan2(by - ay, bx - ax) - (0.0 if c == GROUND else frames[c].theta0))
-    ld = scene.loads[recipe[1]]
-    if k in ("Fx", "Fy"):
-        return float(ld.force[0 if k == "Fx" else 1])
-    if k in ("xi", "eta"):
-        x, y = _local(scene, frames, ld.link, ld.at)
-        return x if k == "xi" else y
-    if k == "T":
-        return float(ld.torque)
-    raise ValueError(f"unknown parameter recipe {recipe!r}")
+    return Recipe.of(recipe).value(scene, frames)

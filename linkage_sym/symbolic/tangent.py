@@ -49,6 +49,9 @@ class coordinate_size(sp.Function):  # noqa: N801 - a SymPy function, named as S
     def _mpmathcode(self, printer):
         return printer._print(sp.Max(*(sp.Abs(v) for v in self.args)))
 
+    def _javascript(self, printer):
+        return "_coordinate_size(" + ", ".join(printer._print(a) for a in self.args) + ")"
+
 
 class tangent_sqrt(sp.Function):  # noqa: N801 - a SymPy function, named as SymPy's are
     """``tangent_sqrt(scale, f_1, ..., f_n)``: ``sqrt(f_1 ... f_n)``; see the module docstring.
@@ -98,6 +101,11 @@ class tangent_sqrt(sp.Function):  # noqa: N801 - a SymPy function, named as SymP
 
     def _mpmathcode(self, printer):
         return printer._print(self.value())
+
+    def _javascript(self, printer):
+        # the same rule as the NumPy code's, in the page's runtime
+        # (:mod:`linkage_sym.codegen.javascript`)
+        return "_tangent_sqrt(" + ", ".join(printer._print(a) for a in self.args) + ")"
 
 
 __all__ = ["coordinate_size", "tangent_sqrt"]

@@ -39,6 +39,7 @@ def loaded_after(argv, watched=HEAVY):
     ["structure", "--help"], ["demo", "--help"], ["examples", "--help"],
     ["new", "fourbar", "--help"], ["synthesize", "crank-rocker", "--help"],
     ["balance", "--help"], ["centres", "--help"], ["animate", "--help"],
+    ["view", "--help"],
 ])
 def test_version_and_help_import_no_library(argv):
     code, loaded = loaded_after(argv, HEAVY + ("numpy",))

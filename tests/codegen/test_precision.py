@@ -496,7 +496,7 @@ def test_load_range_end_at_an_exact_step():
     pi lies beyond the range's float64 end float(pi), but the step is at the range's end in
     the scene's degrees and acts (as the float64 run decides); between the table's points the
     factor is interpolated at the exact value."""
-    from linkage_sym.codegen.precision import _factor_mp
+    from linkage_sym.codegen.mp_numbers import factor_mp as _factor_mp
     from linkage_sym.model import Load, LoadTable
 
     load = Load("rod", torque=1.0, driver="A", period=2 * math.pi,

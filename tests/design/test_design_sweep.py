@@ -375,3 +375,42 @@ def test_the_designs_argument_takes_each_kind(tmp_path):
     np.testing.assert_array_equal(res["l_AB"], drawn.values[:, 0])
     alone = sweep(scene, Designs(drawn.names, drawn.values, "monte-carlo"), ["K"])
     np.testing.assert_array_equal(res["K"], alone["K"])
+
+
+def test_rates_at_a_root_not_found_are_not_a_number():
+    """A limit position the metrics' Newton did not find has no step (NaN): the rates and
+    the coordinate there are NaN, without a RuntimeWarning of a cast of NaN to an integer
+    (an error in the tests), as between two steps they are the closed forms' own."""
+    import warnings
+
+    from linkage_sym.design.evaluate import Model
+
+    scene = linkage_sym.load_example("crank_rocker")
+    model = Model(scene)
+    P = model.params
+    col = model.angle_of["rocker"]
+    d = np.zeros(3, int)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        rate, drate, value = model.rate_at(P, d, np.array([np.nan, 10.0, 10.5]), col)
+    assert np.isnan(rate[0]) and np.isnan(drate[0]) and np.isnan(value[0])
+    assert np.all(np.isfinite(rate[1:])) and np.all(np.isfinite(value[1:]))
+    # at a whole step the closed forms' value is the step's own rotation
+    res = linkage_sym.compile_plan(scene).run()
+    assert abs(value[1] - (model.cm.x0[col] + res.links["rocker"].rotation[10])) <= 1e-12
+
+
+def test_loads_over_the_cycle_act_in_design_sweeps_as_in_analyze():
+    """A load whose factor follows the cycle (the engine's gas force) is scaled at every
+    step of every design, as ``analyze`` scales it: the design sweep at the scene's own
+    crank length gives the driving torque ``analyze`` gives, to 1e-9 (the sweep had applied
+    the load at its full value at every step: 1141 N·m for 358 N·m, with status ok)."""
+    scene = linkage_sym.load_example("engine_four_stroke")
+    assert any(ld.driver is not None for ld in scene.loads)
+    res = linkage_sym.analyze(scene)
+    from linkage_sym.design import scene_parameters
+
+    own = {n: v for n, v, _ in scene_parameters(scene)}["l_AB"]
+    r = sweep(scene, {"l_AB": [own]}, ["peak_driving", "rms_shaking_force"])
+    want = np.nanmax(np.abs(res.forces.driving["A"]))
+    assert abs(r.columns["peak_driving_A"][0] - want) <= 1e-9 * want

@@ -416,15 +416,15 @@ def test_symbolic_flank_that_never_settles_is_the_same_warning(monkeypatch):
     scene = load_scene(example_dict("planetary_train"))
     cm = linkage_sym.compile_mechanism(scene)
     name = scene.meshes[0].name
-    row = cm.art["force_names"].index(f"Fn_{name}")
-    solve = runtime.CompiledMechanism._force_solve
+    row = cm.art.force_names.index(f"Fn_{name}")
+    solve = runtime.CompiledMechanism.solve_forces
 
-    def pulling(self, pts, sel, Kk):
-        Fv = solve(self, pts, sel, Kk)
+    def pulling(self, pts, take=lambda v: v):
+        Fv = solve(self, pts, take)
         Fv[row] = -np.abs(Fv[row]) - 1.0
         return Fv
 
-    monkeypatch.setattr(runtime.CompiledMechanism, "_force_solve", pulling)
+    monkeypatch.setattr(runtime.CompiledMechanism, "solve_forces", pulling)
     res = cm.run()
     assert any(w.startswith(f"gear mesh {name}: the tooth load still pulls at {res.n_steps} step")
                and "after 5 force solves" in w for w in res.warnings), res.warnings

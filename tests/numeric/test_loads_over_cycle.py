@@ -25,7 +25,7 @@ import pytest
 
 import linkage_sym
 from linkage_sym.codegen.compile import compile_mechanism
-from linkage_sym.codegen.precision import _factor_mp
+from linkage_sym.codegen.mp_numbers import factor_mp as _factor_mp
 from linkage_sym.errors import SceneError
 from linkage_sym.examples import example_dict, load_example
 from linkage_sym.model import Load, LoadTable

@@ -209,7 +209,7 @@ def test_knee_limit_is_reported_at_its_driver_value():
     first = int(np.flatnonzero(~ok)[0])
     assert ok[first - 1] and res.status[first - 1] == "ok" and res.status[first] == "unassemblable"
     msg = res.messages[first]
-    got = math.radians(float(re.search(r"K = ([-0-9.e]+) deg", msg).group(1)))
+    got = math.radians(float(re.search(r"K = ([-0-9.e]+)°", msg).group(1)))
     # the limit angle: |lt e^{i th_t} + ls e^{i q}| = the limit distance, between the steps
     q = np.radians(np.linspace(-60, 120, 19))
     lo, hi = q[first - 1], q[first]
@@ -289,5 +289,5 @@ def test_a_triad_that_jumps_past_a_limit_says_so_and_names_an_ambiguous_mode():
     for m in ("dyad", "symbolic"):
         res = linkage_sym.analyze(scene, method=m)
         w = [x for x in res.warnings if "ambiguous" in x]
-        assert w and re.search(r"A = [-0-9.]+ deg", w[0]) and "2 solutions" in w[0], res.warnings
+        assert w and re.search(r"A = [-0-9.]+°", w[0]) and "2 solutions" in w[0], res.warnings
         assert "at step 14 (reached from step 13)" in w[0], w[0]

@@ -523,9 +523,9 @@ def test_cache_reuses_topology_without_deriving(monkeypatch):
     monkeypatch.undo()
     real = cg_compile.build_artifact
 
-    def counting(scene):
+    def counting(scene, **kw):
         calls.append(scene.name)
-        return real(scene)
+        return real(scene, **kw)
 
     monkeypatch.setattr(cg_compile, "build_artifact", counting)
     cm3 = compile_mechanism(s2, use_cache=False)
@@ -580,37 +580,3 @@ def test_cli_symbolic_matches_dyad(name, tmp_path):
     compare_dicts(scene, ds, dd, f"CLI {name}")
 
 
-def test_rate_system_solves_as_the_dense_matrix():
-    """The compiled run's rate solver (``runtime._RateSystem``: the generated entries kept
-    per coordinate, block by block) against ``numpy.linalg.solve`` of the dense block
-    lower-triangular matrix, blocks of 1, 2, 3 (Cramer) and 4 (LU) coordinates with
-    coupling entries: 1e-12 relative; the Hadamard ratios against the determinant and norms of the dense
-    blocks; ``dense`` and ``take`` against indexing the dense matrix."""
-    from linkage_sym.codegen.runtime import _RateSystem
-
-    rng = np.random.default_rng(11)
-    K, blocks = 50, [(0, 1, 0, 1), (1, 3, 1, 3), (3, 6, 3, 6), (6, 10, 6, 10)]
-    m = 10
-    A = np.zeros((K, m, m))
-    for r0, r1, c0, c1 in blocks:
-        A[:, r0:r1, c0:c1] = rng.normal(size=(K, r1 - r0, c1 - c0)) + 2 * np.eye(r1 - r0)
-        A[:, r0:r1, :c0] = rng.normal(size=(K, r1 - r0, c0)) * (rng.random((r1 - r0, c0)) < 0.6)
-    pattern = [(i, j) for i in range(m) for j in range(m) if np.any(A[:, i, j])]
-    system = _RateSystem.of(pattern, [A[:, i, j] for i, j in pattern], blocks, m, K)
-    rhs = rng.normal(size=(K, m))
-    want = np.linalg.solve(A, rhs[..., None])[..., 0]
-    got = system.solve(list(rhs.T)).T
-    assert np.allclose(got, want, rtol=1e-12, atol=1e-12 * np.abs(want).max())
-    ratios = system.ratios()
-    assert ratios[0] is None
-    for ratio, (r0, r1, c0, c1) in zip(ratios[1:], blocks[1:]):
-        M = A[:, r0:r1, c0:c1]
-        det = np.abs(np.linalg.det(M))
-        expect = np.fmin(det / np.prod(np.linalg.norm(M, axis=2), axis=1),
-                         det / np.prod(np.linalg.norm(M, axis=1), axis=1))
-        assert np.allclose(ratio, expect, rtol=1e-12)
-    steps = np.array([3, 7, 40])
-    assert np.array_equal(system.dense(steps), A[steps])
-    mask = np.zeros(K, bool)
-    mask[steps] = True
-    assert np.allclose(system.take(mask).solve(list(rhs[steps].T)).T, want[steps], rtol=1e-12)

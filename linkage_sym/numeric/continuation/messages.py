@@ -8,9 +8,10 @@ at the steps that see them (:func:`step_warnings`).
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
+
+from linkage_sym.numeric.results import wording
 
 
 def failure_message(label: str, links, failure, where) -> str:
@@ -58,11 +59,9 @@ def driver_values_text(q: dict, kinds: dict, i: int, t: float | None = None) -> 
     ``q`` maps each driven joint to its values along the path, ``kinds`` to
     ``"R"`` (an angle, printed in degrees) or ``"P"`` (a slide, in metres).
     """
-    parts = []
-    for name, v in q.items():
-        x = float(v[i]) if t is None or i == 0 else float(v[i - 1] + t * (v[i] - v[i - 1]))
-        parts.append(f"{name} = {math.degrees(x):.6g} deg" if kinds[name] == "R" else f"{name} = {x:.6g} m")
-    return ", ".join(parts)
+    at = {name: float(v[i]) if t is None or i == 0 else float(v[i - 1] + t * (v[i] - v[i - 1]))
+          for name, v in q.items()}
+    return wording.driver_values_text(at, kinds)
 
 
 def step_warnings(notes, step_points) -> list[str]:

@@ -1,0 +1,43 @@
+"""``linkage-sym view``: one self-contained HTML page that solves the mechanism as you drag it.
+
+::
+
+    linkage-sym view SCENE.json -o PAGE.html
+
+The page (:mod:`linkage_sym.page`) needs no network: its script, the functions the symbolic
+layer prints in JavaScript and the evaluator that walks them are inline.  A scene the
+symbolic layer does not derive (a cam contact) is refused with the joint named; nothing is
+written.
+"""
+
+from __future__ import annotations
+
+from linkage_sym.cli.common import OptionError, check_outputs, emit, load
+
+__all__ = ["cmd_view", "register"]
+
+SUFFIXES = (".html", ".htm")
+
+
+def cmd_view(args) -> int:
+    out = args.output
+    if out not in (None, "-") and not out.lower().endswith(SUFFIXES):
+        raise OptionError(f"-o/--output: {out!r}: the page is an HTML file: give a name ending "
+                          "in .html (or -o - for standard output)")
+    check_outputs(files=[("-o/--output", out)])
+    scene = load(args.scene)
+    from linkage_sym.page import page_html
+
+    emit(out, page_html(scene))
+    return 0
+
+
+def register(sub) -> None:
+    """Add the ``view`` command to the ``linkage-sym`` subparsers ``sub``."""
+    v = sub.add_parser(
+        "view", help="write one self-contained HTML page that solves the mechanism live "
+                     "(drag joints, type lengths, play the sweep)")
+    v.add_argument("scene", help="scene JSON file")
+    v.add_argument("-o", "--output", required=True,
+                   help="the page to write (.html; - for standard output)")
+    v.set_defaults(func=cmd_view)

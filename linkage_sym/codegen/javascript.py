@@ -1,0 +1,162 @@
+"""The JavaScript backend of the evaluator: a mechanism solved in a browser (uses SymPy).
+
+The page of :mod:`linkage_sym.page` solves a mechanism with the functions the derivation
+prints (:func:`~linkage_sym.codegen.compile.build_artifact` with ``printer="javascript"``:
+the same stages, the same layout as the NumPy runtime's, printed by SymPy's
+``JavascriptCodePrinter`` after ``cse``) and a walk over the artifact's steps written in
+JavaScript (``evaluator.js`` beside this module, package data): the closed steps with the
+assembly-mode signs the NumPy runtime chooses, the Newton steps by the continuation policy
+of :mod:`linkage_sym.numeric.continuation` (whose constants are this module's
+:data:`CONSTANTS`, read from the Python modules that define them), the statuses, and the
+parameters' recipes that read the joints' positions (:mod:`linkage_sym.structure.recipes`).
+
+:func:`mechanism_script` is what a page inlines: the constants, the generated functions, the
+evaluator and the mechanism's model (its joints, drivers, links, loads and traced points, and
+the artifact's records the walk reads), as one script that needs no library and no network.
+
+Examples
+--------
+>>> from linkage_sym.examples import load_example
+>>> text = mechanism_script(load_example("crank_rocker"))
+>>> "function positions_0(X, XD, XDD, Q, QD, QDD, FORCES, P, CX, SX)" in text
+True
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from importlib import resources
+
+from linkage_sym.codegen.artifact import Artifact
+from linkage_sym.codegen.compile import build_artifact
+from linkage_sym.codegen.runtime import ASSEMBLY_MATCH, SCREEN
+from linkage_sym.errors import SYMBOLIC_LACKS, SceneError
+from linkage_sym.model import Scene
+from linkage_sym.numeric.continuation import roots
+from linkage_sym.numeric.engine.run import MAX_ANGLE_STEP, MAX_SLIDE_STEP, SINGULAR_COND
+from linkage_sym.numeric.kinematics.loci import TANGENT_ULPS
+from linkage_sym.scene.load import dump_scene
+from linkage_sym.structure.parameters import driver_q0, ident, link_frames
+
+__all__ = ["CONSTANTS", "PAGE_FUNCTIONS", "POSITION_RECIPES", "evaluator_source",
+           "mechanism_model", "mechanism_script", "page_artifact"]
+
+CONSTANTS = {
+    "TOL": roots.TOL, "MAX_ITER": roots.MAX_ITER, "STALL_ITER": roots.STALL_ITER,
+    "POLISH_FLOOR": roots.POLISH_FLOOR, "MAX_POLISH": roots.MAX_POLISH,
+    "MAX_CORRECTION": roots.MAX_CORRECTION, "MIN_FRACTION": roots.MIN_FRACTION,
+    "SAME_ROOT": roots.SAME_ROOT, "TURNED_SEEDS": roots.TURNED_SEEDS,
+    "SEARCH_ITER": roots.SEARCH_ITER, "SEARCH_STEP": roots.SEARCH_STEP,
+    "SCREEN": SCREEN, "SINGULAR_COND": SINGULAR_COND, "ASSEMBLY_MATCH": ASSEMBLY_MATCH,
+    "MAX_ANGLE_STEP": MAX_ANGLE_STEP, "MAX_SLIDE_STEP": MAX_SLIDE_STEP,
+    "TANGENT_ULPS": TANGENT_ULPS, "EPS": float(2.0 ** -52),
+}
+"""The evaluator's constants, each the Python runtime's own (``CONST`` in the script)."""
+
+PAGE_FUNCTIONS = ("positions_", "newton_", "rates", "points")
+"""The generated functions a page calls (by name or prefix): the positions' steps, ``A``'s
+entries (the singularity screen) and the points (joints, frame origins)."""
+
+POSITION_RECIPES = ("l", "beta", "x", "y", "theta0", "gamma", "delta", "p", "q", "epsilon",
+                    "xi", "eta")
+"""The recipe tags that read the joints' assembly positions: re-derived in the page after
+a drag (``RECIPES`` of ``evaluator.js``); the others are the scene's numbers."""
+
+
+def evaluator_source() -> str:
+    """The text of ``evaluator.js`` (the walk, Newton's continuation, the recipes)."""
+    return resources.files("linkage_sym.codegen").joinpath("evaluator.js").read_text("utf-8")
+
+
+def page_artifact(scene: Scene) -> Artifact:
+    """``scene``'s artifact with JavaScript sources (derived here: the cache holds NumPy's).
+
+    Raises
+    ------
+    SceneError
+        A scene the symbolic layer does not derive (a cam contact), naming the joint.
+    """
+    problems = [
+        f"joints[{i}]: a page solves the mechanism with the symbolic layer's equations, which "
+        f"do not support {SYMBOLIC_LACKS[j.type]} yet (joint '{j.name}' is of type {j.type}); "
+        "the numeric solvers analyse it"
+        for i, j in enumerate(scene.joints) if j.type in SYMBOLIC_LACKS]
+    if problems:
+        raise SceneError(problems)
+    return build_artifact(scene, printer="javascript")
+
+
+def mechanism_model(scene: Scene, art: Artifact) -> dict:
+    """What the page's evaluator reads besides the generated functions (JSON-ready).
+
+    The joints (type, links, assembly position, a ``P`` joint's axis, a mesh's carrier and
+    pivots), the drivers (values in rad or m), the links' centres of mass, the loads'
+    points, the traced points, the link frames' joints, the parameters (recipe and the
+    scene's value), the artifact's records and the scene in the file layout
+    (:func:`~linkage_sym.scene.load.dump_scene`).
+    """
+    frames = link_frames(scene)
+    joints = {}
+    for j in scene.joints:
+        rec = {"type": j.type, "links": list(j.links), "at": list(j.at)}
+        if j.axis is not None:
+            rec["axis"] = j.axis
+        if j.type == "G":
+            rec["carrier"] = j.carrier
+            rec["pivots"] = [p.name for p in scene.gear_pivots(j)]
+        joints[j.name] = rec
+    drivers = [{"joint": d.joint, "kind": d.kind, "toward": d.toward, "start": d.start,
+                "stop": d.stop, "steps": d.steps} for d in scene.drivers]
+    return {
+        "name": scene.name,
+        "order": [j.name for j in scene.joints],
+        "joints": joints,
+        "drivers": drivers,
+        "q0": [driver_q0(scene)[d.joint] for d in scene.drivers],
+        "links": {lk.name: {"com": None if lk.com is None else list(lk.com)} for lk in scene.links},
+        "ident": {n: ident(n) for n in scene.link_names},
+        "loads": [{"link": ld.link, "at": None if ld.at is None else list(ld.at)}
+                  for ld in scene.loads],
+        "points": [{"name": p.name, "link": p.link, "at": list(p.at)} for p in scene.points],
+        "frames": {n: [f.u, f.v] for n, f in frames.items()},
+        "params": [{"name": p.name, "recipe": list(p.recipe.key),
+                    "value": float(p.recipe.value(scene, frames))} for p in art.params],
+        "sigmas": art.sigmas,
+        "flanks": len(art.flanks),
+        "scene": dump_scene(scene),
+        "artifact": {
+            "x": list(art.x), "q": list(art.q), "sigmas": art.sigmas,
+            "params": [p.name for p in art.params],
+            "steps": [s.to_dict() for s in art.steps],
+            "groups": [g.to_dict() for g in art.groups],
+            "rows_length": list(art.rows_length), "cols_length": list(art.cols_length),
+            "pattern": [list(p) for p in art.pattern],
+            "layout": {k: list(v) for k, v in art.layout.items()},
+            "force_names": list(art.force_names),
+        },
+    }
+
+
+def _json(value) -> str:
+    # JSON inside a <script>: no "</" (it would end the script element)
+    return json.dumps(value, allow_nan=False).replace("</", "<\\/")
+
+
+def mechanism_script(scene: Scene, art: Artifact | None = None) -> str:
+    """One script: ``CONST``, ``GENERATED`` (the page's generated functions), the evaluator
+    (``LinkageEvaluator``) and ``MODEL`` (:func:`mechanism_model`)."""
+    art = page_artifact(scene) if art is None else art
+    funcs = [src for name, src in art.functions.items()
+             if name.startswith(PAGE_FUNCTIONS[:2]) or name in PAGE_FUNCTIONS[2:]]
+    names = [name for name in art.functions
+             if name.startswith(PAGE_FUNCTIONS[:2]) or name in PAGE_FUNCTIONS[2:]]
+    consts = {k: (v if math.isfinite(v) else None) for k, v in CONSTANTS.items()}
+    return "\n".join([
+        f"const CONST = {_json(consts)};",
+        evaluator_source(),
+        "// the functions generated by linkage_sym from SymPy (JavaScript printer, cse)",
+        *funcs,
+        f"const GENERATED = {{{', '.join(f'{n}: {n}' for n in names)}}};",
+        f"const MODEL = {_json(mechanism_model(scene, art))};",
+    ])

@@ -1,0 +1,62 @@
+"""A self-contained page that solves a mechanism in the browser (``linkage-sym view``).
+
+:func:`page_html` writes one HTML file with everything inline -- its style, its script, the
+functions the symbolic layer prints in JavaScript and the evaluator that walks them
+(:mod:`linkage_sym.codegen.javascript`) -- and nothing fetched: no network, no font, no
+image.  The page draws the links, joints and traced paths on a canvas; plays the sweep
+(play / pause, a slider over the driver's range, a speed); lets a joint's assembly position
+be dragged or typed, or a length typed, and re-derives the parameters and re-solves the
+whole sweep at once, the assembly modes chosen from the new assembly configuration as the
+scene format says; shows each step's status; and downloads the edited scene as a scene
+file.  For tests and scripts it defines ``window.linkageSym``:
+
+- ``solve(q)``: the mechanism at the driver values ``q`` (a number for one driver, a list
+  in the drivers' order or ``{joint: value}``; rad for an ``R`` driver, m for a ``P`` one,
+  as a result file gives them), reached continuously from the assembly configuration:
+  ``{status, message, joints: {name: [x, y]}, points: {name: [x, y]}}``;
+- ``moveJoint(name, x, y)``: what a drag does (every joint at the same point moves with
+  it); returns ``{error, counts}`` (the sweep's statuses counted);
+- ``scene()``: the current scene in the format's JSON (what ``linkage-sym analyze`` reads).
+
+Examples
+--------
+>>> from linkage_sym.examples import load_example
+>>> html = page_html(load_example("crank_rocker"))
+>>> html.startswith("<!DOCTYPE html>"), "http://" in html or "https://" in html
+(True, False)
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+
+from linkage_sym.codegen.javascript import mechanism_script
+from linkage_sym.model import Scene
+
+__all__ = ["page_html"]
+
+
+def _read(name: str) -> str:
+    return resources.files("linkage_sym.page").joinpath(name).read_text("utf-8")
+
+
+def _escape(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def page_html(scene: Scene) -> str:
+    """The page of ``scene`` (one HTML document, everything inline).
+
+    Raises
+    ------
+    SceneError
+        A scene the symbolic layer does not derive (a cam contact), naming the joint.
+    """
+    script = mechanism_script(scene) + "\n" + _read("page.js")
+    if "</script" in script.lower():  # pragma: no cover - nothing generated writes it
+        raise ValueError("the page's script may not contain '</script'")
+    out = _read("page.html")
+    for key, value in (("%%TITLE%%", _escape(f"{scene.name} - linkage_sym")),
+                       ("%%STYLE%%", _read("page.css")), ("%%SCRIPT%%", script)):
+        out = out.replace(key, value, 1)
+    return out

@@ -1,0 +1,231 @@
+"""The page of ``linkage-sym view`` in a real browser (headless Chromium through Selenium).
+
+For every shipped example the symbolic layer derives, the page written by
+:func:`linkage_sym.page.page_html` is opened from a file, and:
+
+* ``window.linkageSym.solve(q)`` at 12 driver values across the sweep equals the numeric
+  solver's joint positions (:func:`linkage_sym.numeric.plan.compile_plan`, which shares no
+  code with the generated functions or the page's evaluator) to ``1e-9`` of the mechanism's
+  size, statuses equal;
+* after ``moveJoint`` of a ground pivot by 1 % of the size, ``solve`` equals
+  :func:`linkage_sym.analyze` of the scene ``scene()`` returns (read by the library's own
+  loader, as ``linkage-sym analyze`` reads a file), at the same 12 values;
+* the page loads with no console message of level ``SEVERE`` (Selenium's browser log), its
+  HTML names no ``http(s)://`` address and the browser fetched nothing but the file itself
+  (``performance.getEntries()``);
+* its screenshot is not blank (distinct pixel colours counted).
+
+One browser for the module.  Skipped, saying why, where Chromium, its driver or Selenium
+is missing (``apt-get install chromium chromium-driver``; the ``page-tests`` extra).
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tests.support.example_sets import symbolic_examples
+
+CHROMIUM = Path("/usr/bin/chromium")
+CHROMEDRIVER = shutil.which("chromedriver") or "/usr/bin/chromedriver"
+TOL = 1e-9
+
+webdriver = pytest.importorskip(
+    "selenium.webdriver", reason="Selenium is not installed (pip install linkage_sym[page-tests])")
+
+from selenium.common.exceptions import JavascriptException  # noqa: E402
+
+pytestmark = [
+    pytest.mark.skipif(not CHROMIUM.exists(), reason=f"no Chromium at {CHROMIUM} "
+                       "(apt-get install chromium chromium-driver)"),
+    pytest.mark.skipif(not Path(CHROMEDRIVER).exists(), reason="no chromedriver "
+                       "(apt-get install chromium-driver)"),
+    pytest.mark.slow,
+]
+
+import linkage_sym  # noqa: E402
+from linkage_sym.examples import load_example  # noqa: E402
+from linkage_sym.numeric.plan import compile_plan  # noqa: E402
+from linkage_sym.page import page_html  # noqa: E402
+from linkage_sym.scene import parse_scene  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def browser():
+    from selenium.webdriver.chrome.service import Service
+
+    opts = webdriver.ChromeOptions()
+    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+                "--window-size=1400,900"):
+        opts.add_argument(arg)
+    opts.binary_location = str(CHROMIUM)
+    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=opts)
+    driver.set_script_timeout(120)
+    yield driver
+    driver.quit()
+
+
+@pytest.fixture(scope="module")
+def pages(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("pages")
+    made = {}
+
+    def page(name):
+        if name not in made:
+            path = folder / f"{name}.html"
+            path.write_text(page_html(load_example(name)))
+            made[name] = path
+        return made[name]
+
+    return page
+
+
+def open_page(browser, path):
+    browser.get(path.as_uri())
+    browser.get_log("browser")  # drained: what follows is this page's
+    return browser.execute_script("return window.linkageSym.summary()")
+
+
+def twelve(scene):
+    """12 steps of the scene's sweep evenly across it: their indices, their driver values
+    (D, 12) and the page's driver lists."""
+    idx = np.round(np.linspace(0, scene.steps - 1, 12)).astype(int)
+    Q = np.array([np.linspace(d.start, d.stop, d.steps)[idx] for d in scene.drivers])
+    return idx, Q, Q.T.tolist()
+
+
+def page_solve(browser, qs):
+    return browser.execute_script(
+        "return arguments[0].map((q) => window.linkageSym.solve(q));", qs)
+
+
+def assert_positions(got, res, scene, what, idx=None):
+    """The page's steps ``got`` against the result ``res`` (at its steps ``idx``)."""
+    L = scene.characteristic_length()
+    idx = np.arange(len(got)) if idx is None else idx
+    assert [g["status"] for g in got] == [str(res.status[i]) for i in idx], what
+    for g, k in zip(got, idx):
+        if g["status"] == "unassemblable":
+            continue
+        for j in scene.joints:
+            err = np.max(np.abs(np.array(g["joints"][j.name]) - res.joints[j.name].position[k]))
+            assert err <= TOL * L, (what, k, j.name, err / L)
+        for p in scene.points:
+            err = np.max(np.abs(np.array(g["points"][p.name]) - res.points[p.name].position[k]))
+            assert err <= TOL * L, (what, k, p.name, err / L)
+
+
+def solver_at(scene, Q):
+    zeros = {d.joint: np.zeros(Q.shape[1]) for d in scene.drivers}
+    return compile_plan(scene).run({d.joint: Q[i] for i, d in enumerate(scene.drivers)},
+                                   zeros, zeros)
+
+
+@pytest.mark.parametrize("name", symbolic_examples())
+def test_the_page_solves_as_the_python_solver(browser, pages, name):
+    scene = load_example(name)
+    assert open_page(browser, pages(name))["error"] is None
+    _, Q, qs = twelve(scene)
+    assert_positions(page_solve(browser, qs), solver_at(scene, Q), scene, "as loaded")
+
+
+@pytest.mark.parametrize("name", symbolic_examples())
+def test_a_moved_ground_pivot_solves_as_analyze_of_the_downloaded_scene(browser, pages, name):
+    scene = load_example(name)
+    open_page(browser, pages(name))
+    L = scene.characteristic_length()
+    # a ground pivot that no gear turns on (moving one would break the mesh's geometry)
+    gear = {p.name for j in scene.joints if j.type == "G" for p in scene.gear_pivots(j)}
+    movable = [j for j in scene.joints if "ground" in j.links and j.type == "R"
+               and j.name not in gear and not any(math.dist(j.at, g.at) <= 1e-12 * L
+                                                  for g in scene.joints if g.name in gear)]
+    if not movable:  # every ground pivot carries a gear: the page refuses to move it
+        with pytest.raises(JavascriptException, match="is a gear's pivot"):
+            browser.execute_script("window.linkageSym.moveJoint(arguments[0], 0.5, 0.5)",
+                                   next(j.name for j in scene.joints if "ground" in j.links))
+        return
+    pivot = movable[0]
+    x, y = pivot.at[0] + 0.01 * L, pivot.at[1] - 0.004 * L
+    browser.execute_script("window.linkageSym.moveJoint(arguments[0], arguments[1], arguments[2])",
+                           pivot.name, x, y)
+    edited = parse_scene(browser.execute_script("return window.linkageSym.scene()"))
+    assert edited.joint(pivot.name).at == (x, y)
+    idx, _, qs = twelve(edited)
+    assert_positions(page_solve(browser, qs), linkage_sym.analyze(edited), edited,
+                     "after the move", idx)
+
+
+@pytest.mark.parametrize("name", symbolic_examples())
+def test_the_page_loads_alone_without_errors_and_draws(browser, pages, name):
+    path = pages(name)
+    html = path.read_text()
+    assert "http://" not in html and "https://" not in html
+    browser.get(path.as_uri())
+    browser.execute_script("window.linkageSym.step(7)")
+    severe = [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+    assert severe == []
+    entries = browser.execute_script(
+        "return performance.getEntries().map((e) => [e.entryType, e.name]);")
+    fetched = {n for t, n in entries if t in ("navigation", "resource")}
+    assert fetched == {path.as_uri()}
+    from PIL import Image
+
+    png = browser.find_element("id", "view").screenshot_as_png
+    colours = Image.open(io.BytesIO(png)).convert("RGB").getcolors(maxcolors=1 << 20)
+    assert len(colours) > 50  # the links, joints, traces and grid in their colours
+
+
+def test_the_scene_of_the_page_is_the_file_layout(browser, pages):
+    """``scene()`` before any edit is the scene itself, as a scene file writes it."""
+    from linkage_sym.scene.load import dump_scene
+
+    open_page(browser, pages("crank_rocker"))
+    got = browser.execute_script("return window.linkageSym.scene()")
+    assert got == json.loads(json.dumps(dump_scene(load_example("crank_rocker"))))
+
+
+def test_a_drag_moves_a_ground_pivot_and_solves_again(browser, pages):
+    """A pointer drag on the canvas (Selenium's actions) moves the pivot ``D`` of the
+    crank-rocker: the scene's ``D`` moves, the other joints stay, the sweep is solved."""
+    from selenium.webdriver.common.action_chains import ActionChains
+
+    open_page(browser, pages("crank_rocker"))
+    canvas = browser.find_element("id", "view")
+    # D in the canvas's CSS pixels, from the page's own view transform
+    at = browser.execute_script("""
+        const r = arguments[0].getBoundingClientRect();
+        const s = window.linkageSym.canvasPoint("D");
+        return [s[0] * r.width / arguments[0].width - r.width / 2,
+                s[1] * r.height / arguments[0].height - r.height / 2];""", canvas)
+    ActionChains(browser).move_to_element_with_offset(canvas, round(at[0]), round(at[1])) \
+        .click_and_hold().move_by_offset(15, -10).move_by_offset(5, 0).release().perform()
+    scene = browser.execute_script("return window.linkageSym.scene()")
+    joints = {j["name"]: j["at"] for j in scene["joints"]}
+    before = {j.name: list(j.at) for j in load_example("crank_rocker").joints}
+    assert joints["D"][0] > before["D"][0] and joints["D"][1] > before["D"][1]
+    assert {n: joints[n] for n in "ABC"} == {n: before[n] for n in "ABC"}
+    assert browser.execute_script("return window.linkageSym.summary()")["error"] is None
+
+
+def test_a_typed_length_moves_the_second_joint_along_the_line(browser, pages):
+    """Typing a length of the crank-rocker's A–B puts B at that distance from A on the line
+    A B (A at the origin, B on the x-axis); the sweep is solved again, with the statuses
+    of ``analyze`` of the edited scene (a longer crank: some steps no longer assemble)."""
+    open_page(browser, pages("crank_rocker"))
+    box = browser.find_element("css selector", "input[aria-label='length A–B']")
+    box.clear()
+    box.send_keys("0.03\n")  # Enter commits the value: its change event re-solves
+    scene = browser.execute_script("return window.linkageSym.scene()")
+    B = next(j["at"] for j in scene["joints"] if j["name"] == "B")
+    assert B == pytest.approx([0.03, 0.0], abs=1e-15)
+    status = linkage_sym.analyze(parse_scene(scene)).status
+    want = {str(s): int(np.sum(status == s)) for s in set(status)}
+    assert browser.execute_script("return window.linkageSym.summary()")["counts"] == want
+    assert want["unassemblable"] > 0
