@@ -63,10 +63,10 @@ for name in SCENES:
 # %%
 from IPython.display import Math, display  # noqa: E402
 
-from linkage_sym.symbolic.latex import _Namer  # noqa: E402
+from linkage_sym.symbolic.latex_notation import Namer  # noqa: E402
 
 eqs = linkage_sym.derive(linkage_sym.load_example("crank_rocker"))
-nm = _Namer(eqs)
+nm = Namer(eqs)
 display(Math(r"\begin{aligned}" + r" \\ ".join(
     f"{nm(s)} &= {nm(e)}" for s, e in eqs.position_steps) + r"\end{aligned}"))
 
