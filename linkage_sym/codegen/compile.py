@@ -142,127 +142,24 @@ def build_artifact(scene: Scene, printer: str = "numpy") -> dict:
     stages = needed_stages(scene)
     forces = "forces" in stages
     eqs = MechanismEquations(scene, symbolic=True, forces=forces)
-    params = eqs.parameters
-    p_syms = params + eqs.sigmas + eqs.flanks
-    F = eqs.all_forces if forces else []
-    cx = [sp.Symbol("cos_" + s.name, real=True) for s in eqs.x]
-    sx = [sp.Symbol("sin_" + s.name, real=True) for s in eqs.x]
-    args = [eqs.x, eqs.xd, eqs.xdd, eqs.q, eqs.qd, eqs.qdd, F, p_syms, cx, sx]
-    trig = {}
-    for s, c, si in zip(eqs.x, cx, sx):
-        if s.name.startswith("theta_"):
-            trig[sp.cos(s)] = c
-            trig[sp.sin(s)] = si
-    angles = {s for s in eqs.x if s.name.startswith("theta_")}
-
-    def shared_trig(e):
-        """``e`` with the sines and cosines of the link angles as inputs."""
-        e = e.replace(
-            lambda n: isinstance(n, (sp.sin, sp.cos)) and bool(n.args[0].free_symbols & angles),
-            lambda n: sp.expand_trig(n),
-        )
-        return e.xreplace(trig)
-    xi = {s: i for i, s in enumerate(eqs.x)}
-    funcs, steps = {}, []
-
-    def add(name, outputs, what, share=False):
-        if share:
-            outputs = [shared_trig(sp.sympify(e)) for e in outputs]
-        funcs[name] = generate(name, args, outputs, _describe(name, eqs, p_syms, what), printer)
-
-    # positions: closed-form segments between groups that need a numeric root
-    segment: list = []
-    defs = dict(eqs.closed_forms)
-
-    def flush():
-        if not segment:
-            return
-        name = f"positions_{len(steps)}"
-        nested: dict = {}
-        for s, e in eqs.closed_forms:
-            if s in segment:
-                nested[s] = e.xreplace(nested)
-        add(name, [nested[s] for s in segment], "[" + ", ".join(_names(segment)) + "]")
-        steps.append({"kind": "closed", "function": name, "x": [xi[s] for s in segment]})
-        segment.clear()
-
-    groups = []
-    for ge in eqs.groups:
-        cols = [xi[s] for s in ge.x]
-        if ge.closed:
-            segment.extend(s for s in ge.x if s in defs)
-        else:
-            flush()
-            name = f"newton_{ge.index}"
-            rows = eqs.Phi[ge.rows, :]
-            Jg = eqs.A[ge.rows, cols]
-            add(name, list(rows) + list(Jg), f"residual ({rows.rows}) then jacobian (row-major)")
-            steps.append({"kind": "newton", "function": name, "group": ge.index, "x": cols})
-        groups.append(
-            {
-                "index": ge.index,
-                "links": list(ge.group.links),
-                "label": ge.group.label,
-                "closed": ge.closed,
-                "cols": cols,
-                "rows": [ge.rows.start, ge.rows.stop],
-                "sigma": None if ge.sigma is None else len(params) + eqs.sigmas.index(ge.sigma),
-            }
-        )
-    flush()
+    gen = _Generator(eqs, printer, forces)
+    steps, groups = gen.positions()
     # rows and columns, for the dimensionless condition number
     col_len = [s.name.startswith("s_") for s in eqs.x]
     # rates
     pattern = _pattern(eqs.A)
     Bqd = eqs.B * sp.Matrix(eqs.qd)
-    add("rates", [eqs.A[i, j] for i, j in pattern] + list(Bqd), "nonzero entries of A, then B qd", True)
+    gen.add("rates", [eqs.A[i, j] for i, j in pattern] + list(Bqd), "nonzero entries of A, then B qd", True)
     if "acceleration" in stages:
-        add("accelerations", list(eqs.acc_rhs), "right-hand side of A xdd = rhs", True)
-    # points (and the force blocks)
-    outs, layout = [], {}
-
-    def put(key, values):
-        layout[key] = [len(outs), len(outs) + len(values)]
-        outs.extend(values)
-
-    levels = [0] + ([1] if "velocity" in stages else []) + ([2] if "acceleration" in stages else [])
-    for lev in levels:
-        for j in scene.joints:
-            put(f"joint:{j.name}:{lev}", eqs.joint_kin[j.name][lev])
-        for n in scene.link_names:
-            put(f"origin:{n}:{lev}", eqs.origin_kin[n][lev])
-        for n, kin in eqs.com_kin.items():
-            put(f"com:{n}:{lev}", kin[lev])
-    for j in scene.joints:
-        if j.type == "P":
-            put(f"slide:{j.name}", list(eqs.slide_unit(j.name)))
-        elif j.type == "G":  # the line of action, with the flank an input
-            put(f"mesh:{j.name}", list(eqs.line_of_action(j)))
-    force_layout = []
-    if forces:
-        fi = {s: i for i, s in enumerate(F)}
-        for ge, (Ag, bg, Cg, later) in zip(eqs.groups, eqs.force_blocks):
-            pa, pc = _pattern(Ag), _pattern(Cg)
-            k = ge.index
-            put(f"A:{k}", [Ag[i, j] for i, j in pa])
-            put(f"b:{k}", list(bg))
-            put(f"C:{k}", [Cg[i, j] for i, j in pc])
-            force_layout.append(
-                {
-                    "unknowns": [fi[s] for s in ge.forces],
-                    "A": pa,
-                    "C": [(i, fi[later[j]]) for i, j in pc],
-                }
-            )
-        add("frame", list(eqs.frame), "frame force x, y and moment about the origin", True)
-    add("points", outs, "joint, origin and centre-of-mass kinematics, slide units, force blocks", True)
+        gen.add("accelerations", list(eqs.acc_rhs), "right-hand side of A xdd = rhs", True)
+    layout, force_layout = gen.points(stages)
     table = eqs.table
     return {
         "scene": scene.name,
         "stages": list(stages),
         "x": _names(eqs.x),
         "q": [d.joint for d in scene.drivers],
-        "params": [[s.name, list(_jsonable(table.params[s.name].recipe))] for s in params],
+        "params": [[s.name, list(_jsonable(table.params[s.name].recipe))] for s in gen.params],
         "sigmas": len(eqs.sigmas),
         "flanks": [j.name for j in scene.meshes],
         "steps": steps,
@@ -272,9 +169,137 @@ def build_artifact(scene: Scene, printer: str = "numpy") -> dict:
         "pattern": pattern,
         "layout": layout,
         "forces": force_layout,
-        "force_names": _names(F),
-        "functions": funcs,
+        "force_names": _names(gen.F),
+        "functions": gen.funcs,
     }
+
+
+class _Generator:
+    """The functions of one artifact as :func:`build_artifact` generates them, in order
+    (``funcs`` by name), with the arguments they all take."""
+
+    def __init__(self, eqs: MechanismEquations, printer: str, forces: bool):
+        self.eqs, self.printer = eqs, printer
+        self.params = eqs.parameters
+        self.p_syms = self.params + eqs.sigmas + eqs.flanks
+        self.F = eqs.all_forces if forces else []
+        cx = [sp.Symbol("cos_" + s.name, real=True) for s in eqs.x]
+        sx = [sp.Symbol("sin_" + s.name, real=True) for s in eqs.x]
+        self.args = [eqs.x, eqs.xd, eqs.xdd, eqs.q, eqs.qd, eqs.qdd, self.F, self.p_syms, cx, sx]
+        self.trig = {}
+        for s, c, si in zip(eqs.x, cx, sx):
+            if s.name.startswith("theta_"):
+                self.trig[sp.cos(s)] = c
+                self.trig[sp.sin(s)] = si
+        self.angles = {s for s in eqs.x if s.name.startswith("theta_")}
+        self.xi = {s: i for i, s in enumerate(eqs.x)}
+        self.funcs: dict = {}
+
+    def shared_trig(self, e):
+        """``e`` with the sines and cosines of the link angles as inputs."""
+        angles = self.angles
+        e = e.replace(
+            lambda n: isinstance(n, (sp.sin, sp.cos)) and bool(n.args[0].free_symbols & angles),
+            lambda n: sp.expand_trig(n),
+        )
+        return e.xreplace(self.trig)
+
+    def add(self, name, outputs, what, share=False):
+        """Generate function ``name`` of ``outputs`` (``share``: the shared sines and cosines)."""
+        if share:
+            outputs = [self.shared_trig(sp.sympify(e)) for e in outputs]
+        self.funcs[name] = generate(name, self.args, outputs,
+                                    _describe(name, self.eqs, self.p_syms, what), self.printer)
+
+    def positions(self) -> tuple:
+        """``(steps, groups)``: closed-form segments between the groups that need a numeric
+        root, each group's Newton function, and the groups' layout."""
+        eqs, xi, add = self.eqs, self.xi, self.add
+        steps: list = []
+        segment: list = []
+        defs = dict(eqs.closed_forms)
+
+        def flush():
+            if not segment:
+                return
+            name = f"positions_{len(steps)}"
+            nested: dict = {}
+            for s, e in eqs.closed_forms:
+                if s in segment:
+                    nested[s] = e.xreplace(nested)
+            add(name, [nested[s] for s in segment], "[" + ", ".join(_names(segment)) + "]")
+            steps.append({"kind": "closed", "function": name, "x": [xi[s] for s in segment]})
+            segment.clear()
+
+        groups = []
+        for ge in eqs.groups:
+            cols = [xi[s] for s in ge.x]
+            if ge.closed:
+                segment.extend(s for s in ge.x if s in defs)
+            else:
+                flush()
+                name = f"newton_{ge.index}"
+                rows = eqs.Phi[ge.rows, :]
+                Jg = eqs.A[ge.rows, cols]
+                add(name, list(rows) + list(Jg), f"residual ({rows.rows}) then jacobian (row-major)")
+                steps.append({"kind": "newton", "function": name, "group": ge.index, "x": cols})
+            groups.append(
+                {
+                    "index": ge.index,
+                    "links": list(ge.group.links),
+                    "label": ge.group.label,
+                    "closed": ge.closed,
+                    "cols": cols,
+                    "rows": [ge.rows.start, ge.rows.stop],
+                    "sigma": None if ge.sigma is None else len(self.params) + eqs.sigmas.index(ge.sigma),
+                }
+            )
+        flush()
+        return steps, groups
+
+    def points(self, stages) -> tuple:
+        """``(layout, force_layout)``: the points' kinematics, slide units, lines of action and
+        force blocks in one function (``points``), after the frame loads' (``frame``)."""
+        eqs, scene, F = self.eqs, self.eqs.scene, self.F
+        outs, layout = [], {}
+
+        def put(key, values):
+            layout[key] = [len(outs), len(outs) + len(values)]
+            outs.extend(values)
+
+        levels = [0] + ([1] if "velocity" in stages else []) + ([2] if "acceleration" in stages else [])
+        for lev in levels:
+            for j in scene.joints:
+                put(f"joint:{j.name}:{lev}", eqs.joint_kin[j.name][lev])
+            for n in scene.link_names:
+                put(f"origin:{n}:{lev}", eqs.origin_kin[n][lev])
+            for n, kin in eqs.com_kin.items():
+                put(f"com:{n}:{lev}", kin[lev])
+        for j in scene.joints:
+            if j.type == "P":
+                put(f"slide:{j.name}", list(eqs.slide_unit(j.name)))
+            elif j.type == "G":  # the line of action, with the flank an input
+                put(f"mesh:{j.name}", list(eqs.line_of_action(j)))
+        force_layout = []
+        if "forces" in stages:
+            fi = {s: i for i, s in enumerate(F)}
+            for ge, (Ag, bg, Cg, later) in zip(eqs.groups, eqs.force_blocks):
+                pa, pc = _pattern(Ag), _pattern(Cg)
+                k = ge.index
+                put(f"A:{k}", [Ag[i, j] for i, j in pa])
+                put(f"b:{k}", list(bg))
+                put(f"C:{k}", [Cg[i, j] for i, j in pc])
+                force_layout.append(
+                    {
+                        "unknowns": [fi[s] for s in ge.forces],
+                        "A": pa,
+                        "C": [(i, fi[later[j]]) for i, j in pc],
+                    }
+                )
+            self.add("frame", list(eqs.frame), "frame force x, y and moment about the origin", True)
+        self.add("points", outs, "joint, origin and centre-of-mass kinematics, slide units, force blocks",
+                 True)
+        return layout, force_layout
 
 
 def _jsonable(recipe):
