@@ -94,13 +94,42 @@ def centres_figure(scene, analysis, centres, step, out_file):
     ax = fig.subplots()
     ax.set_aspect("equal", adjustable="box")
     mechanism_snapshot(scene, analysis, step, ax, labels=False, unit_scale=scale)
+    names = centres.links
+    _three_centre_lines(ax, centres, step, scale, L)
+    listed, labels, drawn_at, far = _mark_centres(ax, analysis, centres, step, scale, unit, mid, L)
+    text = _key(ax, centres, step, listed)
+    ax.set_xlabel(f"x ({unit})")
+    ax.set_ylabel(f"y ({unit})")
+    ax.grid(True, color="0.92", lw=0.6, zorder=0)
+    n = len(names)
+    ax.set_title(f"{scene.name}: {n * (n - 1) // 2} = {n}·{n - 1}/2 instant centres at step {step}",
+                 fontsize=11)
+    # the drawing fills the axes: limits around what is drawn, a figure of its proportions
+    lo, hi = _drawn_box(scene, analysis, step, drawn_at, L)
+    _fit(fig, ax, lo * scale, hi * scale, text.count("\n") + 1 + len(listed))
+    points = [np.asarray(analysis.joints[j.name].position[step], dtype=float) * scale
+              for j in scene.joints] + [p * scale for p in drawn_at]
+    # the joints' names, then the centres' (none covers another, nor a point)
+
+    def place(link, local):
+        if link == GROUND:
+            return np.asarray(local, dtype=float) * scale
+        return np.asarray(analysis.links[link].point(tuple(local))[step], dtype=float) * scale
+
+    size = 0.045 * L * scale
+    joints = [(p, ", ".join(n), "0.1") for p, n in joint_label_groups(scene, place, size)]
+    place_labels(fig, ax, joints, points, size=10, weight="bold", offsets=JOINT_OFFSETS)
+    place_labels(fig, ax, [(p, text, "0.1") for p, text in far], points)
+    place_labels(fig, ax, [(p * scale, ", ".join(n), c) for p, n, c in labels], points)
+    return style.save(fig, out_file)
+
+
+def _three_centre_lines(ax, centres, step, scale, L) -> None:
+    """The three-centre lines of the Kennedy centres at ``step``: ``P_ik``, ``P_kj``, ``P_ij``
+    on one line, each drawn once."""
     k_all = centres.kennedy
     pos = centres.position[step]
     names = centres.links
-    listed = []  # text beside the drawing
-
-    def near(p):
-        return bool(np.all(np.isfinite(p))) and np.hypot(*(p - mid)) <= VIEW * L
 
     def centre_at(i, j):
         """Finite position or ('inf', direction) of pair (links i, j) at the step, or None."""
@@ -145,6 +174,17 @@ def centres_figure(scene, analysis, centres, step, out_file):
             ax.plot(seg[:, 0], seg[:, 1], color="#d62728", lw=0.7, ls=(0, (5, 3)), alpha=0.55,
                     zorder=2)
 
+
+def _mark_centres(ax, analysis, centres, step, scale, unit, mid, L) -> tuple:
+    """Mark every centre drawn at ``step``; ``(listed, labels, drawn_at, far)``: the text
+    beside the drawing, the labels to place (``[position, [labels], colour]``), every centre
+    drawn (m), and the centres at infinity shown at their slides (``(tip, label)``)."""
+    pos = centres.position[step]
+    listed = []  # text beside the drawing
+
+    def near(p):
+        return bool(np.all(np.isfinite(p))) and np.hypot(*(p - mid)) <= VIEW * L
+
     labels = []  # [position, [labels], colour]
     drawn_at = []  # every centre drawn (m): a label keeps off them
     far = []  # (tip, label) of the centres at infinity shown at their slides
@@ -180,8 +220,13 @@ def centres_figure(scene, analysis, centres, step, out_file):
                 break
         else:
             labels.append([p, [label], st["mec"]])
+    return listed, labels, drawn_at, far
 
 
+def _key(ax, centres, step, listed) -> str:
+    """The legend of the markers and the numbering of the links with the centres listed
+    beside the drawing; returns that text."""
+    names = centres.links
     from matplotlib.lines import Line2D
 
     handles = [Line2D([], [], ls="none", label="centre at a joint", **KIND_STYLE["joint"]),
@@ -197,30 +242,7 @@ def centres_figure(scene, analysis, centres, step, out_file):
     text = "numbering: " + numbers + ("\n" + "\n".join(listed) if listed else "")
     ax.text(1.02, 0.0, text, transform=ax.transAxes, fontsize=7.5, va="bottom", ha="left",
             color="0.2", wrap=True, gid="numbering")
-    ax.set_xlabel(f"x ({unit})")
-    ax.set_ylabel(f"y ({unit})")
-    ax.grid(True, color="0.92", lw=0.6, zorder=0)
-    n = len(names)
-    ax.set_title(f"{scene.name}: {n * (n - 1) // 2} = {n}·{n - 1}/2 instant centres at step {step}",
-                 fontsize=11)
-    # the drawing fills the axes: limits around what is drawn, a figure of its proportions
-    lo, hi = _drawn_box(scene, analysis, step, drawn_at, L)
-    _fit(fig, ax, lo * scale, hi * scale, text.count("\n") + 1 + len(listed))
-    points = [np.asarray(analysis.joints[j.name].position[step], dtype=float) * scale
-              for j in scene.joints] + [p * scale for p in drawn_at]
-    # the joints' names, then the centres' (none covers another, nor a point)
-
-    def place(link, local):
-        if link == GROUND:
-            return np.asarray(local, dtype=float) * scale
-        return np.asarray(analysis.links[link].point(tuple(local))[step], dtype=float) * scale
-
-    size = 0.045 * L * scale
-    joints = [(p, ", ".join(n), "0.1") for p, n in joint_label_groups(scene, place, size)]
-    place_labels(fig, ax, joints, points, size=10, weight="bold", offsets=JOINT_OFFSETS)
-    place_labels(fig, ax, [(p, text, "0.1") for p, text in far], points)
-    place_labels(fig, ax, [(p * scale, ", ".join(n), c) for p, n, c in labels], points)
-    return style.save(fig, out_file)
+    return text
 
 
 def _drawn_box(scene, analysis, step, centres_drawn, L):
