@@ -190,6 +190,37 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
     def P(link, local):
         return place(link, local) * unit_scale
 
+    artists += _link_shapes(scene, ax, P, colors, alpha, base_z)
+    artists += _sliding_pairs(scene, analysis, ax, P, turn, colors, alpha, base_z, size, unit_scale,
+                              ground)
+
+    # cams: the profile turning with the cam, the follower's roller or flat face
+    for joint in scene.cams:
+        artists += _cam(scene, analysis, joint, step, ax, unit_scale, alpha, base_z, colors)
+
+    # pins and ground symbols
+    for joint in scene.joints:
+        on = joint.links[1] if joint.links[1] != GROUND else joint.links[0]
+        p = P(on, joint.at)
+        if joint.type == "R":
+            if GROUND in joint.links and ground:
+                artists += _ground_symbol(ax, p, size, alpha, base_z - 0.5)
+            pin = Circle(p, 0.22 * size, facecolor="white", edgecolor="0.1", lw=1.2,
+                         alpha=alpha, zorder=base_z + 2)
+            ax.add_patch(pin)
+            artists.append(pin)
+
+    artists += _centres_of_mass(scene, ax, P, colors, alpha, base_z)
+
+    if labels:
+        artists += _joint_labels(scene, ax, P, size)
+    return artists
+
+
+def _link_shapes(scene, ax, P, colors, alpha, base_z) -> list:
+    """Each link as a bar or a convex polygon through its joints' points (``P``: a link's
+    point in axis units); the artists."""
+    artists = []
     # links: bars or convex polygons through their joints' points
     for link, local_pts in link_points(scene).items():
         pts = [P(link, q) for q in local_pts]
@@ -208,7 +239,15 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
             ax.add_patch(poly)
             ax.add_patch(edge)
             artists += [poly, edge]
+    return artists
 
+
+def _sliding_pairs(scene, analysis, ax, P, turn, colors, alpha, base_z, size, unit_scale,
+                   ground) -> list:
+    """Each sliding pair: a slot on ``links[0]`` (a fixed slot when ``ground``), a block fixed
+    on ``links[1]``; the artists."""
+    L = scene.characteristic_length() or 1.0
+    artists = []
     # sliding pairs: a slot on links[0], a block fixed on links[1]
     for joint in scene.joints:
         if joint.type != "P":
@@ -228,24 +267,12 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
         blk_col = colors.get(slider, "0.6") if slider != GROUND else "0.85"
         artists.append(_block(ax, centre, angle, 2.2 * size, 1.3 * size, blk_col, alpha,
                               base_z + 1))
+    return artists
 
-    # cams: the profile turning with the cam, the follower's roller or flat face
-    for joint in scene.cams:
-        artists += _cam(scene, analysis, joint, step, ax, unit_scale, alpha, base_z, colors)
 
-    # pins and ground symbols
-    for joint in scene.joints:
-        on = joint.links[1] if joint.links[1] != GROUND else joint.links[0]
-        p = P(on, joint.at)
-        if joint.type == "R":
-            if GROUND in joint.links and ground:
-                artists += _ground_symbol(ax, p, size, alpha, base_z - 0.5)
-            pin = Circle(p, 0.22 * size, facecolor="white", edgecolor="0.1", lw=1.2,
-                         alpha=alpha, zorder=base_z + 2)
-            ax.add_patch(pin)
-            artists.append(pin)
-
-    # centres of mass
+def _centres_of_mass(scene, ax, P, colors, alpha, base_z) -> list:
+    """Each link's centre of mass, a circle with a cross; the artists."""
+    artists = []
     for link in scene.links:
         if link.com is None:
             continue
@@ -257,9 +284,6 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
         (x,) = ax.plot([c[0]], [c[1]], marker="+", ms=ms, mec=colors.get(link.name),
                        mew=1.3, ls="none", alpha=alpha, zorder=base_z + 2)
         artists += [m, x]
-
-    if labels:
-        artists += _joint_labels(scene, ax, P, size)
     return artists
 
 
