@@ -213,29 +213,8 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
                              f"{fmt_len(longest)}, is not shorter than the sum of the other three, "
                              f"{fmt_len(a + b + c + d - longest)}")
     g = classify([d, a, b, c], fixed=0, names=["ground", "crank", "coupler", "rocker"])
-    bx, by = _crank_pin(a, phi_deg)
-    r = math.hypot(d - bx, by)
-    where = f"at {phi_deg:g}° the four-bar cannot be assembled"
     full = g.name == "double-crank" or (g.name == "crank-rocker" and g.shortest == 1)
-    turns = "" if full else (f" (Grashof class: {g.name}: the crank turns over part of a turn "
-                             "only)")
-    if r > b + c:
-        raise SynthesisError("crank_deg", f"{where}: |BD| = {fmt_len(r)} is more than coupler + "
-                                          f"rocker = {fmt_len(b + c)}{turns}")
-    if r < abs(b - c):
-        raise SynthesisError("crank_deg", f"{where}: |BD| = {fmt_len(r)} is less than |coupler - "
-                                          f"rocker| = {fmt_len(abs(b - c))}{turns}")
-    if r == 0.0:
-        raise SynthesisError("crank_deg", f"at {phi_deg:g}° the crank pin B falls on D")
-    h = half_chord(r, b, c)
-    if not h > TANGENCY * min(b, c):
-        raise SynthesisError("crank_deg", f"at {phi_deg:g}° the coupler and rocker are in line (a "
-                                          "dead-centre position): the assembly mode is not defined "
-                                          "there; choose another crank angle")
-    ux, uy = (d - bx) / r, (0.0 - by) / r
-    x = (b * b - c * c + r * r) / (2.0 * r)
-    sign = 1.0 if branch == "open" else -1.0
-    cx, cy = bx + x * ux - sign * h * uy, by + x * uy + sign * h * ux
+    bx, by, cx, cy = _fourbar_assembly(a, b, c, d, phi_deg, branch, g.name, full)
     size = _size([(0.0, 0.0), (bx, by), (cx, cy), (d, 0.0)])
     crank_apart("crank", a, size, "the crank")
     joints = [
@@ -259,6 +238,44 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
                                  "float64 keeps 16 digits of a coordinate, so fewer than 7 of the "
                                  "linkage's geometry would be left")
         scene["points"] = [{"name": "P", "link": "coupler", "at": at}]
+    notes, extra, K, theta, gmin, where_min = _fourbar_class(a, b, c, d, g, full)
+    return Design("fourbar", scene, {"crank": a, "coupler": b, "rocker": c, "ground": d},
+                  tuple(notes), K, theta, gmin, where_min, extra)
+
+
+def _fourbar_assembly(a, b, c, d, phi_deg, branch, g_name, full) -> tuple:
+    """``(bx, by, cx, cy)``: the pins ``B`` and ``C`` at the crank angle, refused where the
+    four-bar cannot be assembled or sits at a dead centre (``g_name``, ``full``: its
+    Grashof class and whether the crank turns fully, for the refusal)."""
+    bx, by = _crank_pin(a, phi_deg)
+    r = math.hypot(d - bx, by)
+    where = f"at {phi_deg:g}° the four-bar cannot be assembled"
+    turns = "" if full else (f" (Grashof class: {g_name}: the crank turns over part of a turn "
+                             "only)")
+    if r > b + c:
+        raise SynthesisError("crank_deg", f"{where}: |BD| = {fmt_len(r)} is more than coupler + "
+                                          f"rocker = {fmt_len(b + c)}{turns}")
+    if r < abs(b - c):
+        raise SynthesisError("crank_deg", f"{where}: |BD| = {fmt_len(r)} is less than |coupler - "
+                                          f"rocker| = {fmt_len(abs(b - c))}{turns}")
+    if r == 0.0:
+        raise SynthesisError("crank_deg", f"at {phi_deg:g}° the crank pin B falls on D")
+    h = half_chord(r, b, c)
+    if not h > TANGENCY * min(b, c):
+        raise SynthesisError("crank_deg", f"at {phi_deg:g}° the coupler and rocker are in line (a "
+                                          "dead-centre position): the assembly mode is not defined "
+                                          "there; choose another crank angle")
+    ux, uy = (d - bx) / r, (0.0 - by) / r
+    x = (b * b - c * c + r * r) / (2.0 * r)
+    sign = 1.0 if branch == "open" else -1.0
+    cx, cy = bx + x * ux - sign * h * uy, by + x * uy + sign * h * ux
+    return bx, by, cx, cy
+
+
+def _fourbar_class(a, b, c, d, g, full) -> tuple:
+    """``(notes, extra, K, theta, gmin, where_min)`` of a four-bar of Grashof class ``g``:
+    a crank-rocker's ratio, swing and minimum transmission angle, a double-crank's angle, or
+    the note that the crank cannot turn fully."""
     notes = [f"Grashof class: {g.name} ({g.detail})"]
     extra = {}
     K = theta = gmin = where_min = None
@@ -276,8 +293,7 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
             notes.append("the rocker CD is this loop's crank: driven at A, the linkage rocks")
         notes.append("the crank cannot make the full turn the driver asks for: the steps beyond "
                      "its reach are reported unassemblable")
-    return Design("fourbar", scene, {"crank": a, "coupler": b, "rocker": c, "ground": d},
-                  tuple(notes), K, theta, gmin, where_min, extra)
+    return notes, extra, K, theta, gmin, where_min
 
 
 def _pair(name: str, value) -> tuple[float, float]:
