@@ -448,8 +448,7 @@ class Analysis:
         for name, d in self.drivers.items():
             out += [(f"drivers.{name}.{k}", np.asarray(v, dtype=float), "always") for k, v in d.items()]
 
-        def vec(prefix, v, when="ok"):
-            return [(f"{prefix}.x", v[:, 0], when), (f"{prefix}.y", v[:, 1], when)]
+        vec = _xy_columns
 
         def motion(prefix, k):
             cols = vec(f"{prefix}.position", k.position, "positions")
@@ -475,17 +474,7 @@ class Analysis:
                     out.append((f"joints.{name}.reaction_moment", forces.reaction_moments[name], "ok"))
         if want_kin:
             for name, lk in self.links.items():
-                out.append((f"links.{name}.rotation", lk.rotation, "positions"))
-                if has_vel:
-                    out.append((f"links.{name}.omega", lk.omega, "ok"))
-                if has_acc:
-                    out.append((f"links.{name}.alpha", lk.alpha, "ok"))
-                if lk.com is not None:
-                    out += vec(f"links.{name}.com", lk.com, "positions")
-                    if has_vel:
-                        out += vec(f"links.{name}.com_velocity", lk.com_velocity)
-                    if has_acc:
-                        out += vec(f"links.{name}.com_acceleration", lk.com_acceleration)
+                out += _link_columns(name, lk, has_vel, has_acc)
             for name, pk in self.points.items():
                 out += motion(f"points.{name}", pk)
             out += [(f"transmission_angles.{name}", v, "positions")
@@ -506,3 +495,26 @@ class Analysis:
 
 _RECORD_BLOCK = 1024
 """Steps whose arrays :meth:`Analysis.step_records` turns into Python numbers at once."""
+
+
+def _xy_columns(prefix, v, when="ok") -> list:
+    """The columns ``<prefix>.x`` and ``<prefix>.y`` of an (N, 2) array (see
+    :meth:`Analysis.columns`)."""
+    return [(f"{prefix}.x", v[:, 0], when), (f"{prefix}.y", v[:, 1], when)]
+
+
+def _link_columns(name, lk, has_vel: bool, has_acc: bool) -> list:
+    """A link's columns: rotation and its rates, centre of mass and its rates (see
+    :meth:`Analysis.columns`)."""
+    out = [(f"links.{name}.rotation", lk.rotation, "positions")]
+    if has_vel:
+        out.append((f"links.{name}.omega", lk.omega, "ok"))
+    if has_acc:
+        out.append((f"links.{name}.alpha", lk.alpha, "ok"))
+    if lk.com is not None:
+        out += _xy_columns(f"links.{name}.com", lk.com, "positions")
+        if has_vel:
+            out += _xy_columns(f"links.{name}.com_velocity", lk.com_velocity)
+        if has_acc:
+            out += _xy_columns(f"links.{name}.com_acceleration", lk.com_acceleration)
+    return out
