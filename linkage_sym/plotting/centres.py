@@ -520,29 +520,58 @@ def polygons_figure(scene, polygons, out_file):
     axv, axa = fig.subplots(1, 2)
     moving = [p for p in polygons.points if p.link != GROUND]
     for ax, what, prime, unit in ((axv, "velocity", "", "m/s"), (axa, "acceleration", "'", "m/s²")):
-        ax.set_aspect("equal", adjustable="datalim")
-        ax.plot([0], [0], marker="o", ms=5, color="0.1", zorder=6)
-        ax.annotate("p" + prime, (0, 0), xytext=(-12, -12), textcoords="offset points", fontsize=10,
-                    fontweight="bold", zorder=9)
-        vertices = []
-        for p in moving:
-            v = getattr(p, what)
-            _arrow(ax, (0.0, 0.0), v, colors.get(p.link, "0.3"), lw=1.3)
-            vertices.append((p.label, np.asarray(v)))
-        # each link's image: its points' vertices joined in order
-        for link in scene.link_names:
-            pts = [getattr(p, what) for p in moving if p.link == link]
-            if len(pts) >= 2:
-                ring = np.array(pts + ([pts[0]] if len(pts) > 2 else []))
-                ax.plot(ring[:, 0], ring[:, 1], color=colors.get(link, "0.3"), lw=0.8, alpha=0.6,
-                        zorder=3)
-        if vertices:
-            _labels(ax, vertices, prime)
-        ax.axhline(0, color="0.85", lw=0.6, zorder=0)
-        ax.axvline(0, color="0.85", lw=0.6, zorder=0)
-        ax.grid(True, color="0.94", lw=0.5, zorder=0)
-        ax.set_xlabel(f"{what} x ({unit})")
-        ax.set_ylabel(f"{what} y ({unit})")
+        _polygon(ax, scene, moving, what, prime, unit, colors)
+    _polygon_terms(axv, axa, polygons, colors)
+    from matplotlib.lines import Line2D
+
+    handles_v = [Line2D([], [], color=colors[n], lw=1.3, label=f"points of {n}") for n in scene.link_names]
+    handles_a = list(handles_v) + [Line2D([], [], color="0.4", lw=1.0, ls=(0, (4, 2)),
+                                          label="normal component about the link's first pivot"),
+                                   Line2D([], [], color="0.4", lw=1.0, ls=(0, (1, 1.5)),
+                                          label="tangential component")]
+    if polygons.sliding:
+        handles_v.append(Line2D([], [], color="0.15", lw=1.6, label="slip velocity (sliding pair)"))
+        handles_a += [Line2D([], [], color="#9467bd", lw=1.6, label="Coriolis 2ω×v_rel"),
+                      Line2D([], [], color="0.15", lw=1.6, label="slip acceleration")]
+    axv.legend(handles=handles_v, loc="best", fontsize=7, framealpha=0.8)
+    axa.legend(handles=handles_a, loc="best", fontsize=7, framealpha=0.8)
+    axv.set_title(f"velocity polygon (pole p), step {polygons.step}", fontsize=11)
+    axa.set_title(f"acceleration polygon (pole p'), step {polygons.step}", fontsize=11)
+    fig.suptitle(f"{scene.name}: polygons to scale (equal axes)", fontsize=12)
+    return style.save(fig, out_file)
+
+
+def _polygon(ax, scene, moving, what, prime, unit, colors) -> None:
+    """One polygon (``what``: ``velocity`` or ``acceleration``) from its pole: each moving
+    point's vector, each link's image joining its points' vertices."""
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.plot([0], [0], marker="o", ms=5, color="0.1", zorder=6)
+    ax.annotate("p" + prime, (0, 0), xytext=(-12, -12), textcoords="offset points", fontsize=10,
+                fontweight="bold", zorder=9)
+    vertices = []
+    for p in moving:
+        v = getattr(p, what)
+        _arrow(ax, (0.0, 0.0), v, colors.get(p.link, "0.3"), lw=1.3)
+        vertices.append((p.label, np.asarray(v)))
+    # each link's image: its points' vertices joined in order
+    for link in scene.link_names:
+        pts = [getattr(p, what) for p in moving if p.link == link]
+        if len(pts) >= 2:
+            ring = np.array(pts + ([pts[0]] if len(pts) > 2 else []))
+            ax.plot(ring[:, 0], ring[:, 1], color=colors.get(link, "0.3"), lw=0.8, alpha=0.6,
+                    zorder=3)
+    if vertices:
+        _labels(ax, vertices, prime)
+    ax.axhline(0, color="0.85", lw=0.6, zorder=0)
+    ax.axvline(0, color="0.85", lw=0.6, zorder=0)
+    ax.grid(True, color="0.94", lw=0.5, zorder=0)
+    ax.set_xlabel(f"{what} x ({unit})")
+    ax.set_ylabel(f"{what} y ({unit})")
+
+
+def _polygon_terms(axv, axa, polygons, colors) -> None:
+    """The acceleration's normal and tangential components about each link's first pivot,
+    and each sliding pair's slip velocity, Coriolis term and slip acceleration."""
     by_name = {(p.name, p.link): p for p in polygons.points}
     # acceleration: normal then tangential component about each link's first pivot
     shown = set()
@@ -568,20 +597,3 @@ def polygons_figure(scene, polygons, out_file):
         _arrow(axa, k, sl.acceleration, "0.15", lw=1.6, z=6)
         axa.annotate("k'", tuple(k), xytext=(5, -12), textcoords="offset points", fontsize=9,
                      color="#9467bd", zorder=9)
-    from matplotlib.lines import Line2D
-
-    handles_v = [Line2D([], [], color=colors[n], lw=1.3, label=f"points of {n}") for n in scene.link_names]
-    handles_a = list(handles_v) + [Line2D([], [], color="0.4", lw=1.0, ls=(0, (4, 2)),
-                                          label="normal component about the link's first pivot"),
-                                   Line2D([], [], color="0.4", lw=1.0, ls=(0, (1, 1.5)),
-                                          label="tangential component")]
-    if polygons.sliding:
-        handles_v.append(Line2D([], [], color="0.15", lw=1.6, label="slip velocity (sliding pair)"))
-        handles_a += [Line2D([], [], color="#9467bd", lw=1.6, label="Coriolis 2ω×v_rel"),
-                      Line2D([], [], color="0.15", lw=1.6, label="slip acceleration")]
-    axv.legend(handles=handles_v, loc="best", fontsize=7, framealpha=0.8)
-    axa.legend(handles=handles_a, loc="best", fontsize=7, framealpha=0.8)
-    axv.set_title(f"velocity polygon (pole p), step {polygons.step}", fontsize=11)
-    axa.set_title(f"acceleration polygon (pole p'), step {polygons.step}", fontsize=11)
-    fig.suptitle(f"{scene.name}: polygons to scale (equal axes)", fontsize=12)
-    return style.save(fig, out_file)

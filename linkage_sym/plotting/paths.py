@@ -507,31 +507,9 @@ def coupler_curves_figure(scene: Scene, analysis: Analysis):
                            ground=False)
     mechanism_snapshot(scene, analysis, None, ax, alpha=1.0, labels=True, unit_scale=scale)
 
-    jcolors = style.joint_colors(scene)
     lcolors = style.link_colors(scene)
-    drawn = []  # (path, legend entry) to merge coincident joints
-    for joint in scene.joints:
-        if joint.links[1] == GROUND:
-            continue
-        jk = analysis.joints.get(joint.name)
-        if jk is None:
-            continue
-        pos = np.asarray(jk.position, dtype=float)
-        if _still(pos, scene):
-            continue  # a pivot that does not move (e.g. on a crank's ground axis)
-        for entry in drawn:
-            if _same_path(entry[0], pos):
-                entry[1].append(joint.name)
-                break
-        else:
-            drawn.append([pos, [joint.name], jcolors.get(joint.name)])
     styles = ("-", (0, (6, 2)), (0, (1, 1.5)), (0, (6, 2, 1, 2)))
-    per_color = {}
-    for pos, names, col in drawn:
-        k = per_color.get(col, 0)
-        per_color[col] = k + 1
-        ax.plot(pos[:, 0] * scale, pos[:, 1] * scale, color=col, lw=1.6,
-                ls=styles[k % len(styles)], zorder=4, label=f"path of {', '.join(names)}")
+    _joint_paths(ax, scene, analysis, scale, styles)
     points = getattr(analysis, "points", {}) or {}
     for k, pt in enumerate(scene.points):
         pk = points.get(pt.name)
@@ -568,3 +546,31 @@ def coupler_curves_figure(scene: Scene, analysis: Analysis):
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8, frameon=False)
     return fig
+
+
+def _joint_paths(ax, scene, analysis, scale, styles) -> None:
+    """The path of every moving joint point (coincident paths drawn once, their joints named
+    together), in the joints' colours, the line styles taken in turn per colour."""
+    jcolors = style.joint_colors(scene)
+    drawn = []  # (path, legend entry) to merge coincident joints
+    for joint in scene.joints:
+        if joint.links[1] == GROUND:
+            continue
+        jk = analysis.joints.get(joint.name)
+        if jk is None:
+            continue
+        pos = np.asarray(jk.position, dtype=float)
+        if _still(pos, scene):
+            continue  # a pivot that does not move (e.g. on a crank's ground axis)
+        for entry in drawn:
+            if _same_path(entry[0], pos):
+                entry[1].append(joint.name)
+                break
+        else:
+            drawn.append([pos, [joint.name], jcolors.get(joint.name)])
+    per_color = {}
+    for pos, names, col in drawn:
+        k = per_color.get(col, 0)
+        per_color[col] = k + 1
+        ax.plot(pos[:, 0] * scale, pos[:, 1] * scale, color=col, lw=1.6,
+                ls=styles[k % len(styles)], zorder=4, label=f"path of {', '.join(names)}")
