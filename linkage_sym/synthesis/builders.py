@@ -217,27 +217,10 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
     bx, by, cx, cy = _fourbar_assembly(a, b, c, d, phi_deg, branch, g.name, full)
     size = _size([(0.0, 0.0), (bx, by), (cx, cy), (d, 0.0)])
     crank_apart("crank", a, size, "the crank")
-    joints = [
-        {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
-        {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": _xy((bx, by))},
-        {"name": "C", "type": "R", "links": ["coupler", "rocker"], "at": _xy((cx, cy))},
-        {"name": "D", "type": "R", "links": ["rocker", "ground"], "at": [d, 0.0]},
-    ]
-    scene = {"name": name,
-             "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "rocker"}],
-             "joints": joints, "drivers": [_driver(phi_deg, steps, speed)],
-             "outputs": ["kinematics"]}
+    scene = _fourbar_scene(name, (bx, by), (cx, cy), d, _driver(phi_deg, steps, speed))
     if point is not None:
-        u, v = point
-        ex, ey = (cx - bx) / b, (cy - by) / b
-        at = _xy((bx + u * ex - v * ey, by + u * ey + v * ex))
-        if math.hypot(*at) > MAX_SPREAD * size:
-            raise SynthesisError("coupler_point", f"P is {fmt_len(math.hypot(*at))} from the crank "
-                                 f"pivot A, more than {MAX_SPREAD:.0e} times the linkage's size "
-                                 f"({fmt_len(size)}, the largest distance between two joints): "
-                                 "float64 keeps 16 digits of a coordinate, so fewer than 7 of the "
-                                 "linkage's geometry would be left")
-        scene["points"] = [{"name": "P", "link": "coupler", "at": at}]
+        scene["points"] = [{"name": "P", "link": "coupler",
+                            "at": _coupler_point(point, bx, by, cx, cy, b, size)}]
     notes, extra, K, theta, gmin, where_min = _fourbar_class(a, b, c, d, g, full)
     return Design("fourbar", scene, {"crank": a, "coupler": b, "rocker": c, "ground": d},
                   tuple(notes), K, theta, gmin, where_min, extra)
@@ -294,6 +277,52 @@ def _fourbar_class(a, b, c, d, g, full) -> tuple:
         notes.append("the crank cannot make the full turn the driver asks for: the steps beyond "
                      "its reach are reported unassemblable")
     return notes, extra, K, theta, gmin, where_min
+
+
+def _slider_crank_class(a, b, e, full) -> tuple:
+    """``(notes, extra, K, theta, gmin, where)`` of a slider-crank: its ratio, stroke and
+    minimum transmission angle when the crank turns fully, else the note that it cannot."""
+    notes, extra = [], {}
+    K = theta = gmin = where = None
+    if full:
+        theta = slider_crank_extreme_angle(a, b, e)
+        K = (math.pi + theta) / (math.pi - theta)
+        extra["stroke"] = slider_crank_stroke(a, b, e)
+        gmin = math.acos((a + abs(e)) / b)
+        where = slider_crank_where(e)
+    else:
+        notes.append(f"the crank cannot make a full turn (crank + |offset| = {fmt_len(a + abs(e))} "
+                     f"> rod = {fmt_len(b)}): the steps beyond its reach are reported unassemblable")
+    return notes, extra, K, theta, gmin, where
+
+
+def _coupler_point(point, bx, by, cx, cy, b, size) -> list:
+    """The traced point ``(u, v)`` of the coupler ``B C`` (length ``b``) at its assembly
+    position, refused beyond :data:`MAX_SPREAD` sizes from the crank pivot."""
+    u, v = point
+    ex, ey = (cx - bx) / b, (cy - by) / b
+    at = _xy((bx + u * ex - v * ey, by + u * ey + v * ex))
+    if math.hypot(*at) > MAX_SPREAD * size:
+        raise SynthesisError("coupler_point", f"P is {fmt_len(math.hypot(*at))} from the crank "
+                             f"pivot A, more than {MAX_SPREAD:.0e} times the linkage's size "
+                             f"({fmt_len(size)}, the largest distance between two joints): "
+                             "float64 keeps 16 digits of a coordinate, so fewer than 7 of the "
+                             "linkage's geometry would be left")
+    return at
+
+
+def _fourbar_scene(name, B, C, d, driver) -> dict:
+    """The four-bar's scene: pivots ``A`` at the origin and ``D`` at ``(d, 0)``, pins ``B``
+    and ``C``, the crank driven by ``driver``, kinematics out."""
+    joints = [
+        {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
+        {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": _xy(B)},
+        {"name": "C", "type": "R", "links": ["coupler", "rocker"], "at": _xy(C)},
+        {"name": "D", "type": "R", "links": ["rocker", "ground"], "at": [d, 0.0]},
+    ]
+    return {"name": name,
+            "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "rocker"}],
+            "joints": joints, "drivers": [driver], "outputs": ["kinematics"]}
 
 
 def _pair(name: str, value) -> tuple[float, float]:
@@ -410,17 +439,7 @@ def slider_crank(crank, coupler, offset=0.0, *, crank_deg=0.0, branch="right", n
     scene = {"name": name, "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "slider"}],
              "joints": joints, "drivers": [_driver(phi_deg, steps, speed)],
              "outputs": ["kinematics"]}
-    notes, extra = [], {}
-    K = theta = gmin = where = None
-    if full:
-        theta = slider_crank_extreme_angle(a, b, e)
-        K = (math.pi + theta) / (math.pi - theta)
-        extra["stroke"] = slider_crank_stroke(a, b, e)
-        gmin = math.acos((a + abs(e)) / b)
-        where = slider_crank_where(e)
-    else:
-        notes.append(f"the crank cannot make a full turn (crank + |offset| = {fmt_len(a + abs(e))} "
-                     f"> rod = {fmt_len(b)}): the steps beyond its reach are reported unassemblable")
+    notes, extra, K, theta, gmin, where = _slider_crank_class(a, b, e, full)
     return Design("slider-crank", scene, {"crank": a, "coupler": b, "offset": e}, tuple(notes),
                   K, theta, gmin, where, extra)
 
