@@ -63,7 +63,7 @@ for name in SCENES:
 # %%
 from IPython.display import Math, display  # noqa: E402
 
-from linkage_sym.symbolic.latex import Namer  # noqa: E402
+from linkage_sym.symbolic.latex_notation import Namer  # noqa: E402
 
 eqs = linkage_sym.derive(linkage_sym.load_example("crank_rocker"))
 nm = Namer(eqs)

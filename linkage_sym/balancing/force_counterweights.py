@@ -100,24 +100,7 @@ def solve_counterweights(scene: Scene, balance: Balance, links, radius=None, mas
     if missing:
         raise BalanceError(f"links {', '.join(missing)} are floating; give their counterweight masses")
 
-    unknown = {}
-    rep = {}
-    anchor = {}
-    for link in links:
-        m, a, p, q, k = model.link_symbols(link)
-        sx, sy = sp.symbols(f"S_{link}_x S_{link}_y", real=True)
-        unknown[link] = (sx, sy)
-        P = pivot_of(balance, link)
-        g = model.local_point(link, P) if P is not None else sp.Integer(0)
-        gx = float(sp.re(g).xreplace({s: values[s.name] for s in g.free_symbols}))
-        gy = float(sp.im(g).xreplace({s: values[s.name] for s in g.free_symbols}))
-        anchor[link] = (gx, gy)
-        mu = masses.get(link, 1.0)  # any mass on a pivoted link: it drops out
-        mv, pv, qv = values[m.name], values[p.name], values[q.name]
-        m_new = mv + mu
-        rep[m] = m_new
-        rep[p] = (mv * pv + mu * gx + sx) / m_new
-        rep[q] = (mv * qv + mu * gy + sy) / m_new
+    unknown, rep, anchor = _counterweight_symbols(balance, links, masses, values)
     numeric = model.substitution()
     eqs = []
     for c in balance.force.conditions:
@@ -150,3 +133,29 @@ def solve_counterweights(scene: Scene, balance: Balance, links, radius=None, mas
             mu = masses[link]
         out.append(Counterweight(link, mu, (gx + S[0] / mu, gy + S[1] / mu)))
     return out
+
+
+def _counterweight_symbols(balance: Balance, links, masses: dict, values: dict) -> tuple:
+    """``(unknown, rep, anchor)``: each link's unknown first moment ``(S_x, S_y)`` of its
+    counterweight, the substitution of its mass and centre of mass with the counterweight
+    added, and its pivot in the link frame (the origin for a floating link)."""
+    model = balance.model
+    unknown = {}
+    rep = {}
+    anchor = {}
+    for link in links:
+        m, a, p, q, k = model.link_symbols(link)
+        sx, sy = sp.symbols(f"S_{link}_x S_{link}_y", real=True)
+        unknown[link] = (sx, sy)
+        P = pivot_of(balance, link)
+        g = model.local_point(link, P) if P is not None else sp.Integer(0)
+        gx = float(sp.re(g).xreplace({s: values[s.name] for s in g.free_symbols}))
+        gy = float(sp.im(g).xreplace({s: values[s.name] for s in g.free_symbols}))
+        anchor[link] = (gx, gy)
+        mu = masses.get(link, 1.0)  # any mass on a pivoted link: it drops out
+        mv, pv, qv = values[m.name], values[p.name], values[q.name]
+        m_new = mv + mu
+        rep[m] = m_new
+        rep[p] = (mv * pv + mu * gx + sx) / m_new
+        rep[q] = (mv * qv + mu * gy + sy) / m_new
+    return unknown, rep, anchor

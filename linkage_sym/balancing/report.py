@@ -74,6 +74,17 @@ def _latex(e, names) -> str:
     return sp.latex(e, symbol_names=names)
 
 
+def _meanings(model, sm) -> dict:
+    """Every symbol's meaning: the model's, the shaking moment's, then those the links'
+    angular accelerations add."""
+    meanings = dict(model.meanings)
+    meanings.update(sm.symbol_meanings())
+    for link in model.links:
+        model.phidd(link)
+    meanings.update({k: v for k, v in model.meanings.items() if k not in meanings})
+    return meanings
+
+
 def balance_report(scene: Scene, balance: Balance | None = None, latex: bool = False,
                    counterweights: bool = True) -> tuple:
     """Everything ``linkage-sym balance`` writes (see the module docstring).
@@ -88,11 +99,7 @@ def balance_report(scene: Scene, balance: Balance | None = None, latex: bool = F
 
     b = balance or derive_balance(scene)
     model, sm, fb = b.model, b.moment, b.force
-    meanings = dict(model.meanings)
-    meanings.update(sm.symbol_meanings())
-    for link in model.links:
-        model.phidd(link)
-    meanings.update({k: v for k, v in model.meanings.items() if k not in meanings})
+    meanings = _meanings(model, sm)
     out = {
         "scene": scene.name,
         "symbols": dict(sorted(meanings.items())),

@@ -179,28 +179,9 @@ class _Problem:
         return float(r @ r), 2.0 * (r @ self.Rls[:, :-1]) @ self.dp(z)
 
 
-def _relaxation(prob: _Problem, smooth: bool):
-    """Solve the convex relaxation of the problem; see :func:`optimize_counterweights`.
-
-    Variables per link, scaled to the bounds: ``y = (mu/M, s_x/(M R),
-    s_y/(M R), J/(M R^2))`` with ``s`` the first and ``J`` the second moment
-    about the frame origin.  A point mass has ``mu J = |s|^2``; the
-    relaxation allows ``mu J >= |s|^2`` (any rigid body), with ``|s_x|,
-    |s_y| <= R mu`` and ``J <= 2 R^2 mu`` as for a point in the box.  Every
-    term of ``J`` is the norm of an affine function of ``y``, so the
-    relaxation is convex and a local solution is global.
-
-    Returns
-    -------
-    z : ndarray
-        The solution projected on point masses (``w = s/mu``), scaled variables.
-    value : float
-        ``J`` of the relaxation's solution.
-    converged : bool
-        First-order optimality reached to ``1e-7`` and constraints met.
-    nfev : int
-    """
-    n = len(prob.M)
+def _relaxation_objective(prob: _Problem, smooth: bool):
+    """``(fun, hess)`` of the relaxation's ``J`` in the scaled variables ``y`` (``fun``
+    returns the value and the gradient); with ``smooth``, ``J^2`` as a quadratic."""
     scale = np.concatenate([[M, M * R, M * R, M * R * R] for M, R in zip(prob.M, prob.Rmax)])
     act = [i for i in range(3) if prob.w[i] > 0]
     As = [prob.R[i][:, :-1] * scale for i in act]
@@ -237,7 +218,12 @@ def _relaxation(prob: _Problem, smooth: bool):
                     u = A.T @ r
                     H += (k / nr) * (A.T @ A - np.outer(u, u) / (nr * nr))
             return H
+    return fun, hess
 
+
+def _relaxation_constraints(n: int):
+    """``(cone, cone_jac, cone_hess, lin)``: ``mu J >= |s|^2`` per link (the cone, with its
+    derivatives) and the linear ``|s_x|, |s_y| <= R mu``, ``J <= 2 R^2 mu``."""
     rows = []
     for i in range(n):
         k = 4 * i
@@ -270,6 +256,33 @@ def _relaxation(prob: _Problem, smooth: bool):
         H[k4 + 1, k4 + 1] = H[k4 + 2, k4 + 2] = -2 * v
         return H
 
+    return cone, cone_jac, cone_hess, lin
+
+
+def _relaxation(prob: _Problem, smooth: bool):
+    """Solve the convex relaxation of the problem; see :func:`optimize_counterweights`.
+
+    Variables per link, scaled to the bounds: ``y = (mu/M, s_x/(M R),
+    s_y/(M R), J/(M R^2))`` with ``s`` the first and ``J`` the second moment
+    about the frame origin.  A point mass has ``mu J = |s|^2``; the
+    relaxation allows ``mu J >= |s|^2`` (any rigid body), with ``|s_x|,
+    |s_y| <= R mu`` and ``J <= 2 R^2 mu`` as for a point in the box.  Every
+    term of ``J`` is the norm of an affine function of ``y``, so the
+    relaxation is convex and a local solution is global.
+
+    Returns
+    -------
+    z : ndarray
+        The solution projected on point masses (``w = s/mu``), scaled variables.
+    value : float
+        ``J`` of the relaxation's solution.
+    converged : bool
+        First-order optimality reached to ``1e-7`` and constraints met.
+    nfev : int
+    """
+    n = len(prob.M)
+    fun, hess = _relaxation_objective(prob, smooth)
+    cone, cone_jac, cone_hess, lin = _relaxation_constraints(n)
     y0 = np.tile([0.3, 0.0, 0.0, 0.1], n)
     with warnings.catch_warnings():
         # trust-constr's quasi-Newton updates warn when a step leaves the gradient unchanged
@@ -393,108 +406,16 @@ def optimize_counterweights(
     links, Mmax, Rmax = list(options.links), options.max_mass, options.max_radius
     w = np.asarray(options.weights, dtype=float)
     model = CycleModel(scene) if model is None else model
-    # the start, in normalised variables
-    z0 = np.zeros(3 * len(links))
-    start_cws = check_counterweights(scene, start or [])
-    seen = set()
-    for cw in start_cws:
-        if cw.link not in links:
-            raise ValueError(f"start: link {cw.link!r} is not among the optimised links")
-        if cw.link in seen:
-            raise ValueError(f"start: two counterweights on {cw.link!r}")
-        seen.add(cw.link)
-        i = links.index(cw.link)
-        M, R = Mmax[cw.link], Rmax[cw.link]
-        tol = 1e-12
-        if cw.mass > M * (1 + tol) or max(abs(cw.at[0]), abs(cw.at[1])) > R * (1 + tol):
-            raise ValueError(
-                f"start: counterweight on {cw.link!r} is outside the bounds "
-                f"(mass <= {M:g} kg, |x|, |y| <= {R:g} m)"
-            )
-        z0[3 * i] = min(cw.mass / M, 1.0) if M > 0 else 0.0
-        z0[3 * i + 1: 3 * i + 3] = np.clip(np.array(cw.at) / R, -1, 1) if R > 0 else 0.0
+    z0, start_cws = _start(scene, links, Mmax, Rmax, start)
     if not model.ok.any():
         raise ValueError("the scene has no step whose status is ok: nothing to optimise")
     rms_start = model.rms(start_cws)
-    scales = {}
-    for k in ("force", "moment", "driving"):
-        v = rms_start[k]
-        if v > ZERO_START * model.gross[k] and v > 0:
-            scales[k] = v
-        elif model.gross[k] > 0:
-            scales[k] = model.gross[k]
-        else:
-            scales[k] = 1.0
+    scales = _term_scales(model, rms_start)
     prob = _Problem(model, links, w, scales, Mmax, Rmax)
-    # bounds of the scaled variables (a zero bound scales its variable to no effect)
-    lo = np.tile([0.0, -1.0, -1.0], len(links))
-    hi = np.tile([1.0, 1.0, 1.0], len(links))
     J_start = prob.objective(z0)
-    candidates = [(J_start, z0, "the start")]
-    notes = []
-    converged = False
-    single = int(np.count_nonzero(w)) == 1
-    starts = [("the start", z0)]
-    bound = None
-    n_relax = 0
-    try:
-        z_rel, value, ok_rel, n_relax = _relaxation(prob, single)
-        starts.append(("the convex relaxation", z_rel))
-        candidates.append((prob.objective(z_rel), z_rel, "the convex relaxation (projected)"))
-        if ok_rel:
-            bound = value
-        else:
-            notes.append("the convex relaxation did not converge")
-    except (ValueError, np.linalg.LinAlgError) as err:  # pragma: no cover - defensive
-        notes.append(f"convex relaxation failed: {err}")
-    if bound is None:
-        starts.append(("a generic start", np.tile([0.3, 0.0, 0.0], len(links))))
-    bounds = list(zip(lo, hi))
-    for label, zs in starts:
-        try:
-            mn = _opt.minimize(
-                prob.objective_grad, zs, jac=True, method="L-BFGS-B", bounds=bounds,
-                options={"ftol": 1e-15, "gtol": 1e-12, "maxiter": 1000},
-            )
-            converged |= bool(mn.success)
-            candidates.append((prob.objective(mn.x), mn.x, f"L-BFGS-B on J from {label}"))
-        except (ValueError, np.linalg.LinAlgError) as err:  # pragma: no cover - defensive
-            notes.append(f"local search from {label} failed: {err}")
-    if single:  # Gauss-Newton reaches rounding accuracy where the term can vanish (full balance)
-        J_b, z_b, how = min(candidates, key=lambda c: c[0])
-        try:
-            ls = _opt.least_squares(
-                prob.residuals, z_b, jac=prob.residual_jac, bounds=(lo, hi), method="trf",
-                ftol=1e-15, xtol=1e-15, gtol=1e-15, max_nfev=100 * len(z_b),
-            )
-            converged |= bool(ls.status > 0)
-            candidates.append((prob.objective(ls.x), ls.x, f"least squares after {how}"))
-        except (ValueError, np.linalg.LinAlgError) as err:  # pragma: no cover - defensive
-            notes.append(f"least squares failed: {err}")
-    J_best, z_best, how = min(candidates, key=lambda c: c[0])
-    if J_best >= J_start:
-        z_best, J_best = z0, J_start
-        msg = "no design better than the start was found; returning the start"
-    else:
-        msg = f"best design from {how}"
-    if bound is not None:
-        if bound > J_best * (1 + 1e-6) + 1e-12:  # not a bound after all: do not claim one
-            notes.append(f"the convex relaxation ended above the design found ({bound:.6g})")
-            bound = None
-        else:
-            msg += f"; convex relaxation: J >= {bound:.6g}"
-    if notes:
-        msg += " (" + "; ".join(notes) + ")"
-    cws = []
-    zb = z_best.reshape(-1, 3)
-    for i, n in enumerate(links):
-        mass = float(min(max(zb[i, 0], 0.0), 1.0) * Mmax[n])
-        at = (0.0, 0.0) if mass == 0 else (float(zb[i, 1] * Rmax[n]), float(zb[i, 2] * Rmax[n]))
-        if z_best is z0:
-            prev = next((cw for cw in start_cws if cw.link == n), None)
-            if prev is not None:
-                mass, at = prev.mass, prev.at
-        cws.append(Counterweight(n, mass, at))
+    candidates, notes, converged, bound, n_relax = _search(prob, z0, J_start, w, len(links))
+    z_best, msg, bound = _best(candidates, z0, J_start, bound, notes)
+    cws = _designs(links, z_best, z0, start_cws, Mmax, Rmax)
     rms_final = model.rms(cws)
     J_final = sum(
         float(w[i]) * rms_final[k] / scales[k] for i, k in enumerate(("force", "moment", "driving"))
@@ -520,3 +441,133 @@ def optimize_counterweights(
         max_radius=Rmax,
         n_excluded=model.n_excluded,
     )
+
+
+def _start(scene, links: list, Mmax: dict, Rmax: dict, start) -> tuple:
+    """``(z0, counterweights)``: the starting design checked against the links and the
+    bounds, and in normalised variables."""
+    z0 = np.zeros(3 * len(links))
+    start_cws = check_counterweights(scene, start or [])
+    seen = set()
+    for cw in start_cws:
+        if cw.link not in links:
+            raise ValueError(f"start: link {cw.link!r} is not among the optimised links")
+        if cw.link in seen:
+            raise ValueError(f"start: two counterweights on {cw.link!r}")
+        seen.add(cw.link)
+        i = links.index(cw.link)
+        M, R = Mmax[cw.link], Rmax[cw.link]
+        tol = 1e-12
+        if cw.mass > M * (1 + tol) or max(abs(cw.at[0]), abs(cw.at[1])) > R * (1 + tol):
+            raise ValueError(
+                f"start: counterweight on {cw.link!r} is outside the bounds "
+                f"(mass <= {M:g} kg, |x|, |y| <= {R:g} m)"
+            )
+        z0[3 * i] = min(cw.mass / M, 1.0) if M > 0 else 0.0
+        z0[3 * i + 1: 3 * i + 3] = np.clip(np.array(cw.at) / R, -1, 1) if R > 0 else 0.0
+    return z0, start_cws
+
+
+def _term_scales(model: CycleModel, rms_start: dict) -> dict:
+    """What each term of ``J`` is normalised by: its starting RMS, or its gross scale where
+    that is zero (:data:`ZERO_START`), or 1."""
+    scales = {}
+    for k in ("force", "moment", "driving"):
+        v = rms_start[k]
+        if v > ZERO_START * model.gross[k] and v > 0:
+            scales[k] = v
+        elif model.gross[k] > 0:
+            scales[k] = model.gross[k]
+        else:
+            scales[k] = 1.0
+    return scales
+
+
+def _search(prob: _Problem, z0, J_start: float, w, n_links: int) -> tuple:
+    """The searches of :func:`optimize_counterweights` (its Notes, steps 1 to 3).
+
+    Returns ``(candidates, notes, converged, bound, n_relax)``: every design found as
+    ``(J, z, how)``, the start first; what failed; whether a SciPy run converged; the
+    relaxation's ``J`` if it converged; its evaluations.
+    """
+    # bounds of the scaled variables (a zero bound scales its variable to no effect)
+    lo = np.tile([0.0, -1.0, -1.0], n_links)
+    hi = np.tile([1.0, 1.0, 1.0], n_links)
+    candidates = [(J_start, z0, "the start")]
+    notes = []
+    converged = False
+    single = int(np.count_nonzero(w)) == 1
+    starts = [("the start", z0)]
+    bound = None
+    n_relax = 0
+    try:
+        z_rel, value, ok_rel, n_relax = _relaxation(prob, single)
+        starts.append(("the convex relaxation", z_rel))
+        candidates.append((prob.objective(z_rel), z_rel, "the convex relaxation (projected)"))
+        if ok_rel:
+            bound = value
+        else:
+            notes.append("the convex relaxation did not converge")
+    except (ValueError, np.linalg.LinAlgError) as err:  # pragma: no cover - defensive
+        notes.append(f"convex relaxation failed: {err}")
+    if bound is None:
+        starts.append(("a generic start", np.tile([0.3, 0.0, 0.0], n_links)))
+    bounds = list(zip(lo, hi))
+    for label, zs in starts:
+        try:
+            mn = _opt.minimize(
+                prob.objective_grad, zs, jac=True, method="L-BFGS-B", bounds=bounds,
+                options={"ftol": 1e-15, "gtol": 1e-12, "maxiter": 1000},
+            )
+            converged |= bool(mn.success)
+            candidates.append((prob.objective(mn.x), mn.x, f"L-BFGS-B on J from {label}"))
+        except (ValueError, np.linalg.LinAlgError) as err:  # pragma: no cover - defensive
+            notes.append(f"local search from {label} failed: {err}")
+    if single:  # Gauss-Newton reaches rounding accuracy where the term can vanish (full balance)
+        J_b, z_b, how = min(candidates, key=lambda c: c[0])
+        try:
+            ls = _opt.least_squares(
+                prob.residuals, z_b, jac=prob.residual_jac, bounds=(lo, hi), method="trf",
+                ftol=1e-15, xtol=1e-15, gtol=1e-15, max_nfev=100 * len(z_b),
+            )
+            converged |= bool(ls.status > 0)
+            candidates.append((prob.objective(ls.x), ls.x, f"least squares after {how}"))
+        except (ValueError, np.linalg.LinAlgError) as err:  # pragma: no cover - defensive
+            notes.append(f"least squares failed: {err}")
+    return candidates, notes, converged, bound, n_relax
+
+
+def _best(candidates: list, z0, J_start: float, bound, notes: list) -> tuple:
+    """``(z, message, bound)``: the best design by ``J`` (the start unless one is better),
+    what the message says of it, and the bound if it is one (``notes`` may grow)."""
+    J_best, z_best, how = min(candidates, key=lambda c: c[0])
+    if J_best >= J_start:
+        z_best, J_best = z0, J_start
+        msg = "no design better than the start was found; returning the start"
+    else:
+        msg = f"best design from {how}"
+    if bound is not None:
+        if bound > J_best * (1 + 1e-6) + 1e-12:  # not a bound after all: do not claim one
+            notes.append(f"the convex relaxation ended above the design found ({bound:.6g})")
+            bound = None
+        else:
+            msg += f"; convex relaxation: J >= {bound:.6g}"
+    if notes:
+        msg += " (" + "; ".join(notes) + ")"
+    return z_best, msg, bound
+
+
+def _designs(links: list, z_best, z0, start_cws, Mmax: dict, Rmax: dict) -> list:
+    """One counterweight per link from the scaled variables ``z_best`` (the start's own
+    counterweights when ``z_best`` is the start)."""
+    cws = []
+    zb = z_best.reshape(-1, 3)
+    for i, n in enumerate(links):
+        mass = float(min(max(zb[i, 0], 0.0), 1.0) * Mmax[n])
+        at = (0.0, 0.0) if mass == 0 else (float(zb[i, 1] * Rmax[n]), float(zb[i, 2] * Rmax[n]))
+        if z_best is z0:
+            prev = next((cw for cw in start_cws if cw.link == n), None)
+            if prev is not None:
+                mass, at = prev.mass, prev.at
+        cws.append(Counterweight(n, mass, at))
+    return cws

@@ -8,7 +8,9 @@ from a solved sweep (:func:`linkage_sym.analyze`):
 
 :func:`instant_centres`
     Every pair's centre at every step, by Kennedy's construction
-    (:mod:`~linkage_sym.centres.kennedy`), with the pairs it cannot reach
+    (:mod:`~linkage_sym.centres.kennedy`, its homogeneous points and
+    three-centre lines :mod:`~linkage_sym.centres.kennedy_lines`), with the
+    pairs it cannot reach
     filled from the velocity fields (:mod:`~linkage_sym.centres.velocity`,
     which shares no code with it and checks it in the tests).
 :func:`centrodes`

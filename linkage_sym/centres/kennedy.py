@@ -30,7 +30,9 @@ Coordinates are made dimensionless about the centre ``c`` of the assembly
 configuration's joints, in units of the mechanism's size ``L`` (the largest
 distance between two joints, the format's characteristic length), and every
 homogeneous vector is scaled to unit length, so no product overflows or
-underflows whatever the units of the scene.
+underflows whatever the units of the scene.  The homogeneous points, the
+three-centre lines and their intersections with their error estimates are
+:mod:`linkage_sym.centres.kennedy_lines`.
 """
 
 from __future__ import annotations
@@ -39,39 +41,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from linkage_sym.centres.kennedy_lines import (
+    FAR,
+    ROUNDING,
+    intersect_best,
+    relative,
+    snap,
+    to_global,
+    unit,
+)
 from linkage_sym.model import GROUND
 
 __all__ = ["FAR", "KennedyCentres", "kennedy_centres"]
-
-FAR = 1e9
-"""A centre farther than this many mechanism sizes from the mechanism is at infinity.
-
-Two lines through points of the mechanism that meet so far away are parallel
-to within 1e-9 rad: in float64 their meeting point is only known to about
-``1e-16 * (d / L)**2`` sizes, already 100 sizes at 1e9.  Such a centre is
-reported by its direction, as an exact point at infinity.
-"""
-
-DEGENERATE = 1e-13
-"""Two centres closer than this (relative, in the scaled frame) span no line.
-
-Such a pair of centres gives no three-centre line at that step; the centre
-sought is then found from the other lines, or not at that step.
-"""
-
-ROUNDING = 8 * float(np.finfo(float).eps)
-"""Error estimate of a primary centre: of a pin, relative to its distance from the
-global origin (at least one mechanism size); of a slide's direction, relative to
-its angle (at least 1 rad)."""
-
-DISTINCT = 1e3
-"""Two nearly parallel three-centre lines meet at infinity only if they lie this many times
-their possible offsets apart; closer, they may be one line, and they meet nowhere in
-particular (the intersection is not used)."""
-
-UNCERTAIN = 1e-3
-"""An intersection whose estimated error exceeds this fraction of its distance (at least one
-mechanism size) is not used: the lines are too nearly one."""
 
 @dataclass
 class KennedyCentres:
@@ -147,23 +128,6 @@ class KennedyCentres:
         i, j = min(i, j), max(i, j)
         n = len(self.links)
         return i * n - i * (i + 1) // 2 + (j - i - 1)
-
-
-def _unit(h):
-    """Homogeneous vectors (..., 3) scaled to unit length (zero vectors become NaN)."""
-    norm = np.linalg.norm(h, axis=-1, keepdims=True)
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        return np.where(norm > 0.0, h / norm, np.nan)
-
-
-def _snap(h):
-    """Unit homogeneous points with those beyond :data:`FAR` sizes set exactly at infinity."""
-    h = _unit(h)
-    w = np.abs(h[..., 2])
-    xy = np.linalg.norm(h[..., :2], axis=-1)
-    far = w * FAR <= xy
-    h = np.where(far[..., None], np.concatenate([h[..., :2], np.zeros_like(h[..., 2:])], -1), h)
-    return _unit(h)
 
 
 def _joint_pins(scene):
@@ -257,95 +221,128 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
     >>> k.source[i], bool(k.at_infinity[0, i]), np.abs(k.direction[0, i]).round(12).tolist()
     ('joint C_guide (slide)', True, [0.0, 1.0])
     """
-    names = (GROUND, *scene.link_names)
-    n = len(names)
-    idx = {name: i for i, name in enumerate(names)}
-    N = len(analysis.status)
-    pts = np.array([j.at for j in scene.joints], dtype=float)
-    c = pts.mean(axis=0)
-    L = scene.characteristic_length() or 1.0
+    d = _CircleDiagram(scene, analysis)
+    d.seed_joints()
+    derived = d.rounds()
+    d.refine(derived)
+    d.settle_weakest(derived)
+    return d.result()
 
-    H = np.full((n, n, N, 3), np.nan)  # unit homogeneous centres, scaled frame, symmetric
-    PG = np.full((n, n, N, 2), np.nan)  # the finite ones in global coordinates (m)
-    E = np.full((n, n, N), np.nan)  # error estimate: scaled length (finite), rad (at infinity)
-    known = np.zeros((n, n), dtype=bool)
-    ang = np.full((n, n, N), np.nan)
-    weak = np.full((n, n, N), np.nan)
-    via = np.full((n, n, N, 2), -1, dtype=int)
-    source: dict = {}
-    pinned: set = set()
 
-    def put(a, b, h, err, what, at=None):
+class _CircleDiagram:
+    """The circle diagram of :func:`kennedy_centres` as it is filled in: per pair of links
+    ``(a, b)`` (symmetric, ground first) and step, the unit homogeneous centre ``H`` in the
+    scaled frame, the finite ones ``PG`` in global coordinates, the error estimate ``E``, the
+    angle ``ang`` of the lines met there, the two centres ``via`` that gave those lines, the
+    weakest angle ``weak`` along the chain, whether the pair is ``known``, its ``source``, and
+    the ``pinned`` pairs."""
+
+    def __init__(self, scene, analysis):
+        self.scene, self.analysis = scene, analysis
+        self.names = names = (GROUND, *scene.link_names)
+        self.n = n = len(names)
+        self.idx = {name: i for i, name in enumerate(names)}
+        self.N = N = len(analysis.status)
+        pts = np.array([j.at for j in scene.joints], dtype=float)
+        self.c = pts.mean(axis=0)
+        self.L = scene.characteristic_length() or 1.0
+        self.H = np.full((n, n, N, 3), np.nan)  # unit homogeneous centres, scaled frame, symmetric
+        self.PG = np.full((n, n, N, 2), np.nan)  # the finite ones in global coordinates (m)
+        self.E = np.full((n, n, N), np.nan)  # error estimate: scaled length (finite), rad (at infinity)
+        self.known = np.zeros((n, n), dtype=bool)
+        self.ang = np.full((n, n, N), np.nan)
+        self.weak = np.full((n, n, N), np.nan)
+        self.via = np.full((n, n, N, 2), -1, dtype=int)
+        self.source: dict = {}
+        self.pinned: set = set()
+        self.steps = np.arange(N)
+
+    def put(self, a, b, h, err, what, at=None):
+        """Centre ``(a, b)`` known from a joint (``at``: its global position when finite)."""
+        weak, H, PG, E, known = self.weak, self.H, self.PG, self.E, self.known
         weak[a, b] = weak[b, a] = np.where(np.all(np.isfinite(h), axis=-1), np.pi / 2, np.nan)
         H[a, b] = H[b, a] = h
         if at is not None:
             PG[a, b] = PG[b, a] = at
         E[a, b] = E[b, a] = err
         known[a, b] = known[b, a] = True
-        source[min(a, b), max(a, b)] = what
+        self.source[min(a, b), max(a, b)] = what
 
-    def finite(p):
+    def finite(self, p):
+        """A point's unit homogeneous coordinates (scaled frame) and their error."""
+        c, L, N = self.c, self.L, self.N
         p = np.asarray(p, dtype=float)
         err = ROUNDING * (1.0 + np.linalg.norm(p, axis=-1) / L)
-        return _snap(np.concatenate([(p - c) / L, np.ones((N, 1))], axis=-1)), err
+        return snap(np.concatenate([(p - c) / L, np.ones((N, 1))], axis=-1)), err
 
-    for joint in scene.joints:  # pins first: a pin wins over a slide between the same links
-        if joint.type == "R":
-            a, b = idx[joint.links[0]], idx[joint.links[1]]
-            if not known[a, b]:
-                at = np.asarray(analysis.joints[joint.name].position, dtype=float)
-                put(a, b, *finite(at), f"joint {joint.name}", at)
-                pinned.add((min(a, b), max(a, b)))
-    for joint in scene.joints:  # a gear mesh rolls without slip: its pitch point (Fig. 3-3c)
-        if joint.type == "G":
-            a, b = idx[joint.links[0]], idx[joint.links[1]]
-            if not known[a, b]:
-                at = np.asarray(analysis.joints[joint.name].position, dtype=float)
-                put(a, b, *finite(at), f"pitch point of mesh {joint.name}", at)
-    for joint in scene.joints:
-        if joint.type == "P":
-            a, b = idx[joint.links[0]], idx[joint.links[1]]
-            if known[a, b]:
-                continue
-            guide = joint.links[0]
-            turn = 0.0 if guide == GROUND else np.asarray(analysis.links[guide].rotation, float)
-            th = joint.axis + turn + np.zeros(N)
-            put(a, b, np.stack([-np.sin(th), np.cos(th), np.zeros(N)], axis=-1),
-                ROUNDING * (1.0 + np.abs(th)), f"joint {joint.name} (slide)")
-    for group in _joint_pins(scene):
-        members = sorted({idx[x] for j in group for x in j.links})
-        at = np.asarray(analysis.joints[group[0].name].position, dtype=float)
-        where = finite(at)
-        label = f"pin of joints {', '.join(j.name for j in group)}"
-        for a in members:
-            for b in members:
-                if a < b and not known[a, b]:
-                    put(a, b, *where, label, at)
-                    pinned.add((a, b))
+    def seed_joints(self):
+        """The centres the joints give: pins first (a pin wins over a slide between the same
+        links), gear meshes' pitch points, slides at infinity, shared pins, cam contacts."""
+        scene, analysis, idx, known, N = self.scene, self.analysis, self.idx, self.known, self.N
+        put, finite, pinned = self.put, self.finite, self.pinned
+        for joint in scene.joints:  # pins first: a pin wins over a slide between the same links
+            if joint.type == "R":
+                a, b = idx[joint.links[0]], idx[joint.links[1]]
+                if not known[a, b]:
+                    at = np.asarray(analysis.joints[joint.name].position, dtype=float)
+                    put(a, b, *finite(at), f"joint {joint.name}", at)
+                    pinned.add((min(a, b), max(a, b)))
+        for joint in scene.joints:  # a gear mesh rolls without slip: its pitch point (Fig. 3-3c)
+            if joint.type == "G":
+                a, b = idx[joint.links[0]], idx[joint.links[1]]
+                if not known[a, b]:
+                    at = np.asarray(analysis.joints[joint.name].position, dtype=float)
+                    put(a, b, *finite(at), f"pitch point of mesh {joint.name}", at)
+        for joint in scene.joints:
+            if joint.type == "P":
+                a, b = idx[joint.links[0]], idx[joint.links[1]]
+                if known[a, b]:
+                    continue
+                guide = joint.links[0]
+                turn = 0.0 if guide == GROUND else np.asarray(analysis.links[guide].rotation, float)
+                th = joint.axis + turn + np.zeros(N)
+                put(a, b, np.stack([-np.sin(th), np.cos(th), np.zeros(N)], axis=-1),
+                    ROUNDING * (1.0 + np.abs(th)), f"joint {joint.name} (slide)")
+        for group in _joint_pins(scene):
+            members = sorted({idx[x] for j in group for x in j.links})
+            at = np.asarray(analysis.joints[group[0].name].position, dtype=float)
+            where = finite(at)
+            label = f"pin of joints {', '.join(j.name for j in group)}"
+            for a in members:
+                for b in members:
+                    if a < b and not known[a, b]:
+                        put(a, b, *where, label, at)
+                        pinned.add((a, b))
+        self.seed_cams()
 
-    for joint in scene.joints:  # a cam contact's centre: on the contact normal (Kennedy)
-        if joint.type == "cam":
-            a, b = idx[joint.links[0]], idx[joint.links[1]]
-            N_ = np.asarray(analysis.joints[joint.name].normal, dtype=float).T  # recorded
-            C = np.asarray(analysis.joints[joint.name].position, dtype=float)
-            normal = np.cross(finite(C)[0], np.stack([N_[0], N_[1], np.zeros(N)], axis=-1))
-            for k in range(n):
-                if k not in (a, b) and known[a, k] and known[b, k] and not known[a, b]:
-                    other = np.cross(H[a, k], H[b, k])
-                    h = _snap(np.cross(other, normal))
-                    sin = np.abs(_unit(other)[..., 0] * _unit(normal)[..., 1]
-                                 - _unit(other)[..., 1] * _unit(normal)[..., 0])
-                    err = (E[a, k] + E[b, k] + ROUNDING) / np.maximum(sin, 1e-300)
-                    put(a, b, h, err, f"contact normal of cam {joint.name} and line "
-                        f"P{names[a]},{names[k]}-P{names[b]},{names[k]}", _global(h, c, L))
-    steps = np.arange(N)
+    def seed_cams(self):
+        """A cam contact's centre: on the contact normal (Kennedy), met by a line of known
+        centres."""
+        scene, analysis, idx, known, N = self.scene, self.analysis, self.idx, self.known, self.N
+        H, E, names, n, c, L = self.H, self.E, self.names, self.n, self.c, self.L
+        for joint in scene.joints:  # a cam contact's centre: on the contact normal (Kennedy)
+            if joint.type == "cam":
+                a, b = idx[joint.links[0]], idx[joint.links[1]]
+                N_ = np.asarray(analysis.joints[joint.name].normal, dtype=float).T  # recorded
+                C = np.asarray(analysis.joints[joint.name].position, dtype=float)
+                normal = np.cross(self.finite(C)[0], np.stack([N_[0], N_[1], np.zeros(N)], axis=-1))
+                for k in range(n):
+                    if k not in (a, b) and known[a, k] and known[b, k] and not known[a, b]:
+                        other = np.cross(H[a, k], H[b, k])
+                        h = snap(np.cross(other, normal))
+                        sin = np.abs(unit(other)[..., 0] * unit(normal)[..., 1]
+                                     - unit(other)[..., 1] * unit(normal)[..., 0])
+                        err = (E[a, k] + E[b, k] + ROUNDING) / np.maximum(sin, 1e-300)
+                        self.put(a, b, h, err, f"contact normal of cam {joint.name} and line "
+                                 f"P{names[a]},{names[k]}-P{names[b]},{names[k]}", to_global(h, c, L))
 
-    def chain(i, j, a, v):
+    def chain(self, i, j, a, v):
         """Weakest angle of centre ``ij`` met at angle ``a`` by the lines via ``v`` (N, 2).
 
         A centre at infinity has the lines' direction, known as well as the lines
         are, however small ``a``: its own angle does not count.
         """
+        H, weak, steps = self.H, self.weak, self.steps
         out = np.where(H[i, j, :, 2] == 0.0, np.pi / 2, a)
         for col in (0, 1):
             k = np.maximum(v[:, col], 0)
@@ -354,207 +351,96 @@ def kennedy_centres(scene, analysis) -> KennedyCentres:
                 out = np.where(v[:, col] >= 0, np.fmin(out, w), out)
         return out
 
-    def lines_through(i, j):
-        return [k for k in range(n) if k not in (i, j) and known[i, k] and known[k, j]]
+    def lines_through(self, i, j):
+        """The links ``k`` whose centres with ``i`` and with ``j`` are both known."""
+        known = self.known
+        return [k for k in range(self.n) if k not in (i, j) and known[i, k] and known[k, j]]
 
-    derived = []
-    while True:  # rounds of the circle diagram
-        found = [(i, j, lines_through(i, j)) for i in range(n) for j in range(i + 1, n)
-                 if not known[i, j]]
-        found = [f for f in found if len(f[2]) >= 2]
-        if not found:
-            break
-        for i, j, ks in found:
-            h, err, a, v = _intersect_best(H, PG, E, i, j, ks, c, L)
-            H[i, j] = H[j, i] = h
-            PG[i, j] = PG[j, i] = _global(h, c, L)
-            E[i, j] = E[j, i] = err
-            ang[i, j] = ang[j, i] = a
-            via[i, j] = via[j, i] = v
-            weak[i, j] = weak[j, i] = chain(i, j, a, v)
-        for i, j, _ in found:
-            known[i, j] = known[j, i] = True
-            source[i, j] = "three-centre lines"
-            derived.append((i, j))
-    # Centres found in later rounds give more lines through the earlier ones (in the shaper the
-    # first two lines through P(crank, ram) are one line at every step): intersect again with
-    # every line there is, and keep, step by step, the intersection with the smaller error.
-    for _ in range(n):
-        improved = False
-        for i, j in derived:
-            h, err, a, v = _intersect_best(H, PG, E, i, j, lines_through(i, j), c, L)
-            better = np.isfinite(err) & ~(_relative(h, err) >= _relative(H[i, j], E[i, j]))
-            better &= ~np.isclose(err, E[i, j], rtol=1e-3, atol=0.0)  # no churn on ties
-            if better.any():
-                improved = True
-                H[i, j] = H[j, i] = np.where(better[:, None], h, H[i, j])
-                PG[i, j] = PG[j, i] = np.where(better[:, None], _global(h, c, L), PG[i, j])
-                E[i, j] = E[j, i] = np.where(better, err, E[i, j])
-                ang[i, j] = ang[j, i] = np.where(better, a, ang[i, j])
-                via[i, j] = via[j, i] = np.where(better[:, None], v, via[i, j])
-        if not improved:
-            break
-    for _ in range(n):  # the weakest angles along the final chains (they may be circular)
-        before = weak.copy()
-        for i, j in derived:
-            weak[i, j] = weak[j, i] = chain(i, j, ang[i, j], via[i, j])
-        if np.array_equal(before, weak, equal_nan=True):
-            break
+    def rounds(self) -> list:
+        """Rounds of the circle diagram, each closing every pair two known lines meet on;
+        the pairs derived, in order."""
+        H, PG, E, ang, via, weak, known = self.H, self.PG, self.E, self.ang, self.via, self.weak, self.known
+        n, c, L = self.n, self.c, self.L
+        derived = []
+        while True:  # rounds of the circle diagram
+            found = [(i, j, self.lines_through(i, j)) for i in range(n) for j in range(i + 1, n)
+                     if not known[i, j]]
+            found = [f for f in found if len(f[2]) >= 2]
+            if not found:
+                break
+            for i, j, ks in found:
+                h, err, a, v = intersect_best(H, PG, E, i, j, ks, c, L)
+                H[i, j] = H[j, i] = h
+                PG[i, j] = PG[j, i] = to_global(h, c, L)
+                E[i, j] = E[j, i] = err
+                ang[i, j] = ang[j, i] = a
+                via[i, j] = via[j, i] = v
+                weak[i, j] = weak[j, i] = self.chain(i, j, a, v)
+            for i, j, _ in found:
+                known[i, j] = known[j, i] = True
+                self.source[i, j] = "three-centre lines"
+                derived.append((i, j))
+        return derived
 
-    pairs, P = [], []
-    for i in range(n):
-        for j in range(i + 1, n):
-            pairs.append((names[i], names[j]))
-            P.append((i, j))
-    h = np.stack([H[i, j] for i, j in P], axis=1)  # (N, P, 3)
-    reached = np.all(np.isfinite(h), axis=-1)
-    inf = reached & (h[..., 2] == 0.0)
-    fin = reached & ~inf
-    pos = np.stack([PG[i, j] for i, j in P], axis=1)
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        d = h[..., :2] / np.linalg.norm(h[..., :2], axis=-1, keepdims=True)
-    return KennedyCentres(
-        links=names,
-        pairs=tuple(pairs),
-        position=np.where(fin[..., None], pos, np.nan),
-        direction=np.where(inf[..., None], d, np.nan),
-        at_infinity=inf,
-        reached=reached,
-        angle=np.stack([ang[i, j] for i, j in P], axis=1),
-        via=np.stack([via[i, j] for i, j in P], axis=1),
-        weakest=np.stack([weak[i, j] for i, j in P], axis=1),
-        source=tuple(source.get(p, "unreachable") for p in P),
-        pinned=np.array([p in pinned for p in P], dtype=bool),
-    )
+    def refine(self, derived):
+        """Centres found in later rounds give more lines through the earlier ones (in the
+        shaper the first two lines through P(crank, ram) are one line at every step):
+        intersect again with every line there is, and keep, step by step, the intersection
+        with the smaller error."""
+        H, PG, E, ang, via = self.H, self.PG, self.E, self.ang, self.via
+        n, c, L = self.n, self.c, self.L
+        for _ in range(n):
+            improved = False
+            for i, j in derived:
+                h, err, a, v = intersect_best(H, PG, E, i, j, self.lines_through(i, j), c, L)
+                better = np.isfinite(err) & ~(relative(h, err) >= relative(H[i, j], E[i, j]))
+                better &= ~np.isclose(err, E[i, j], rtol=1e-3, atol=0.0)  # no churn on ties
+                if better.any():
+                    improved = True
+                    H[i, j] = H[j, i] = np.where(better[:, None], h, H[i, j])
+                    PG[i, j] = PG[j, i] = np.where(better[:, None], to_global(h, c, L), PG[i, j])
+                    E[i, j] = E[j, i] = np.where(better, err, E[i, j])
+                    ang[i, j] = ang[j, i] = np.where(better, a, ang[i, j])
+                    via[i, j] = via[j, i] = np.where(better[:, None], v, via[i, j])
+            if not improved:
+                break
 
+    def settle_weakest(self, derived):
+        """The weakest angles along the final chains (they may be circular)."""
+        weak, ang, via = self.weak, self.ang, self.via
+        for _ in range(self.n):
+            before = weak.copy()
+            for i, j in derived:
+                weak[i, j] = weak[j, i] = self.chain(i, j, ang[i, j], via[i, j])
+            if np.array_equal(before, weak, equal_nan=True):
+                break
 
-def _relative(h, err):
-    """Error relative to a centre's distance (at least one size); angular error at infinity."""
-    w = np.abs(h[..., 2])
-    xy = np.linalg.norm(h[..., :2], axis=-1)
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        return np.where(w > 0.0, err / np.maximum(1.0, xy / w), err)
-
-
-def _global(h, c, L):
-    """Global position (N, 2) of unit homogeneous points of the scaled frame; NaN at infinity."""
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        return np.where((h[:, 2] != 0.0)[:, None], c + L * h[:, :2] / h[:, 2:3], np.nan)
-
-
-def _line(ha, pa, hb, pb, c, L):
-    """The three-centre line through two centres, in the scaled frame (N, 3).
-
-    ``(n, c0)`` with ``|n| = 1`` for the line ``n . x + c0 = 0``, ``(0, 0, 1)`` for the
-    line at infinity (through two centres at infinity), NaN where the two centres
-    span no line (they coincide, or one is missing).  The direction comes from the
-    difference of the global positions (or is a centre's direction at infinity),
-    never from a difference of shifted coordinates: two pins 1e-7 of the size apart
-    give their line to rounding of their own coordinates, not 1e7 times that.
-    """
-    fa = np.all(np.isfinite(pa), axis=-1)
-    fb = np.all(np.isfinite(pb), axis=-1)
-    ia = np.all(np.isfinite(ha), axis=-1) & ~fa
-    ib = np.all(np.isfinite(hb), axis=-1) & ~fb
-    d = np.where((fa & fb)[:, None], pb - pa, np.where(fa[:, None], hb[:, :2], ha[:, :2]))
-    span = np.linalg.norm(d, axis=-1)
-    anchor = np.where(fa[:, None], pa, pb)
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        nrm = np.stack([-d[:, 1], d[:, 0]], axis=-1) / span[:, None]
-        c0 = -np.sum(nrm * (anchor - c), axis=-1) / L
-    line = np.concatenate([nrm, c0[:, None]], axis=-1)
-    finite_line = (fa & fb & (span > DEGENERATE * L)) | (fa & ib) | (ia & fb)
-    apart = np.abs(ha[:, 0] * hb[:, 1] - ha[:, 1] * hb[:, 0]) > DEGENERATE
-    at_inf = ia & ib & apart
-    return np.where(finite_line[:, None], line,
-                    np.where(at_inf[:, None], np.array([0.0, 0.0, 1.0]), np.nan))
-
-
-def _line_error(pa, ea, pb, eb):
-    """How far a three-centre line through centres at ``pa``, ``pb`` (scaled frame) may be off.
-
-    ``pa``, ``pb`` are NaN for a centre at infinity, whose ``e`` is then the error of
-    its direction (rad).  Returns ``(q, e0, slope, at_inf)``: the line may be displaced
-    by ``e0 + slope * |X - q|`` at a point ``X``; ``at_inf`` marks the line at infinity
-    (both centres at infinity), for which ``slope`` is the directions' error.
-    """
-    fa = np.all(np.isfinite(pa), axis=-1)
-    fb = np.all(np.isfinite(pb), axis=-1)
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        span = np.linalg.norm(pa - pb, axis=-1)
-        slope_ff = (ea + eb) / span
-    q = np.where(fa[..., None], pa, pb)
-    e0 = np.where(fa & fb, np.maximum(ea, eb), np.where(fa, ea, eb))
-    slope = np.where(fa & fb, slope_ff, np.where(fa, eb, np.where(fb, ea, np.maximum(ea, eb))))
-    return q, e0, slope, ~fa & ~fb
-
-
-def _intersect_best(H, PG, E, i, j, ks, c, L):
-    """Centre ``P_ij`` from the best pair of three-centre lines through it.
-
-    For every step, of the lines ``P_ik P_kj`` (``k`` in ``ks``) the pair whose
-    intersection has the smallest estimated error (relative to its distance)
-    is used: the error of each line, propagated from the error estimates of
-    its two centres, divided by the sine of the angle between the lines.
-
-    Returns
-    -------
-    h : ndarray (N, 3)
-        Unit homogeneous centre, scaled frame (NaN where no pair of lines meets).
-    err : ndarray (N,)
-        Its error estimate: scaled length, or rad for a centre at infinity.
-    angle : ndarray (N,)
-        Angle between the two lines used (rad, ``pi/2`` with the line at infinity).
-    via : ndarray of int (N, 2)
-        Their third links ``k``, ``l``.
-    """
-    lines = np.stack([_line(H[i, k], PG[i, k], H[k, j], PG[k, j], c, L) for k in ks])
-    model = [_line_error((PG[i, k] - c) / L, E[i, k], (PG[k, j] - c) / L, E[k, j]) for k in ks]
-    K, N = lines.shape[:2]
-    best_r = np.full(N, np.inf)
-    best = np.full((N, 3), np.nan)
-    best_err = np.full(N, np.nan)
-    best_angle = np.full(N, np.nan)
-    best_via = np.full((N, 2), -1, dtype=int)
-    for a in range(K):
-        for b in range(a + 1, K):
-            la, lb = lines[a], lines[b]
-            qa, ea, sa, ia = model[a]
-            qb, eb, sb, ib = model[b]
-            meet = np.cross(la, lb)
-            # one line twice (or a line through a centre missing at that step) meets nothing
-            valid = np.linalg.norm(meet, axis=-1) > DEGENERATE  # False for NaN too
-            h = _snap(meet)
-            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-                sin = np.abs(la[:, 0] * lb[:, 1] - la[:, 1] * lb[:, 0]) / (
-                    np.linalg.norm(la[:, :2], axis=-1) * np.linalg.norm(lb[:, :2], axis=-1))
-                sin = np.minimum(np.where(ia | ib, 1.0, sin), 1.0)
-                X = h[:, :2] / h[:, 2:3]
-                off = (ea + sa * np.linalg.norm(X - qa, axis=-1)
-                       + eb + sb * np.linalg.norm(X - qb, axis=-1))
-                err = np.where(h[:, 2] != 0.0, off / sin,
-                               np.where(ia, sb, np.where(ib, sa, np.maximum(sa, sb))))
-                # Nearly parallel lines meet far away (at infinity after the snap) only if they
-                # are two lines: apart, near the mechanism, by much more than either may be off
-                # there.  Lines that one may be for all their errors meet anywhere.
-                na = np.linalg.norm(la[:, :2], axis=-1)
-                nb = np.linalg.norm(lb[:, :2], axis=-1)
-                same_sense = np.sign(np.sum(la[:, :2] * lb[:, :2], axis=-1))
-                apart = np.abs(la[:, 2] / na - same_sense * lb[:, 2] / nb)
-                slack = (ea + sa * np.linalg.norm(qa, axis=-1) + eb + sb * np.linalg.norm(qb, axis=-1))
-                two_lines = ia | ib | (apart > DISTINCT * slack)
-            rel = _relative(h, err)
-            valid &= np.where(h[:, 2] == 0.0, two_lines, rel <= UNCERTAIN)
-            r = np.where(valid, rel, np.inf)
-            better = r < best_r
-            if not better.any():
-                continue
-            best_r = np.where(better, r, best_r)
-            best = np.where(better[:, None], h, best)
-            best_err = np.where(better, err, best_err)
-            best_angle = np.where(better, np.arcsin(sin), best_angle)
-            best_via = np.where(better[:, None], [ks[a], ks[b]], best_via)
-    ok = np.isfinite(best_r)
-    return (np.where(ok[:, None], best, np.nan), np.where(ok, best_err, np.nan),
-            np.where(ok, best_angle, np.nan), np.where(ok[:, None], best_via, -1))
-
+    def result(self) -> KennedyCentres:
+        """Every pair's centre, as :class:`KennedyCentres` (ground first, pairs in order)."""
+        names, n, H, PG = self.names, self.n, self.H, self.PG
+        ang, via, weak, source, pinned = self.ang, self.via, self.weak, self.source, self.pinned
+        pairs, P = [], []
+        for i in range(n):
+            for j in range(i + 1, n):
+                pairs.append((names[i], names[j]))
+                P.append((i, j))
+        h = np.stack([H[i, j] for i, j in P], axis=1)  # (N, P, 3)
+        reached = np.all(np.isfinite(h), axis=-1)
+        inf = reached & (h[..., 2] == 0.0)
+        fin = reached & ~inf
+        pos = np.stack([PG[i, j] for i, j in P], axis=1)
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            d = h[..., :2] / np.linalg.norm(h[..., :2], axis=-1, keepdims=True)
+        return KennedyCentres(
+            links=names,
+            pairs=tuple(pairs),
+            position=np.where(fin[..., None], pos, np.nan),
+            direction=np.where(inf[..., None], d, np.nan),
+            at_infinity=inf,
+            reached=reached,
+            angle=np.stack([ang[i, j] for i, j in P], axis=1),
+            via=np.stack([via[i, j] for i, j in P], axis=1),
+            weakest=np.stack([weak[i, j] for i, j in P], axis=1),
+            source=tuple(source.get(p, "unreachable") for p in P),
+            pinned=np.array([p in pinned for p in P], dtype=bool),
+        )

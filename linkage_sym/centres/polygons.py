@@ -228,6 +228,29 @@ def polygon_quantities(scene, analysis, step: int) -> Polygons:
     L = scene.characteristic_length() or 1.0
     names = (GROUND, *scene.link_names)
     numbers = {n: k + 1 for k, n in enumerate(names)}
+    r_name, per_link = _points_per_link(scene, analysis, i, L)
+    count: dict = {}
+    for entries in per_link.values():
+        for name, *_ in entries:
+            count[name] = count.get(name, 0) + 1
+    points = []
+    for link, entries in per_link.items():
+        for name, _, p, _ in entries:
+            v, a = _motion(analysis, link, p, i)
+            label = f"{name}{numbers[link]}" if count[name] > 1 else name
+            points.append(PointMotion(name, link, label, p, v, a))
+
+    omega = {n: float(analysis.links[n].omega[i]) for n in scene.link_names}
+    alpha = {n: float(analysis.links[n].alpha[i]) for n in scene.link_names}
+    relative = _relative_motions(per_link, omega, alpha)
+    sliding = _slidings(scene, analysis, i, omega, r_name)
+    return Polygons(i, numbers, omega, alpha, points, relative, sliding)
+
+
+def _points_per_link(scene, analysis, i: int, L: float) -> tuple:
+    """``(r_name, per_link)``: the name of the ``R`` joint at each ``P`` joint's point (a
+    ``P`` joint's point takes it), and per link its points ``[name, link, global position,
+    is a pivot]`` at step ``i`` without repeats."""
     r_name = {}  # a P joint's point takes the name of an R joint at the same place
     for j in scene.joints:
         if j.type == "P":
@@ -263,20 +286,12 @@ def polygon_quantities(scene, analysis, step: int) -> Polygons:
             add(name, j.links[0], where(j.name), False)  # the guide's coincident point
     for pt in scene.points:
         add(pt.name, pt.link, np.asarray(analysis.points[pt.name].position[i], dtype=float), False)
+    return r_name, per_link
 
-    count: dict = {}
-    for entries in per_link.values():
-        for name, *_ in entries:
-            count[name] = count.get(name, 0) + 1
-    points = []
-    for link, entries in per_link.items():
-        for name, _, p, _ in entries:
-            v, a = _motion(analysis, link, p, i)
-            label = f"{name}{numbers[link]}" if count[name] > 1 else name
-            points.append(PointMotion(name, link, label, p, v, a))
 
-    omega = {n: float(analysis.links[n].omega[i]) for n in scene.link_names}
-    alpha = {n: float(analysis.links[n].alpha[i]) for n in scene.link_names}
+def _relative_motions(per_link: dict, omega: dict, alpha: dict) -> list:
+    """Each pivot pair's relative motion on its link (each pair of pivots once, the later
+    about the earlier): normal and tangential terms."""
     relative = []
     for link, entries in per_link.items():
         w, al = omega[link], alpha[link]
@@ -289,6 +304,13 @@ def polygon_quantities(scene, analysis, step: int) -> Polygons:
                 r = Q - P
                 jr = np.array([-r[1], r[0]])
                 relative.append(RelativeMotion(link, qname, pname, w * jr, -w * w * r, al * jr))
+    return relative
+
+
+def _slidings(scene, analysis, i: int, omega: dict, r_name: dict) -> list:
+    """Each ``P`` joint between moving links: slip velocity and acceleration, Coriolis term."""
+    def where(jname):
+        return np.asarray(analysis.joints[jname].position[i], dtype=float)
 
     sliding = []
     for j in scene.joints:
@@ -305,4 +327,4 @@ def polygon_quantities(scene, analysis, step: int) -> Polygons:
         arel = as_ - ag - cor
         sliding.append(Sliding(j.name, r_name.get(j.name, j.name), guide, slider, u, vrel,
                                float(vrel @ u), arel, float(arel @ u), cor))
-    return Polygons(i, numbers, omega, alpha, points, relative, sliding)
+    return sliding

@@ -84,7 +84,46 @@ def summary(scene, analysis) -> list[str]:
 
 def cmd_analyze(args) -> int:
     from linkage_sym import output
-    from linkage_sym.numeric.plan import compile_plan
+
+    fmt = _output_format(args)
+    scene = _load(args.scene)
+    # the whole run's peak (two copies of the driver values, the path, a chunk or, for
+    # --plots, every step), before any of it is made
+    output.check_run_memory(scene, "whole" if args.plots else "chunks", method=args.method,
+                            fmt=fmt if args.output else None, copies=2)
+    sweep = _sweep(scene, args)
+    sweep, report = cli_accuracy.prepare(scene, sweep, args)  # --precision, --extremes
+    to_stdout = args.output == "-"
+    try:
+        stats = output.write_sweep(
+            sweep, None if to_stdout else args.output, fmt,
+            indent=1 if args.pretty else None, stream=sys.stdout if to_stdout else None,
+            progress=True, keep=bool(args.plots))
+    except output.OutputError as err:
+        raise option_error(err, "analyze") from err
+    except (MemoryError, output.ChunkError) as err:
+        what = "out of memory" if isinstance(err, MemoryError) else str(err)
+        print(f"linkage-sym analyze: {what}; nothing written", file=sys.stderr)
+        return 1
+    notes = _print_result(scene, stats, report, args, to_stdout)
+    if not stats.any_assembled:
+        first = f" (step 0: {stats.first_message})" if stats.n_steps else ""
+        print(f"linkage-sym: no step of the sweep could be assembled{first}"
+              + ("; no plots written" if args.plots else ""), file=sys.stderr)
+        return NO_STEP_ASSEMBLED
+    if args.plots:
+        from linkage_sym.plotting import plot_all
+
+        written = plot_all(scene, stats.analysis, args.plots)
+        print(f"wrote {len(written)} plots into {args.plots}:", file=notes)
+        for path in written:
+            print(f"  {path}", file=notes)
+    return 0
+
+
+def _output_format(args) -> str:
+    """The result file's format, with -o, --format and --pretty checked together."""
+    from linkage_sym import output
 
     _check_outputs(files=[("-o/--output", args.output)], folders=[("--plots", args.plots)],
                    replaced=True)
@@ -103,11 +142,14 @@ def cmd_analyze(args) -> int:
             output.require_pyarrow()
     except output.OutputError as err:
         raise option_error(err, "analyze") from err
-    scene = _load(args.scene)
-    # the whole run's peak (two copies of the driver values, the path, a chunk or, for
-    # --plots, every step), before any of it is made
-    output.check_run_memory(scene, "whole" if args.plots else "chunks", method=args.method,
-                            fmt=fmt if args.output else None, copies=2)
+    return fmt
+
+
+def _sweep(scene, args):
+    """The sweep to write, by the method asked for (--method, --disconnection)."""
+    from linkage_sym import output
+    from linkage_sym.numeric.plan import compile_plan
+
     if args.method == "symbolic":
         from linkage_sym.codegen.compile import compile_mechanism
 
@@ -127,19 +169,12 @@ def cmd_analyze(args) -> int:
         ):
             print("note: --disconnection ignored: the mechanism has no complex group", file=sys.stderr)
         sweep = output.plan_sweep(plan, args.method)
-    sweep, report = cli_accuracy.prepare(scene, sweep, args)  # --precision, --extremes
-    to_stdout = args.output == "-"
-    try:
-        stats = output.write_sweep(
-            sweep, None if to_stdout else args.output, fmt,
-            indent=1 if args.pretty else None, stream=sys.stdout if to_stdout else None,
-            progress=True, keep=bool(args.plots))
-    except output.OutputError as err:
-        raise option_error(err, "analyze") from err
-    except (MemoryError, output.ChunkError) as err:
-        what = "out of memory" if isinstance(err, MemoryError) else str(err)
-        print(f"linkage-sym analyze: {what}; nothing written", file=sys.stderr)
-        return 1
+    return sweep
+
+
+def _print_result(scene, stats, report, args, to_stdout: bool):
+    """The warnings and summary: on standard error when the result goes to standard output,
+    else on standard output; returns that stream (for the plots' notes)."""
     if to_stdout:  # the result for a pipe; what a person reads goes to standard error
         for w in stats.warnings:
             print(f"warning: {w}", file=sys.stderr)
@@ -153,20 +188,7 @@ def cmd_analyze(args) -> int:
         if not args.output:
             print("(the result JSON: -o FILE, or -o - for standard output)")
         notes = sys.stdout
-    if not stats.any_assembled:
-        first = f" (step 0: {stats.first_message})" if stats.n_steps else ""
-        print(f"linkage-sym: no step of the sweep could be assembled{first}"
-              + ("; no plots written" if args.plots else ""), file=sys.stderr)
-        return NO_STEP_ASSEMBLED
-    if args.plots:
-        from linkage_sym.plotting import plot_all
-
-        written = plot_all(scene, stats.analysis, args.plots)
-        print(f"wrote {len(written)} plots into {args.plots}:", file=notes)
-        for path in written:
-            print(f"  {path}", file=notes)
-    return 0
-
+    return notes
 
 
 def register(sub) -> None:

@@ -109,7 +109,7 @@ def cmd_centres(args) -> int:
     """
     import numpy as np
 
-    from linkage_sym.centres import centrodes, floating_links, instant_centres, polygon_quantities
+    from linkage_sym.centres import instant_centres, polygon_quantities
     from linkage_sym.centres.report import centres_report, step_record
     from linkage_sym.cli.common import OptionError, check_outputs as _check_outputs, load as _load, write as _write
     from linkage_sym.numeric.plan import compile_plan
@@ -158,24 +158,31 @@ def cmd_centres(args) -> int:
             _write(args.output, json.dumps(out, indent=1, allow_nan=False) + "\n")
             print(f"wrote {args.output}")
     if args.plots:
-        from pathlib import Path
-
-        from linkage_sym.plotting.centres import centres_figure, centrodes_figure, polygons_figure
-        from linkage_sym.plotting.style import file_stem
-
-        stem = Path(args.plots) / file_stem(scene, None)
-        written = [centres_figure(scene, analysis, centres, i, f"{stem}_centres.png")]
-        floating = floating_links(scene)
-        if floating:
-            crv = centrodes(scene, sweep, instant_centres(scene, sweep), floating)
-            written.append(centrodes_figure(scene, analysis, centres, i, crv,
-                                            f"{stem}_centrodes.png"))
-        else:
-            print("no centrodes drawn: no floating link (every link is pivoted or slides on "
-                  "the ground)", file=notes)
-        if pq is not None:
-            written.append(polygons_figure(scene, pq, f"{stem}_polygons.png"))
-        print(f"wrote {len(written)} plots into {args.plots}:", file=notes)
-        for path in written:
-            print(f"  {path}", file=notes)
+        _plots(args, scene, sweep, analysis, centres, i, pq, notes)
     return 0
+
+
+def _plots(args, scene, sweep, analysis, centres, i, pq, notes) -> None:
+    """Write the centres' figure, the centrodes' (when a link floats) and the polygons'
+    (with --polygons) into the --plots folder; say so on ``notes``."""
+    from pathlib import Path
+
+    from linkage_sym.centres import centrodes, floating_links, instant_centres
+    from linkage_sym.plotting.centres import centres_figure, centrodes_figure, polygons_figure
+    from linkage_sym.plotting.style import file_stem
+
+    stem = Path(args.plots) / file_stem(scene, None)
+    written = [centres_figure(scene, analysis, centres, i, f"{stem}_centres.png")]
+    floating = floating_links(scene)
+    if floating:
+        crv = centrodes(scene, sweep, instant_centres(scene, sweep), floating)
+        written.append(centrodes_figure(scene, analysis, centres, i, crv,
+                                        f"{stem}_centrodes.png"))
+    else:
+        print("no centrodes drawn: no floating link (every link is pivoted or slides on "
+              "the ground)", file=notes)
+    if pq is not None:
+        written.append(polygons_figure(scene, pq, f"{stem}_polygons.png"))
+    print(f"wrote {len(written)} plots into {args.plots}:", file=notes)
+    for path in written:
+        print(f"  {path}", file=notes)

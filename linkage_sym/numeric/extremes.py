@@ -291,11 +291,40 @@ def find_extremes(scene, plan, res, disconnection=None, q=None, qd=None, qdd=Non
     if q is None:
         q, qd, qdd = plan.sweep()
     sw = FractionalSweep(scene, plan, q, qd, qdd, disconnection)
-    N = sw.N
     ok = res.status == OK
+    qs = quantities(scene, res.forces is not None)
+    tasks = _brackets(sw, qs, res, ok)
+    _force_brackets(sw, qs, tasks)
+    tasks = [tk for tk in tasks if tk.get("a") is not None]
+    roots = _rate_roots(sw, qs, tasks)
+    root_vals = _root_values(sw, qs, roots)
+    out = Extremes()
+    for k, qu in enumerate(qs):
+        v = np.asarray(qu.value(res), float)
+        okv = ok & np.isfinite(v)
+        if not okv.any():
+            continue
+        cands = [(float(i), float(v[i]), "sample") for i in np.flatnonzero(okv)]
+        cands += [(t, val, "rate root") for t, val in root_vals.get(k, []) if math.isfinite(val)]
+        mm = {}
+        for kind, pick in (("max", max), ("min", min)):
+            t, val, how = pick(cands, key=lambda c: c[1] if kind == "max" else c[1])
+            samp = float(np.max(v[okv]) if kind == "max" else np.min(v[okv]))
+            mm[kind] = Extreme(val, t, _drivers_at(sw, t), how, samp)
+        out.values[(qu.group, qu.name, qu.field)] = mm
+    out.limits = _group_limits(scene, plan, out)
+    out.assembly = _assembly_limits(sw, res)
+    out.evaluations = sw.runs
+    out.n_steps = sw.N
+    return out
+
+
+def _brackets(sw, qs, res, ok) -> list:
+    """The steps between which a quantity may have an extreme: a sign change of a kinematic
+    quantity's rate between two samples, or a sample of a force that is a local extreme
+    (its rate bracketed later, :func:`_force_brackets`)."""
+    N = sw.N
     t_samples = np.arange(N, dtype=float)
-    with_forces = res.forces is not None
-    qs = quantities(scene, with_forces)
     kin_samples = sw.kinematics(t_samples) if ok.any() else None
     # brackets: (quantity index, kind, generator state)
     tasks = []  # dicts: q, a, b, gen, pending
@@ -317,7 +346,12 @@ def find_extremes(scene, plan, res, disconnection=None, q=None, qd=None, qdd=Non
                 d0, d1 = v[i] - v[i - 1], v[i + 1] - v[i]
                 if d0 == 0 or d1 == 0 or (d0 < 0) != (d1 < 0):
                     tasks.append({"q": k, "around": i, "xtol": XTOL_FD})
-    # force brackets: the difference quotient at the three samples around the extreme
+    return tasks
+
+
+def _force_brackets(sw, qs, tasks) -> None:
+    """Force brackets: the difference quotient at the three samples around the extreme; a
+    task without a sign change of the rate gets ``a = None`` (the sample stands)."""
     fd = [tk for tk in tasks if "around" in tk]
     if fd:
         pts = []
@@ -336,7 +370,11 @@ def find_extremes(scene, plan, res, disconnection=None, q=None, qd=None, qdd=Non
                 tk.update(a=float(i), b=float(i + 1), fa=g[1], fb=g[2])
             else:
                 tk["a"] = None  # no sign change of the rate: the sample stands
-    tasks = [tk for tk in tasks if tk.get("a") is not None]
+
+
+def _rate_roots(sw, qs, tasks) -> list:
+    """``(quantity index, t)`` of every rate root, by Brent's method run on all brackets at
+    once (one kinematics run and one force run per iteration)."""
     roots = []  # (quantity index, t)
     for tk in tasks:
         tk["gen"] = brent(tk["a"], tk["b"], tk["fa"], tk["fb"], tk["xtol"])
@@ -370,8 +408,12 @@ def find_extremes(scene, plan, res, disconnection=None, q=None, qd=None, qdd=Non
                 if stop.value is not None:
                     roots.append((tk["q"], float(stop.value)))
         active = still
-    # values at the roots: one kinematics run and one force run
-    out = Extremes()
+    return roots
+
+
+def _root_values(sw, qs, roots) -> dict:
+    """The quantities' values at their rate roots (one kinematics run and one force run):
+    ``{quantity index: [(t, value), ...]}``."""
     root_vals = {}
     kin_roots = [(k, t) for k, t in roots if qs[k].kinematic]
     f_roots = [(k, t) for k, t in roots if not qs[k].kinematic]
@@ -383,24 +425,8 @@ def find_extremes(scene, plan, res, disconnection=None, q=None, qd=None, qdd=Non
         resf, inv = _batch(sw.forces, [t for _, t in f_roots])
         for n_r, (k, t) in enumerate(f_roots):
             root_vals.setdefault(k, []).append((t, float(np.asarray(qs[k].value(resf), float)[inv[n_r]])))
-    for k, qu in enumerate(qs):
-        v = np.asarray(qu.value(res), float)
-        okv = ok & np.isfinite(v)
-        if not okv.any():
-            continue
-        cands = [(float(i), float(v[i]), "sample") for i in np.flatnonzero(okv)]
-        cands += [(t, val, "rate root") for t, val in root_vals.get(k, []) if math.isfinite(val)]
-        mm = {}
-        for kind, pick in (("max", max), ("min", min)):
-            t, val, how = pick(cands, key=lambda c: c[1] if kind == "max" else c[1])
-            samp = float(np.max(v[okv]) if kind == "max" else np.min(v[okv]))
-            mm[kind] = Extreme(val, t, _drivers_at(sw, t), how, samp)
-        out.values[(qu.group, qu.name, qu.field)] = mm
-    out.limits = _group_limits(scene, plan, out)
-    out.assembly = _assembly_limits(sw, res)
-    out.evaluations = sw.runs
-    out.n_steps = N
-    return out
+    return root_vals
+
 
 
 def _group_limits(scene, plan, ext: Extremes) -> list:

@@ -170,6 +170,39 @@ class Plan:
         S = {GROUND: LinkState()}
         for n in self.scene.link_names:
             S[n] = LinkState()
+        inds, failed_at = self._solve_positions(S, path)
+        valid = failed_at < 0
+        all_valid = bool(valid.all())
+        self._unwrap_rotations(S, valid, all_valid, len(failed_at))
+        out = path.out
+        failed = failed_at[out]
+        path_index = np.arange(len(failed_at))[out]
+        status, messages = step_status(
+            failed, lambda i: self.solvers[failed[i]].failure(S, int(path_index[i])))
+        S = {n: (st.take(out) if n != GROUND else st) for n, st in S.items()}
+        if not all_valid:  # the scene format's rule for rotations across a gap
+            self._across_gaps(S, valid, out, failed < 0)
+        # --- singularity: exact condition number where an indicator is small
+        ind_min, condition, ok = self._find_singular(S, inds, out, failed, status, messages,
+                                                     exact_condition)
+        qd = {k: np.asarray(v, dtype=float) for k, v in qd.items()}
+        qdd = {k: np.asarray(v, dtype=float) for k, v in qdd.items()}
+        block = self._solve_rates(S, q, qd, qdd, N)
+        forces = None
+        if self.force_plan is not None:
+            forces = self.force_plan.run(S, ok, method, q)
+        res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
+        if self.scene.cams:  # each contact's point and pressure angle, in its joint's record
+            cam_records(self.solvers, S, res.joints, status)
+        finish(res, self.scene, [n for sv in self.solvers for n in sv.notes], path_index,
+               self.decomposition)
+        self._set_accuracy(res, ok, ind_min)
+        return res
+
+    def _solve_positions(self, S, path) -> tuple:
+        """Every group's positions along the path (rotations unwrapped early where the plan
+        says so); ``(indicators, failed_at)``: each group's singularity indicator and the
+        first group that failed at each path point (-1: none)."""
         inds = []
         npath = len(path.q[next(iter(path.q))])
         wrapped = set(self.wrapped)
@@ -183,15 +216,17 @@ class Plan:
                     S[n].th = th
             # a group whose geometry does not change (two fixed slide directions) gives a scalar
             inds.append(None if ind is None else np.broadcast_to(ind, (npath,)))
-        # first group that failed at each path point
         failed_at = np.full(npath, -1)
         for gi, ind in enumerate(inds):
             if ind is None:
                 continue
             bad = ~np.isfinite(ind) & (failed_at < 0)
             failed_at[bad] = gi
-        valid = failed_at < 0
-        all_valid = bool(valid.all())
+        return inds, failed_at
+
+    def _unwrap_rotations(self, S, valid, all_valid: bool, npath: int) -> None:
+        """The rotations of the links not driven from the ground, unwrapped over the valid
+        path points."""
         for n in self.unwrapped:
             st = S[n]
             if np.ndim(st.th) == 0:
@@ -205,15 +240,12 @@ class Plan:
             else:
                 th[valid] = unwrap_angles(th[valid])
             st.th = th
-        out = path.out
-        failed = failed_at[out]
-        path_index = np.arange(npath)[out]
-        status, messages = step_status(
-            failed, lambda i: self.solvers[failed[i]].failure(S, int(path_index[i])))
-        S = {n: (st.take(out) if n != GROUND else st) for n, st in S.items()}
-        if not all_valid:  # the scene format's rule for rotations across a gap
-            self._across_gaps(S, valid, out, failed < 0)
-        # --- singularity: exact condition number where an indicator is small
+
+    def _find_singular(self, S, inds, out, failed, status, messages, exact_condition) -> tuple:
+        """``(ind_min, condition, ok)``: the smallest indicator per step, the exact condition
+        number where it is small (or everywhere, ``exact_condition``), and the steps still
+        ``ok`` once the singular ones are marked (in ``status`` and ``messages``)."""
+        N = len(status)
         ind_min = np.full(N, np.inf)
         for ind in inds:
             if ind is not None:
@@ -225,9 +257,11 @@ class Plan:
             idx = np.flatnonzero(check)
             sing = mark_singular(status, messages, condition, idx, self.condition_numbers(S, idx))
             ok[sing] = False
-        qd = {k: np.asarray(v, dtype=float) for k, v in qd.items()}
-        qdd = {k: np.asarray(v, dtype=float) for k, v in qdd.items()}
-        # one block holds every result array; the solvers write rates straight into it
+        return ind_min, condition, ok
+
+    def _solve_rates(self, S, q, qd, qdd, N) -> np.ndarray:
+        """Velocities and accelerations, written by the solvers straight into one block that
+        holds every result array; the block."""
         block = np.empty((self.layout.n_rows, N))
         for link in self.scene.links:
             rows = self.layout.rate_rows(block, link.name)
@@ -241,14 +275,11 @@ class Plan:
                 solver.acceleration(S, q, qd, qdd)
         for link in self.scene.links:
             S[link.name].fill_rates()
-        forces = None
-        if self.force_plan is not None:
-            forces = self.force_plan.run(S, ok, method, q)
-        res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
-        if self.scene.cams:  # each contact's point and pressure angle, in its joint's record
-            cam_records(self.solvers, S, res.joints, status)
-        finish(res, self.scene, [n for sv in self.solvers for n in sv.notes], path_index,
-               self.decomposition)
+        return block
+
+    def _set_accuracy(self, res, ok, ind_min) -> None:
+        """Record the calibration run's conditions, or set each ok step's relative
+        accuracies (:mod:`~linkage_sym.numeric.results.accuracy`)."""
         if self._calibration.active:
             self._calibration.record(res.condition, ok, ind_min)
         else:
@@ -260,7 +291,6 @@ class Plan:
             res.accuracy = accuracy.accuracy(
                 K, ok, self.stages, accuracy.amplification_of(res.forces),
                 floor={"position": accuracy.magnitude_floor(res, self.L)})
-        return res
 
     def _sweep_values(self):
         return self._scene_sweep()[:3]

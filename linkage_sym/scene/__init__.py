@@ -11,9 +11,11 @@ the plain data of :mod:`linkage_sym.model.scene`.
 Every problem of an invalid scene is reported at once, in one
 :class:`~linkage_sym.errors.SceneError`.
 
-Modules: ``load`` (files, strict JSON, dumping), ``validate`` (the scene's
-sections, connectivity and mobility), ``fields`` (the field readers every
-section uses, with their limits and wording).
+Modules: ``load`` (files, strict JSON, dumping), ``validate`` (the scene
+reader: links, loads, points, effects, outputs), ``joints`` and ``drivers``
+(those sections), ``checks`` (size, connectivity and mobility), ``fields``
+(the field readers every section uses, with their limits and wording),
+``gears``, ``cams`` and ``schedules`` (the extensions' fields).
 """
 
 from linkage_sym.scene.load import dump_scene, load_scene

@@ -4,7 +4,10 @@
   four-bar, the offset slider-crank, the rocking guide-bar
   (``linkage-sym new``);
 * :mod:`~linkage_sym.synthesis.kratio` -- design by the stroke-time ratio
-  ``K`` with the auxiliary circle: crank-rocker, slider-crank, guide-bar
+  ``K`` with the auxiliary circle: crank-rocker (``kratio_rocker``),
+  slider-crank and guide-bar (``kratio_slider``), what they share
+  (``kratio_common``) and the check of the ``K`` a scene holds
+  (``kratio_check``)
   (``linkage-sym synthesize crank-rocker|slider-crank|guide-bar``);
 * :mod:`~linkage_sym.synthesis.positions` -- design by two or three coupler
   positions (``linkage-sym synthesize coupler-positions``);

@@ -213,11 +213,27 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
                              f"{fmt_len(longest)}, is not shorter than the sum of the other three, "
                              f"{fmt_len(a + b + c + d - longest)}")
     g = classify([d, a, b, c], fixed=0, names=["ground", "crank", "coupler", "rocker"])
+    full = g.name == "double-crank" or (g.name == "crank-rocker" and g.shortest == 1)
+    bx, by, cx, cy = _fourbar_assembly(a, b, c, d, phi_deg, branch, g.name, full)
+    size = _size([(0.0, 0.0), (bx, by), (cx, cy), (d, 0.0)])
+    crank_apart("crank", a, size, "the crank")
+    scene = _fourbar_scene(name, (bx, by), (cx, cy), d, _driver(phi_deg, steps, speed))
+    if point is not None:
+        scene["points"] = [{"name": "P", "link": "coupler",
+                            "at": _coupler_point(point, bx, by, cx, cy, b, size)}]
+    notes, extra, K, theta, gmin, where_min = _fourbar_class(a, b, c, d, g, full)
+    return Design("fourbar", scene, {"crank": a, "coupler": b, "rocker": c, "ground": d},
+                  tuple(notes), K, theta, gmin, where_min, extra)
+
+
+def _fourbar_assembly(a, b, c, d, phi_deg, branch, g_name, full) -> tuple:
+    """``(bx, by, cx, cy)``: the pins ``B`` and ``C`` at the crank angle, refused where the
+    four-bar cannot be assembled or sits at a dead centre (``g_name``, ``full``: its
+    Grashof class and whether the crank turns fully, for the refusal)."""
     bx, by = _crank_pin(a, phi_deg)
     r = math.hypot(d - bx, by)
     where = f"at {phi_deg:g}° the four-bar cannot be assembled"
-    full = g.name == "double-crank" or (g.name == "crank-rocker" and g.shortest == 1)
-    turns = "" if full else (f" (Grashof class: {g.name}: the crank turns over part of a turn "
+    turns = "" if full else (f" (Grashof class: {g_name}: the crank turns over part of a turn "
                              "only)")
     if r > b + c:
         raise SynthesisError("crank_deg", f"{where}: |BD| = {fmt_len(r)} is more than coupler + "
@@ -236,29 +252,13 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
     x = (b * b - c * c + r * r) / (2.0 * r)
     sign = 1.0 if branch == "open" else -1.0
     cx, cy = bx + x * ux - sign * h * uy, by + x * uy + sign * h * ux
-    size = _size([(0.0, 0.0), (bx, by), (cx, cy), (d, 0.0)])
-    crank_apart("crank", a, size, "the crank")
-    joints = [
-        {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
-        {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": _xy((bx, by))},
-        {"name": "C", "type": "R", "links": ["coupler", "rocker"], "at": _xy((cx, cy))},
-        {"name": "D", "type": "R", "links": ["rocker", "ground"], "at": [d, 0.0]},
-    ]
-    scene = {"name": name,
-             "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "rocker"}],
-             "joints": joints, "drivers": [_driver(phi_deg, steps, speed)],
-             "outputs": ["kinematics"]}
-    if point is not None:
-        u, v = point
-        ex, ey = (cx - bx) / b, (cy - by) / b
-        at = _xy((bx + u * ex - v * ey, by + u * ey + v * ex))
-        if math.hypot(*at) > MAX_SPREAD * size:
-            raise SynthesisError("coupler_point", f"P is {fmt_len(math.hypot(*at))} from the crank "
-                                 f"pivot A, more than {MAX_SPREAD:.0e} times the linkage's size "
-                                 f"({fmt_len(size)}, the largest distance between two joints): "
-                                 "float64 keeps 16 digits of a coordinate, so fewer than 7 of the "
-                                 "linkage's geometry would be left")
-        scene["points"] = [{"name": "P", "link": "coupler", "at": at}]
+    return bx, by, cx, cy
+
+
+def _fourbar_class(a, b, c, d, g, full) -> tuple:
+    """``(notes, extra, K, theta, gmin, where_min)`` of a four-bar of Grashof class ``g``:
+    a crank-rocker's ratio, swing and minimum transmission angle, a double-crank's angle, or
+    the note that the crank cannot turn fully."""
     notes = [f"Grashof class: {g.name} ({g.detail})"]
     extra = {}
     K = theta = gmin = where_min = None
@@ -276,8 +276,53 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
             notes.append("the rocker CD is this loop's crank: driven at A, the linkage rocks")
         notes.append("the crank cannot make the full turn the driver asks for: the steps beyond "
                      "its reach are reported unassemblable")
-    return Design("fourbar", scene, {"crank": a, "coupler": b, "rocker": c, "ground": d},
-                  tuple(notes), K, theta, gmin, where_min, extra)
+    return notes, extra, K, theta, gmin, where_min
+
+
+def _slider_crank_class(a, b, e, full) -> tuple:
+    """``(notes, extra, K, theta, gmin, where)`` of a slider-crank: its ratio, stroke and
+    minimum transmission angle when the crank turns fully, else the note that it cannot."""
+    notes, extra = [], {}
+    K = theta = gmin = where = None
+    if full:
+        theta = slider_crank_extreme_angle(a, b, e)
+        K = (math.pi + theta) / (math.pi - theta)
+        extra["stroke"] = slider_crank_stroke(a, b, e)
+        gmin = math.acos((a + abs(e)) / b)
+        where = slider_crank_where(e)
+    else:
+        notes.append(f"the crank cannot make a full turn (crank + |offset| = {fmt_len(a + abs(e))} "
+                     f"> rod = {fmt_len(b)}): the steps beyond its reach are reported unassemblable")
+    return notes, extra, K, theta, gmin, where
+
+
+def _coupler_point(point, bx, by, cx, cy, b, size) -> list:
+    """The traced point ``(u, v)`` of the coupler ``B C`` (length ``b``) at its assembly
+    position, refused beyond :data:`MAX_SPREAD` sizes from the crank pivot."""
+    u, v = point
+    ex, ey = (cx - bx) / b, (cy - by) / b
+    at = _xy((bx + u * ex - v * ey, by + u * ey + v * ex))
+    if math.hypot(*at) > MAX_SPREAD * size:
+        raise SynthesisError("coupler_point", f"P is {fmt_len(math.hypot(*at))} from the crank "
+                             f"pivot A, more than {MAX_SPREAD:.0e} times the linkage's size "
+                             f"({fmt_len(size)}, the largest distance between two joints): "
+                             "float64 keeps 16 digits of a coordinate, so fewer than 7 of the "
+                             "linkage's geometry would be left")
+    return at
+
+
+def _fourbar_scene(name, B, C, d, driver) -> dict:
+    """The four-bar's scene: pivots ``A`` at the origin and ``D`` at ``(d, 0)``, pins ``B``
+    and ``C``, the crank driven by ``driver``, kinematics out."""
+    joints = [
+        {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0.0, 0.0]},
+        {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": _xy(B)},
+        {"name": "C", "type": "R", "links": ["coupler", "rocker"], "at": _xy(C)},
+        {"name": "D", "type": "R", "links": ["rocker", "ground"], "at": [d, 0.0]},
+    ]
+    return {"name": name,
+            "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "rocker"}],
+            "joints": joints, "drivers": [driver], "outputs": ["kinematics"]}
 
 
 def _pair(name: str, value) -> tuple[float, float]:
@@ -394,17 +439,7 @@ def slider_crank(crank, coupler, offset=0.0, *, crank_deg=0.0, branch="right", n
     scene = {"name": name, "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "slider"}],
              "joints": joints, "drivers": [_driver(phi_deg, steps, speed)],
              "outputs": ["kinematics"]}
-    notes, extra = [], {}
-    K = theta = gmin = where = None
-    if full:
-        theta = slider_crank_extreme_angle(a, b, e)
-        K = (math.pi + theta) / (math.pi - theta)
-        extra["stroke"] = slider_crank_stroke(a, b, e)
-        gmin = math.acos((a + abs(e)) / b)
-        where = slider_crank_where(e)
-    else:
-        notes.append(f"the crank cannot make a full turn (crank + |offset| = {fmt_len(a + abs(e))} "
-                     f"> rod = {fmt_len(b)}): the steps beyond its reach are reported unassemblable")
+    notes, extra, K, theta, gmin, where = _slider_crank_class(a, b, e, full)
     return Design("slider-crank", scene, {"crank": a, "coupler": b, "offset": e}, tuple(notes),
                   K, theta, gmin, where, extra)
 

@@ -88,6 +88,19 @@ def design_equations() -> list[DesignEquation]:
     """
     out = []
 
+    l1_expr = _crank_rocker_relations(out)
+    _transmission_relations(out)
+    _slider_and_guide_relations(out, l1_expr)
+    for eq in out:
+        if eq.check is not None:
+            assert _zero(eq.check), f"derivation of {eq.label} does not reduce to 0: {eq.check}"
+    return out
+
+
+def _crank_rocker_relations(out: list):
+    """Append steps 1 to 5 of :func:`design_equations` (``theta`` from ``K``, crank and coupler
+    from the extreme positions, the chord, the auxiliary circle, the pivot on it); returns
+    ``AC1`` on the circle, which the slider-crank's offset uses."""
     # 1. K from the strokes: the crank turns pi + theta, then pi - theta, at constant speed
     t_sol = sp.solve(sp.Eq(K, (sp.pi + theta) / (sp.pi - theta)), theta)
     assert len(t_sol) == 1
@@ -140,7 +153,11 @@ def design_equations() -> list[DesignEquation]:
                               "D: the law of cosines in A C1 D (angle alpha + pi/2 - psi/2 at C1), "
                               "checked against the coordinates (chord on the x-axis, D below it)",
                               d**2, d_sq, d_sq.subs(l1, l1_expr) - d_coords))
+    return l1_expr
 
+
+def _transmission_relations(out: list) -> None:
+    """Append step 6 of :func:`design_equations`: the transmission angle and its extremes."""
     # 6. transmission angle: |BD|^2 by the law of cosines in A B D and in B C D
     BD_sq = a**2 + d**2 - 2 * a * d * sp.cos(phi)
     cos_g = sp.solve(sp.Eq(BD_sq, b**2 + c**2 - 2 * b * c * sp.Symbol("x")), sp.Symbol("x"))[0]
@@ -152,6 +169,10 @@ def design_equations() -> list[DesignEquation]:
         out.append(DesignEquation(label, f"its extremes: {words}", sp.cos(gamma),
                                   sp.factor(cos_g.subs(phi, at)), None))
 
+
+def _slider_and_guide_relations(out: list, l1_expr) -> None:
+    """Append steps 7 and 8 of :func:`design_equations`: the slider-crank's stroke, offset,
+    largest offset and minimum transmission angle; the guide-bar's swing and crank."""
     # 7. slider-crank: the chord is the stroke; A at the offset e from the slider's line
     H_lengths = sp.sqrt((b + a)**2 - e**2) - sp.sqrt((b - a)**2 - e**2)
     out.append(DesignEquation("stroke", "stroke of an offset slider-crank from its lengths: the "
@@ -179,10 +200,6 @@ def design_equations() -> list[DesignEquation]:
     a_right = sp.solve(sp.Eq(sp.sin(psi / 2), a / d), a)[0].subs(psi, theta)  # angle ADB = psi/2
     out.append(DesignEquation("guide_crank", "guide-bar crank: the right triangle A B D at an "
                               "extreme (angle psi/2 at D)", a, a_guide, a_right - a_guide))
-    for eq in out:
-        if eq.check is not None:
-            assert _zero(eq.check), f"derivation of {eq.label} does not reduce to 0: {eq.check}"
-    return out
 
 
 _SOURCE = ("textbook section \\emph{Design of four-bar mechanisms} (Chinese: Siganjigou de "

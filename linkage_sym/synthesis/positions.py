@@ -286,23 +286,12 @@ def coupler_positions(positions, *, pivots=None, name="coupler-positions", steps
     L = math.hypot(rows[0][2] - rows[0][0], rows[0][3] - rows[0][1])
     notes = []
     if len(rows) == 3:
-        if pivots is not None:
-            raise SynthesisError("pivots", "three positions fix the pivots (the circumcentres); "
-                                           "pivots are given for two positions only")
-        A = circumcentre(*(r[:2] for r in rows), "A")
-        D = circumcentre(*(r[2:] for r in rows), "D")
-        problem, g, phis, where = _evaluate(rows, A, D)
-        if problem:
-            raise SynthesisError("positions", f"{problem}; three positions fix the pivots, so no "
-                                              "four-bar driven by the crank AB meets them")
+        A, D, g, phis, where = _three_positions(rows, pivots)
         field = "positions"
         notes.append("three positions: the fixed pivots are the circumcentres of B1 B2 B3 and "
                      "C1 C2 C3 (a unique design)")
     elif pivots is not None:
-        A, D = _given_pivots(rows, pivots, L)
-        problem, g, phis, where = _evaluate(rows, A, D)
-        if problem:
-            raise SynthesisError("pivots", f"{problem}; choose other pivots on the bisectors")
+        A, D, g, phis, where = _two_positions_with_pivots(rows, pivots, L)
         field = "pivots"
     else:
         A, D, g, phis, where = _search(rows, L)
@@ -314,6 +303,32 @@ def coupler_positions(positions, *, pivots=None, name="coupler-positions", steps
                      f"between the positions ({fmt_deg(g)}); give pivots to choose them")
     _check_limits(rows, A, D, field)
     return _scene(rows, A, D, g, phis, where, notes, name, steps, speed)
+
+
+def _three_positions(rows, pivots) -> tuple:
+    """``(A, D, g, phis, where)`` of three positions: the pivots are the circumcentres of
+    ``B1 B2 B3`` and ``C1 C2 C3``, refused when pivots are given too or the design has a
+    defect."""
+    if pivots is not None:
+        raise SynthesisError("pivots", "three positions fix the pivots (the circumcentres); "
+                                       "pivots are given for two positions only")
+    A = circumcentre(*(r[:2] for r in rows), "A")
+    D = circumcentre(*(r[2:] for r in rows), "D")
+    problem, g, phis, where = _evaluate(rows, A, D)
+    if problem:
+        raise SynthesisError("positions", f"{problem}; three positions fix the pivots, so no "
+                                          "four-bar driven by the crank AB meets them")
+    return A, D, g, phis, where
+
+
+def _two_positions_with_pivots(rows, pivots, L) -> tuple:
+    """``(A, D, g, phis, where)`` of two positions with the pivots given (checked against
+    the bisectors), refused when the design has a defect."""
+    A, D = _given_pivots(rows, pivots, L)
+    problem, g, phis, where = _evaluate(rows, A, D)
+    if problem:
+        raise SynthesisError("pivots", f"{problem}; choose other pivots on the bisectors")
+    return A, D, g, phis, where
 
 
 def _check_limits(rows, A, D, field):

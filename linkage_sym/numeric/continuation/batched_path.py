@@ -158,6 +158,22 @@ def _solve_rows(J, R):
     return d, bad
 
 
+def _halve_steps(problem, idx, U, d, res, conv, step, Un, Rn, Jn, resn) -> None:
+    """Halve each row's step while it does not decrease the residual (down to a step of
+    1e-4); ``step``, ``Un``, ``Rn``, ``Jn`` and ``resn`` are updated in place (``idx``: each
+    row's path point)."""
+    while True:
+        halve = ~((resn < res) | conv | (step < 1e-4))
+        if not halve.any():
+            break
+        h = np.flatnonzero(halve)
+        step[h] *= 0.5
+        Un[h] = U[h] - step[h, None] * d[h]
+        Rh, Jh = problem.evaluate_points(Un[h], idx[h])
+        Rn[h], Jn[h] = Rh, Jh
+        resn[h] = np.linalg.norm(Rn[h], axis=1)
+
+
 def newton_points(problem, U, idx):
     """:func:`roots.newton` from every row of ``U`` at its path point ``idx[j]``.
 
@@ -221,16 +237,7 @@ def newton_points(problem, U, idx):
         resn = np.linalg.norm(Rn, axis=1)
         halve = ~((resn < res) | conv)
         if halve.any():
-            while True:
-                halve = ~((resn < res) | conv | (step < 1e-4))
-                if not halve.any():
-                    break
-                h = np.flatnonzero(halve)
-                step[h] *= 0.5
-                Un[h] = U[h] - step[h, None] * d[h]
-                Rh, Jh = problem.evaluate_points(Un[h], idx[act[h]])
-                Rn[h], Jn[h] = Rh, Jh
-                resn[h] = np.linalg.norm(Rn[h], axis=1)
+            _halve_steps(problem, idx[act], U, d, res, conv, step, Un, Rn, Jn, resn)
         # polishing made it worse: keep the converged point
         worse = conv & ~(resn <= res)
         keep(~worse)

@@ -180,84 +180,150 @@ class DyadForces:
         t = self.type
         w0, w1 = W[self.b0], W[self.b1]
         e0, ji, e1 = self.e0.name, self.ji.name, self.e1.name
-        Pe0, Pi, Pe1 = geo.point(e0), geo.point(ji), geo.point(e1)
-        F0x, F0y, F1x, F1y = w0.fx, w0.fy, w1.fx, w1.fy
-        Fx, Fy = F0x + F1x, F0y + F1y
-        zero = 0.0
+        P = geo.point(e0), geo.point(ji), geo.point(e1)
+        if t not in _DYAD_SOLVERS:  # pragma: no cover - structure refuses other types
+            raise ValueError(t)
         with np.errstate(divide="ignore", invalid="ignore"):
-            if t == "RRR":
-                # moments of each link about the internal joint and the dyad's force balance
-                ux, uy = Pe0[0] - Pi[0], Pe0[1] - Pi[1]
-                vx, vy = Pe1[0] - Pi[0], Pe1[1] - Pi[1]
-                r1 = -w0.moment_about(*Pi)  # u x f0 = r1
-                # v x f1 = -M1 with f1 = -F - f0:  v x f0 = M1 - v x F = r2
-                r2 = w1.moment_about(*Pi) - _cross(vx, vy, Fx, Fy)
-                det = _cross(ux, uy, vx, vy)
-                f0x = (r1 * vx - ux * r2) / det
-                f0y = (vy * r1 - uy * r2) / det
-                f1x, f1y = -Fx - f0x, -Fy - f0y
-                fix, fiy = f0x + F0x, f0y + F0y
-                c0 = c1 = ci = zero
-            elif t == "RRP":
-                ux, uy = Pe0[0] - Pi[0], Pe0[1] - Pi[1]
-                n1x, n1y, t1x, t1y = geo.normal(e1)
-                r1 = -w0.moment_about(*Pi)  # u x f0 = r1
-                r2 = -(Fx * t1x + Fy * t1y)  # f0 . t1 = r2
-                det = -(ux * t1x + uy * t1y)
-                f0x = (r1 * t1y - ux * r2) / det
-                f0y = (-uy * r2 - t1x * r1) / det
-                N1 = -((Fx + f0x) * n1x + (Fy + f0y) * n1y)
-                f1x, f1y = N1 * n1x, N1 * n1y
-                c0 = ci = zero
-                fix, fiy = f0x + F0x, f0y + F0y
-                # b1 about the slide's reference point: (Pi - Pe1) x fi + c1 + M1 = 0
-                c1 = -_cross(Pi[0] - Pe1[0], Pi[1] - Pe1[1], fix, fiy) - w1.moment_about(*Pe1)
-            elif t == "RPR":
-                nix, niy, tix, tiy = geo.normal(ji)
-                wx, wy = Pe1[0] - Pe0[0], Pe1[1] - Pe0[1]
-                r1 = -(w0.moment_about(*Pe0) + w1.moment_about(*Pe0))  # w x f1 = r1
-                r2 = -(F1x * tix + F1y * tiy)  # f1 . ti = r2
-                det = -(wx * tix + wy * tiy)
-                f1x = (r1 * tiy - wx * r2) / det
-                f1y = (-wy * r2 - tix * r1) / det
-                f0x, f0y = -Fx - f1x, -Fy - f1y
-                fix, fiy = -f1x - F1x, -f1y - F1y
-                Ni = fix * nix + fiy * niy
-                fix, fiy = Ni * nix, Ni * niy
-                ci = -_cross(Pe1[0] - Pi[0], Pe1[1] - Pi[1], f1x, f1y) - w1.moment_about(*Pi)
-                c0 = c1 = zero
-            elif t == "PRP":
-                n0x, n0y, _, _ = geo.normal(e0)
-                n1x, n1y, _, _ = geo.normal(e1)
-                det = _cross(n0x, n0y, n1x, n1y)
-                N0 = _cross(-Fx, -Fy, n1x, n1y) / det
-                N1 = _cross(-Fx, -Fy, n0x, n0y) / -det
-                f0x, f0y = N0 * n0x, N0 * n0y
-                f1x, f1y = N1 * n1x, N1 * n1y
-                fix, fiy = f0x + F0x, f0y + F0y
-                # b0 about Pe0: c0 - (Pi - Pe0) x fi + M0 = 0
-                c0 = _cross(Pi[0] - Pe0[0], Pi[1] - Pe0[1], fix, fiy) - w0.moment_about(*Pe0)
-                c1 = -_cross(Pi[0] - Pe1[0], Pi[1] - Pe1[1], fix, fiy) - w1.moment_about(*Pe1)
-                ci = zero
-            elif t == "RPP":
-                nix, niy, _, _ = geo.normal(ji)
-                n1x, n1y, _, _ = geo.normal(e1)
-                det = _cross(nix, niy, n1x, n1y)
-                Ni = _cross(-F1x, -F1y, n1x, n1y) / det
-                N1 = _cross(-F1x, -F1y, nix, niy) / -det
-                fix, fiy = Ni * nix, Ni * niy
-                f1x, f1y = N1 * n1x, N1 * n1y
-                f0x, f0y = fix - F0x, fiy - F0y
-                # b0 about Pe0: -(Pi - Pe0) x fi - ci + M0 = 0
-                ci = w0.moment_about(*Pe0) - _cross(Pi[0] - Pe0[0], Pi[1] - Pe0[1], fix, fiy)
-                c1 = -(
-                    _cross(Pi[0] - Pe1[0], Pi[1] - Pe1[1], fix, fiy) + ci + w1.moment_about(*Pe1)
-                )
-                c0 = zero
-            else:  # pragma: no cover - structure refuses other types
-                raise ValueError(t)
+            f0x, f0y, f1x, f1y, fix, fiy, c0, c1, ci = _DYAD_SOLVERS[t](w0, w1, P, geo, (e0, ji, e1))
         return {
             e0: reaction_on(self.e0, self.b0, f0x, f0y, c0),
             ji: reaction_on(self.ji, self.b1, fix, fiy, ci),
             e1: reaction_on(self.e1, self.b1, f1x, f1y, c1),
         }
+
+
+def _rrr(w0, w1, P, geo, names) -> tuple:
+    """RRR dyad: moments of each link about the internal joint and the dyad's force balance.
+
+    Returns ``(f0x, f0y, f1x, f1y, fix, fiy, c0, c1, ci)``: the forces on ``links[0]`` at its
+    outer joint, on ``links[1]`` at its outer joint and at the inner joint, and the couples.
+    """
+    e0, ji, e1 = names
+    Pe0, Pi, Pe1 = P
+    F0x, F0y, F1x, F1y = w0.fx, w0.fy, w1.fx, w1.fy
+    Fx, Fy = F0x + F1x, F0y + F1y
+    zero = 0.0
+    # moments of each link about the internal joint and the dyad's force balance
+    ux, uy = Pe0[0] - Pi[0], Pe0[1] - Pi[1]
+    vx, vy = Pe1[0] - Pi[0], Pe1[1] - Pi[1]
+    r1 = -w0.moment_about(*Pi)  # u x f0 = r1
+    # v x f1 = -M1 with f1 = -F - f0:  v x f0 = M1 - v x F = r2
+    r2 = w1.moment_about(*Pi) - _cross(vx, vy, Fx, Fy)
+    det = _cross(ux, uy, vx, vy)
+    f0x = (r1 * vx - ux * r2) / det
+    f0y = (vy * r1 - uy * r2) / det
+    f1x, f1y = -Fx - f0x, -Fy - f0y
+    fix, fiy = f0x + F0x, f0y + F0y
+    c0 = c1 = ci = zero
+    return f0x, f0y, f1x, f1y, fix, fiy, c0, c1, ci
+
+
+def _rrp(w0, w1, P, geo, names) -> tuple:
+    """RRP dyad: the first link's moment about the inner joint, the second's slide.
+
+    Returns ``(f0x, f0y, f1x, f1y, fix, fiy, c0, c1, ci)``: the forces on ``links[0]`` at its
+    outer joint, on ``links[1]`` at its outer joint and at the inner joint, and the couples.
+    """
+    e0, ji, e1 = names
+    Pe0, Pi, Pe1 = P
+    F0x, F0y, F1x, F1y = w0.fx, w0.fy, w1.fx, w1.fy
+    Fx, Fy = F0x + F1x, F0y + F1y
+    zero = 0.0
+    ux, uy = Pe0[0] - Pi[0], Pe0[1] - Pi[1]
+    n1x, n1y, t1x, t1y = geo.normal(e1)
+    r1 = -w0.moment_about(*Pi)  # u x f0 = r1
+    r2 = -(Fx * t1x + Fy * t1y)  # f0 . t1 = r2
+    det = -(ux * t1x + uy * t1y)
+    f0x = (r1 * t1y - ux * r2) / det
+    f0y = (-uy * r2 - t1x * r1) / det
+    N1 = -((Fx + f0x) * n1x + (Fy + f0y) * n1y)
+    f1x, f1y = N1 * n1x, N1 * n1y
+    c0 = ci = zero
+    fix, fiy = f0x + F0x, f0y + F0y
+    # b1 about the slide's reference point: (Pi - Pe1) x fi + c1 + M1 = 0
+    c1 = -_cross(Pi[0] - Pe1[0], Pi[1] - Pe1[1], fix, fiy) - w1.moment_about(*Pe1)
+    return f0x, f0y, f1x, f1y, fix, fiy, c0, c1, ci
+
+
+def _rpr(w0, w1, P, geo, names) -> tuple:
+    """RPR dyad: moments about the first outer joint, the force along the inner slide.
+
+    Returns ``(f0x, f0y, f1x, f1y, fix, fiy, c0, c1, ci)``: the forces on ``links[0]`` at its
+    outer joint, on ``links[1]`` at its outer joint and at the inner joint, and the couples.
+    """
+    e0, ji, e1 = names
+    Pe0, Pi, Pe1 = P
+    F0x, F0y, F1x, F1y = w0.fx, w0.fy, w1.fx, w1.fy
+    Fx, Fy = F0x + F1x, F0y + F1y
+    zero = 0.0
+    nix, niy, tix, tiy = geo.normal(ji)
+    wx, wy = Pe1[0] - Pe0[0], Pe1[1] - Pe0[1]
+    r1 = -(w0.moment_about(*Pe0) + w1.moment_about(*Pe0))  # w x f1 = r1
+    r2 = -(F1x * tix + F1y * tiy)  # f1 . ti = r2
+    det = -(wx * tix + wy * tiy)
+    f1x = (r1 * tiy - wx * r2) / det
+    f1y = (-wy * r2 - tix * r1) / det
+    f0x, f0y = -Fx - f1x, -Fy - f1y
+    fix, fiy = -f1x - F1x, -f1y - F1y
+    Ni = fix * nix + fiy * niy
+    fix, fiy = Ni * nix, Ni * niy
+    ci = -_cross(Pe1[0] - Pi[0], Pe1[1] - Pi[1], f1x, f1y) - w1.moment_about(*Pi)
+    c0 = c1 = zero
+    return f0x, f0y, f1x, f1y, fix, fiy, c0, c1, ci
+
+
+def _prp(w0, w1, P, geo, names) -> tuple:
+    """PRP dyad: two slides, their normal forces from the dyad's force balance.
+
+    Returns ``(f0x, f0y, f1x, f1y, fix, fiy, c0, c1, ci)``: the forces on ``links[0]`` at its
+    outer joint, on ``links[1]`` at its outer joint and at the inner joint, and the couples.
+    """
+    e0, ji, e1 = names
+    Pe0, Pi, Pe1 = P
+    F0x, F0y, F1x, F1y = w0.fx, w0.fy, w1.fx, w1.fy
+    Fx, Fy = F0x + F1x, F0y + F1y
+    zero = 0.0
+    n0x, n0y, _, _ = geo.normal(e0)
+    n1x, n1y, _, _ = geo.normal(e1)
+    det = _cross(n0x, n0y, n1x, n1y)
+    N0 = _cross(-Fx, -Fy, n1x, n1y) / det
+    N1 = _cross(-Fx, -Fy, n0x, n0y) / -det
+    f0x, f0y = N0 * n0x, N0 * n0y
+    f1x, f1y = N1 * n1x, N1 * n1y
+    fix, fiy = f0x + F0x, f0y + F0y
+    # b0 about Pe0: c0 - (Pi - Pe0) x fi + M0 = 0
+    c0 = _cross(Pi[0] - Pe0[0], Pi[1] - Pe0[1], fix, fiy) - w0.moment_about(*Pe0)
+    c1 = -_cross(Pi[0] - Pe1[0], Pi[1] - Pe1[1], fix, fiy) - w1.moment_about(*Pe1)
+    ci = zero
+    return f0x, f0y, f1x, f1y, fix, fiy, c0, c1, ci
+
+
+def _rpp(w0, w1, P, geo, names) -> tuple:
+    """RPP dyad: the inner and outer slides' normal forces from the second link's balance.
+
+    Returns ``(f0x, f0y, f1x, f1y, fix, fiy, c0, c1, ci)``: the forces on ``links[0]`` at its
+    outer joint, on ``links[1]`` at its outer joint and at the inner joint, and the couples.
+    """
+    e0, ji, e1 = names
+    Pe0, Pi, Pe1 = P
+    F0x, F0y, F1x, F1y = w0.fx, w0.fy, w1.fx, w1.fy
+    zero = 0.0
+    nix, niy, _, _ = geo.normal(ji)
+    n1x, n1y, _, _ = geo.normal(e1)
+    det = _cross(nix, niy, n1x, n1y)
+    Ni = _cross(-F1x, -F1y, n1x, n1y) / det
+    N1 = _cross(-F1x, -F1y, nix, niy) / -det
+    fix, fiy = Ni * nix, Ni * niy
+    f1x, f1y = N1 * n1x, N1 * n1y
+    f0x, f0y = fix - F0x, fiy - F0y
+    # b0 about Pe0: -(Pi - Pe0) x fi - ci + M0 = 0
+    ci = w0.moment_about(*Pe0) - _cross(Pi[0] - Pe0[0], Pi[1] - Pe0[1], fix, fiy)
+    c1 = -(
+        _cross(Pi[0] - Pe1[0], Pi[1] - Pe1[1], fix, fiy) + ci + w1.moment_about(*Pe1)
+    )
+    c0 = zero
+    return f0x, f0y, f1x, f1y, fix, fiy, c0, c1, ci
+
+
+_DYAD_SOLVERS = {"RRR": _rrr, "RRP": _rrp, "RPR": _rpr, "PRP": _prp, "RPP": _rpp}
+"""The reactions of each dyad type, by :attr:`Group.dyad_type` (see :class:`DyadStatics`)."""

@@ -70,26 +70,7 @@ class LoopClosureSolver(NewtonSolver):
         super().__init__(scene, group, constraints, L)
         joints = [scene.joint(n) for n in group.joints]
         links = list(group.links)
-        # the spanning tree: each link placed through the first joint (group order) that
-        # joins it to a link already placed
-        placed = {n for n in [*scene.link_names, "ground"] if n not in links}
-        pending = list(links)
-        used = set()
-        self.anchor = {}  # link -> (joint, the link it is placed from)
-        while pending:
-            for k, J in enumerate(joints):
-                if k in used or J.type == "G":  # a mesh places no link
-                    continue
-                a, b = J.links
-                if (a in placed) != (b in placed) and (a in pending or b in pending):
-                    new, old = (b, a) if a in placed else (a, b)
-                    self.anchor[new] = (J, old)
-                    placed.add(new)
-                    pending.remove(new)
-                    used.add(k)
-                    break
-            else:  # pragma: no cover - a group is always connected to solved links
-                raise ValueError(f"group {links} is not connected to solved links")
+        used = self._place_tree(scene, joints, links)
         self.column = {n: links.index(n) for n in links}  # unknown k: theta of links[k]
         self.n_links = len(links)
         self.prismatic = [J for J in joints if J.type == "P"]
@@ -112,11 +93,48 @@ class LoopClosureSolver(NewtonSolver):
         origins = [self._point(n, (0.0, 0.0)) for n in links]
         # the forms after every point is written: they hold a row for every known point
         self.rows, self.origins = self._form(rows), self._form(origins)
-        # the linear rows, after the loops: each P joint's angle row theta_b - theta_a, each
-        # mesh's rolling row r_a (th_a - th_c) +- r_b (th_b - th_c) (a length), then each
-        # driver's row (R: theta_b - theta_a + phi0 - q; P: s - q, a length); on the group's
-        # angles (T) and slides (Ts), the known links' angles (T_known), a constant and the
-        # driver
+        self._linear_rows(scene, group, constraints, meshes)
+        self.lin_scale = np.where(self.lin_length, 1.0 / L, 1.0)
+        self.guide_known = [g for g in dict.fromkeys(self.guide) if g not in self.column]
+        # the dimensionless problem's constants: loop rows over L
+        self.M_L = self.rows.M / L
+        self.dM = np.ascontiguousarray(1j * self.rows.M.T / L)  # (rows, links)
+        self.VT = np.ascontiguousarray(self.rows.V.T)  # (rows, slides)
+        # rows over L and slides over L: the physical problem's rows times row_scale, its
+        # unknowns over col_scale
+        nr = self.rows.M.shape[1]
+        self.row_scale = np.r_[np.full(2 * nr, 1.0 / L), self.lin_scale]
+        self.col_scale = np.r_[np.ones(self.n_links), np.full(len(self.prismatic), L)]
+
+    def _place_tree(self, scene, joints, links) -> set:
+        """The spanning tree: each link placed through the first joint (group order) that
+        joins it to a link already placed (``anchor``); returns the joints used, by index."""
+        placed = {n for n in [*scene.link_names, "ground"] if n not in links}
+        pending = list(links)
+        used = set()
+        self.anchor = {}  # link -> (joint, the link it is placed from)
+        while pending:
+            for k, J in enumerate(joints):
+                if k in used or J.type == "G":  # a mesh places no link
+                    continue
+                a, b = J.links
+                if (a in placed) != (b in placed) and (a in pending or b in pending):
+                    new, old = (b, a) if a in placed else (a, b)
+                    self.anchor[new] = (J, old)
+                    placed.add(new)
+                    pending.remove(new)
+                    used.add(k)
+                    break
+            else:  # pragma: no cover - a group is always connected to solved links
+                raise ValueError(f"group {links} is not connected to solved links")
+        return used
+
+    def _linear_rows(self, scene, group, constraints, meshes) -> None:
+        """The linear rows, after the loops: each P joint's angle row ``theta_b - theta_a``,
+        each mesh's rolling row ``r_a (th_a - th_c) +- r_b (th_b - th_c)`` (a length), then
+        each driver's row (R: ``theta_b - theta_a + phi0 - q``; P: ``s - q``, a length); on
+        the group's angles (``T``) and slides (``Ts``), the known links' angles
+        (``T_known``), a constant and the driver."""
         drivers = [d for d in scene.drivers if d.joint in group.drivers]
         nlin = len(self.prismatic) + len(meshes) + len(drivers)
         self.T = np.zeros((self.n_links, nlin))
@@ -147,17 +165,6 @@ class LoopClosureSolver(NewtonSolver):
             else:
                 self.Ts[self.slide[J.name] - self.n_links, r] = 1.0
                 self.lin_length[r] = True
-        self.lin_scale = np.where(self.lin_length, 1.0 / L, 1.0)
-        self.guide_known = [g for g in dict.fromkeys(self.guide) if g not in self.column]
-        # the dimensionless problem's constants: loop rows over L
-        self.M_L = self.rows.M / L
-        self.dM = np.ascontiguousarray(1j * self.rows.M.T / L)  # (rows, links)
-        self.VT = np.ascontiguousarray(self.rows.V.T)  # (rows, slides)
-        # rows over L and slides over L: the physical problem's rows times row_scale, its
-        # unknowns over col_scale
-        nr = self.rows.M.shape[1]
-        self.row_scale = np.r_[np.full(2 * nr, 1.0 / L), self.lin_scale]
-        self.col_scale = np.r_[np.ones(self.n_links), np.full(len(self.prismatic), L)]
 
     # -- the linear form -------------------------------------------------------
     def _point(self, link, X):

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from linkage_sym.numeric.results.records import RecordBlock
 from linkage_sym.numeric.results.strict_json import LEFT_OUT, LeftOut, finite_only
 
 OK = "ok"
@@ -289,56 +290,8 @@ class Analysis:
 
     def _records(self, a: int, b: int, number_from: int, dropped: "LeftOut"):
         """Step records of steps ``a`` to ``b`` (see :meth:`step_records`)."""
-        want_kin = "kinematics" in self.outputs
-        has_vel = "velocity" in self.stages
-        has_acc = "acceleration" in self.stages
-        forces = self.forces
-        p_joints = set(self.p_joints)
-
-        def rows(v):
-            return None if v is None else v[a:b].tolist()
-
-        def motion_lists(k: JointKinematics):
-            return (rows(k.position), rows(k.velocity) if has_vel else None,
-                    rows(k.acceleration) if has_acc else None,
-                    rows(getattr(k, "pressure_angle", None)))
-
-        status = self.status[a:b].tolist()
-        messages = self.messages[a:b]
-        drivers = {name: {k: np.asarray(v, dtype=float)[a:b].tolist() for k, v in d.items()}
-                   for name, d in self.drivers.items()}
-        if want_kin:
-            joints = {name: motion_lists(jk) for name, jk in self.joints.items()}
-            points = {name: motion_lists(pk) for name, pk in self.points.items()}
-            angles = {name: rows(v) for name, v in self.transmission_angles.items()}
-            links = {
-                name: (rows(lk.rotation), rows(lk.omega) if has_vel else None,
-                       rows(lk.alpha) if has_acc else None, rows(lk.com),
-                       rows(lk.com_velocity) if has_vel else None,
-                       rows(lk.com_acceleration) if has_acc else None)
-                for name, lk in self.links.items()
-            }
-        if forces is not None:
-            reactions = {name: (rows(r), rows(forces.reaction_moments[name]) if name in p_joints else None)
-                         for name, r in forces.reactions.items()} if "reactions" in self.outputs else {}
-            driving = {k: rows(v) for k, v in forces.driving.items()}
-            frame_force, frame_moment = rows(forces.frame_force), rows(forces.frame_moment)
-
-        def motion(lists, i: int, rates: bool) -> dict:
-            """A joint's or traced point's record at step ``i`` (of the block)."""
-            pos, vel, acc, pressure = lists
-            rec = {"position": pos[i]}
-            if pressure is not None:  # a cam contact's (an extension)
-                rec["pressure_angle"] = pressure[i]
-            if rates and has_vel:
-                rec["velocity"] = vel[i]
-            if rates and has_acc:
-                rec["acceleration"] = acc[i]
-            return rec
-
-        # extension: each ok step's estimated relative accuracy (numeric.results.accuracy)
-        accuracy = {k: rows(v) for k, v in self.accuracy.items()} if self.accuracy else None
-        centres = self.instant_centres if "instant_centres" in self.outputs else None
+        blk = RecordBlock(self, a, b)
+        status, messages, drivers = blk.status, blk.messages, blk.drivers
         # only these records can hold a value of a column to leave out; keys of a record
         # that no column covers are checked at every step
         suspect = self.not_finite(a, b)
@@ -357,43 +310,14 @@ class Analysis:
             }
             positions = st in (OK, SINGULAR)
             rates = st == OK
-            if want_kin and positions:
-                step["joints"] = {name: motion(lists, i, rates) for name, lists in joints.items()}
-                out_links = {}
-                for name, (rot, om, al, com, comv, coma) in links.items():
-                    rec = {"rotation": rot[i]}
-                    if rates and has_vel:
-                        rec["omega"] = om[i]
-                    if rates and has_acc:
-                        rec["alpha"] = al[i]
-                    if com is not None:
-                        rec["com"] = com[i]
-                        if rates and has_vel:
-                            rec["com_velocity"] = comv[i]
-                        if rates and has_acc:
-                            rec["com_acceleration"] = coma[i]
-                    out_links[name] = rec
-                step["links"] = out_links
-                if self.points:
-                    step["points"] = {name: motion(lists, i, rates) for name, lists in points.items()}
-                if angles:  # extension: the RRR dyads' transmission angles, by inner joint
-                    step["transmission_angles"] = {name: v[i] for name, v in angles.items()}
-            if forces is not None and rates:
-                if "reactions" in self.outputs:
-                    out_joints = step.setdefault("joints", {})
-                    for name, (r, m) in reactions.items():
-                        rec = out_joints.setdefault(name, {})
-                        rec["reaction"] = r[i]
-                        if m is not None:
-                            rec["reaction_moment"] = m[i]
-                if "driving" in self.outputs:
-                    step["driving"] = {k: v[i] for k, v in driving.items()}
-                if "frame" in self.outputs:
-                    step["frame"] = {"force": frame_force[i], "moment": frame_moment[i]}
-            if rates and accuracy is not None:
-                step["accuracy"] = {k: v[i] for k, v in accuracy.items()}
-            if rates and centres is not None:  # extension: every pair's instant centre
-                step["instant_centres"] = centres.records(a + i)
+            if blk.want_kin and positions:
+                blk.kinematics(step, i, rates)
+            if blk.forces is not None and rates:
+                blk.force_parts(step, i)
+            if rates and blk.accuracy is not None:
+                step["accuracy"] = {k: v[i] for k, v in blk.accuracy.items()}
+            if rates and blk.centres is not None:  # extension: every pair's instant centre
+                step["instant_centres"] = blk.centres.records(a + i)
             if suspect[i]:
                 yield finite_only(step, f"steps[{number_from + i}]", dropped)
                 continue
@@ -524,8 +448,7 @@ class Analysis:
         for name, d in self.drivers.items():
             out += [(f"drivers.{name}.{k}", np.asarray(v, dtype=float), "always") for k, v in d.items()]
 
-        def vec(prefix, v, when="ok"):
-            return [(f"{prefix}.x", v[:, 0], when), (f"{prefix}.y", v[:, 1], when)]
+        vec = _xy_columns
 
         def motion(prefix, k):
             cols = vec(f"{prefix}.position", k.position, "positions")
@@ -551,17 +474,7 @@ class Analysis:
                     out.append((f"joints.{name}.reaction_moment", forces.reaction_moments[name], "ok"))
         if want_kin:
             for name, lk in self.links.items():
-                out.append((f"links.{name}.rotation", lk.rotation, "positions"))
-                if has_vel:
-                    out.append((f"links.{name}.omega", lk.omega, "ok"))
-                if has_acc:
-                    out.append((f"links.{name}.alpha", lk.alpha, "ok"))
-                if lk.com is not None:
-                    out += vec(f"links.{name}.com", lk.com, "positions")
-                    if has_vel:
-                        out += vec(f"links.{name}.com_velocity", lk.com_velocity)
-                    if has_acc:
-                        out += vec(f"links.{name}.com_acceleration", lk.com_acceleration)
+                out += _link_columns(name, lk, has_vel, has_acc)
             for name, pk in self.points.items():
                 out += motion(f"points.{name}", pk)
             out += [(f"transmission_angles.{name}", v, "positions")
@@ -582,3 +495,26 @@ class Analysis:
 
 _RECORD_BLOCK = 1024
 """Steps whose arrays :meth:`Analysis.step_records` turns into Python numbers at once."""
+
+
+def _xy_columns(prefix, v, when="ok") -> list:
+    """The columns ``<prefix>.x`` and ``<prefix>.y`` of an (N, 2) array (see
+    :meth:`Analysis.columns`)."""
+    return [(f"{prefix}.x", v[:, 0], when), (f"{prefix}.y", v[:, 1], when)]
+
+
+def _link_columns(name, lk, has_vel: bool, has_acc: bool) -> list:
+    """A link's columns: rotation and its rates, centre of mass and its rates (see
+    :meth:`Analysis.columns`)."""
+    out = [(f"links.{name}.rotation", lk.rotation, "positions")]
+    if has_vel:
+        out.append((f"links.{name}.omega", lk.omega, "ok"))
+    if has_acc:
+        out.append((f"links.{name}.alpha", lk.alpha, "ok"))
+    if lk.com is not None:
+        out += _xy_columns(f"links.{name}.com", lk.com, "positions")
+        if has_vel:
+            out += _xy_columns(f"links.{name}.com_velocity", lk.com_velocity)
+        if has_acc:
+            out += _xy_columns(f"links.{name}.com_acceleration", lk.com_acceleration)
+    return out
