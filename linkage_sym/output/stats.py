@@ -12,6 +12,7 @@ import numpy as np
 from linkage_sym.numeric.engine.run import WARN_COND, cancelling_warning, ill_conditioned_warning, run_warnings
 from linkage_sym.numeric.results.result import OK, UNASSEMBLABLE, Analysis
 from linkage_sym.numeric.results.strict_json import LeftOut
+from linkage_sym.numeric.results.wording import driver_number
 from linkage_sym.numeric.forces.superposition import AMPLIFICATION_LIMIT
 
 
@@ -141,9 +142,8 @@ def ranges_text(what: str, runs: StepRuns, kinds: dict) -> str:
     >>> ranges_text("unassemblable", r, {"A": "R"})
     'unassemblable: 10 steps, A 1°, 3°, 5°, 7°, 9°, 11°, 13°, 15° and 2 more ranges'
     """
-    def value(name, v):
-        text = f"{math.degrees(v) if kinds[name] == 'R' else v:.6g}"
-        return "0" if float(text) == 0 else text  # never -0
+    def value(name, v):  # the number of driver_number's words, without its unit
+        return driver_number(v, kinds[name]).removesuffix("°").removesuffix(" m")
 
     def span(name, qa, qb, first):
         unit = "°" if kinds[name] == "R" else " m"
