@@ -622,6 +622,7 @@ def _closed_stdout_commands(tmp_path):
         ["sweep", scene, "--list"], ["sweep", scene, "--vary", "l_AB=0.02:0.03:3"],
         ["sweep", scene, "--vary", "l_AB=0.02:0.03:3", "-o", "-"],
         ["animate", scene, "-o", f"{out}/m.gif", "--frames", "2"],
+        ["view", scene, "-o", f"{out}/p.html"], ["view", scene, "-o", "-"],
     ]
 
 
