@@ -46,9 +46,7 @@ analysis, velocity=True)`` (or :func:`animate` here).
 
 from __future__ import annotations
 
-import math
 import os
-import re
 import secrets
 import textwrap
 from pathlib import Path
@@ -59,21 +57,28 @@ from matplotlib import rc_context
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
-from matplotlib.patches import Arc, FancyArrowPatch
-from matplotlib.path import Path as MplPath
 
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.results.result import OK, SINGULAR, Analysis
 from linkage_sym.plotting import style
-from linkage_sym.plotting.centres import KIND_STYLE, _kind, three_centre_segments
-from linkage_sym.plotting.motion import driver_axis
-from linkage_sym.plotting.paths import (
-    _valid_steps,
-    cam_outline,
-    mechanism_snapshot,
-    points_on_link,
-    traced_paths,
+from linkage_sym.plotting.animation_files import (
+    DEFAULT_FRAMES,
+    EMBED_LIMIT_MB,
+    SUFFIXES,
+    AnimationError,
+    check_fps,
+    frame_steps,
+    html_page,
+    output_kind,
+    positive,
+    require_ffmpeg,
+    self_contained,
 )
+from linkage_sym.plotting.animation_layers import COLORS, Layers
+from linkage_sym.plotting.centres import KIND_STYLE
+from linkage_sym.plotting.motion import driver_axis
+from linkage_sym.plotting.cam_drawing import cam_outline, points_on_link
+from linkage_sym.plotting.paths import mechanism_snapshot, traced_paths, valid_steps
 
 __all__ = ["ARROW_SHARE", "DEFAULT_FPS", "DEFAULT_FRAMES", "FADED", "LAYERS", "SUFFIXES",
            "AnimationError", "MechanismAnimation", "animate", "check_fps", "frame_steps",
@@ -81,9 +86,6 @@ __all__ = ["ARROW_SHARE", "DEFAULT_FPS", "DEFAULT_FRAMES", "FADED", "LAYERS", "S
 
 LAYERS = ("velocity", "acceleration", "forces", "centres", "transmission")
 """The layers an animation may draw over the mechanism, in drawing order."""
-
-DEFAULT_FRAMES = 120
-"""Frames of an animation whose count is not given (every step of a shorter sweep)."""
 
 DEFAULT_FPS = 20.0
 """Frames per second of an animation whose rate is not given."""
@@ -104,136 +106,12 @@ MARGINS = (0.75, 0.55, 0.4, 2.75)
 FADED = 0.25
 """Opacity of the last solved pose drawn on the frame of an ``unassemblable`` step."""
 
-SUFFIXES = {".gif": "GIF (Pillow)", ".mp4": "MP4 (ffmpeg)", ".html": "HTML (one self-contained file)"}
-"""The files an animation is written to, by suffix."""
-
-EMBED_LIMIT_MB = 1000.0
-"""Size (MB) up to which an HTML animation embeds every frame (Matplotlib's default, 20 MB,
-would drop the frames past it)."""
-
-COLORS = {"velocity": "#00838f", "acceleration": "#c2185b", "reactions": "0.1",
-          "driving": "#e65100", "transmission": "#6a1b9a"}
-"""Colours of the layers' arrows (apart from the links' colours)."""
-
-
-class AnimationError(ValueError):
-    """An animation that cannot be made or written as asked: ``field`` names the
-    argument (``frames``, ``fps``, ``path``, or a layer: ``forces`` ...), ``reason`` says why.
-
-    Examples
-    --------
-    >>> str(AnimationError("frames", "at most the sweep's 37 steps, got 40"))
-    "frames: at most the sweep's 37 steps, got 40"
-    """
-
-    def __init__(self, field: str, reason: str):
-        self.field = field
-        self.reason = reason
-        super().__init__(f"{field}: {reason}")
-
-
-def frame_steps(n_steps: int, frames: int | None = None) -> np.ndarray:
-    """The steps shown by ``frames`` frames: the sweep sampled evenly, first and last step
-    included.
-
-    Parameters
-    ----------
-    n_steps : int
-        Steps of the sweep.
-    frames : int, optional
-        Frames wanted, 1 to ``n_steps``; default ``min(n_steps, DEFAULT_FRAMES)``.
-
-    Returns
-    -------
-    ndarray of int, shape (frames,)
-        Increasing, all different (a spacing of at least one step rounds to distinct steps).
-
-    Raises
-    ------
-    AnimationError
-        ``frames`` not a whole number from 1 to ``n_steps``.
-
-    Examples
-    --------
-    >>> frame_steps(361, 5).tolist(), frame_steps(4).tolist(), frame_steps(37, 1).tolist()
-    ([0, 90, 180, 270, 360], [0, 1, 2, 3], [0])
-    """
-    if n_steps < 1:
-        raise AnimationError("frames", "the analysis has no step to show")
-    if frames is None:
-        frames = min(n_steps, DEFAULT_FRAMES)
-    if isinstance(frames, bool) or not isinstance(frames, (int, np.integer)):
-        raise AnimationError("frames", f"a whole number of frames is expected, got {frames!r}")
-    if not 1 <= frames <= n_steps:
-        raise AnimationError("frames", f"from 1 to the sweep's {n_steps} steps (one frame a "
-                             f"step at most), got {frames}")
-    if frames == 1:
-        return np.zeros(1, dtype=int)
-    return np.rint(np.linspace(0.0, n_steps - 1, int(frames))).astype(int)
-
-
-def _positive(field: str, value, what: str) -> float:
-    """``value`` as a positive finite float, else :class:`AnimationError` naming ``field``."""
-    if not isinstance(value, bool):
-        try:
-            number = float(value)
-        except (TypeError, ValueError):
-            number = math.nan
-        if math.isfinite(number) and number > 0.0:
-            return number
-    raise AnimationError(field, f"a positive number of {what} is expected, got {value!r}")
-
-
-def check_fps(fps) -> float:
-    """``fps`` as a positive finite float, else :class:`AnimationError` (field ``fps``).
-
-    Examples
-    --------
-    >>> check_fps(12), check_fps("2.5")
-    (12.0, 2.5)
-    """
-    return _positive("fps", fps, "frames per second")
-
-
-def output_kind(path) -> str:
-    """``"gif"``, ``"mp4"`` or ``"html"`` from ``path``'s suffix (any case).
-
-    Raises
-    ------
-    AnimationError
-        Another suffix (field ``path``).
-
-    Examples
-    --------
-    >>> output_kind("motion.GIF"), output_kind("a/b.html")
-    ('gif', 'html')
-    >>> output_kind("motion.png")
-    Traceback (most recent call last):
-    ...
-    linkage_sym.plotting.animation.AnimationError: path: 'motion.png': an animation is written as .gif, .mp4 or .html, not '.png'
-    """
-    suffix = Path(path).suffix.lower()
-    if suffix not in SUFFIXES:
-        given = f"{suffix!r}" if suffix else "a name without a suffix"
-        raise AnimationError("path", f"{str(path)!r}: an animation is written as .gif, .mp4 "
-                             f"or .html, not {given}")
-    return suffix[1:]
-
-
-def require_ffmpeg() -> None:
-    """Raise :class:`AnimationError` (field ``path``) if Matplotlib finds no ffmpeg for MP4."""
-    if not mpl_animation.writers.is_available("ffmpeg"):
-        raise AnimationError("path", "an MP4 file is written by ffmpeg, which is not found "
-                             "(not on the PATH, nor set in Matplotlib's animation.ffmpeg_path); "
-                             "a .gif or .html file needs nothing more")
-
-
 def _finite_rows(values) -> np.ndarray:
     v = np.asarray(values, dtype=float).reshape(-1, 2)
     return v[np.all(np.isfinite(v), axis=-1)]
 
 
-class MechanismAnimation:
+class MechanismAnimation(Layers):
     """The animation of one analysed sweep (see the module's description).
 
     Made by :func:`animate`; drawing happens frame by frame (:meth:`draw`) when it is
@@ -274,12 +152,12 @@ class MechanismAnimation:
         self.analysis = analysis
         self.steps = frame_steps(analysis.n_steps, frames)
         self.fps = check_fps(fps)
-        self.dpi = _positive("dpi", dpi, "dots per inch")
+        self.dpi = positive("dpi", dpi, "dots per inch")
         self.layers = tuple(name for name in LAYERS if asked[name])
         self._check_layers()
         self.unit, self.unit_scale = style.length_unit(scene)
         self.L = scene.characteristic_length() or 1.0
-        self.valid = _valid_steps(analysis)
+        self.valid = valid_steps(analysis)
         self.paths = traced_paths(scene, analysis)
         self.centres = None
         if "centres" in self.layers:
@@ -526,120 +404,6 @@ class MechanismAnimation:
             self._status_note(step, status, pose)
         return [a for a in ax.get_children() if a not in before]
 
-    def _quiver(self, rows, scale, color, gid):
-        """Arrows from each point along its vector times ``scale`` (axis units)."""
-        rows = [(p, v) for p, v in rows if np.all(np.isfinite(p)) and np.all(np.isfinite(v))
-                and np.hypot(*v) * scale > 1e-9 * self.L * self.unit_scale]
-        if not rows:
-            return None
-        p = np.array([r[0] for r in rows]) * self.unit_scale
-        v = np.array([r[1] for r in rows]) * scale
-        return self.ax.quiver(p[:, 0], p[:, 1], v[:, 0], v[:, 1], angles="xy",
-                              scale_units="xy", scale=1.0, color=color, width=0.004,
-                              headwidth=4.0, headlength=5.0, headaxislength=4.5, zorder=7,
-                              gid=gid)
-
-    def _arrows(self, layer: str, step: int) -> None:
-        rows = [(p[step], v[step]) for _, p, v in self._vectors(layer)]
-        self._quiver(rows, self.scales[layer], COLORS[layer], layer)
-
-    def _forces(self, step: int) -> None:
-        rows = [(p[step], r[step]) for _, p, r in self._reactions()]
-        self._quiver(rows, self.scales["reactions"], COLORS["reactions"], "reactions")
-        s = self.unit_scale
-        for name, kind, values in self._drivers():
-            value = float(values[step])
-            if not math.isfinite(value):
-                continue
-            p = np.asarray(self.analysis.joints[name].position[step], dtype=float) * s
-            if kind == "R":
-                sweep = math.radians(value * self.scales["driving"])
-                r = 0.12 * self.L * s
-                t = np.linspace(0.0, sweep, 40)
-                ring = p + r * np.stack([np.cos(t), np.sin(t)], axis=-1)
-                if abs(sweep) > 1e-6:
-                    self.ax.add_patch(FancyArrowPatch(
-                        path=MplPath(ring), arrowstyle="-|>", mutation_scale=10,
-                        color=COLORS["driving"], lw=1.6, zorder=7, gid=f"driving {name}"))
-                text = f"T {name} = {style.fmt_number(value)} N·m"
-            else:
-                axis = self.scene.joint(name).axis + self._turn(self.scene.joint(name).links[0], step)
-                u = np.array([math.cos(axis), math.sin(axis)])
-                self._quiver([(p / s, value * u)], self.scales["driving force"],
-                             COLORS["driving"], f"driving {name}")
-                text = f"F {name} = {style.fmt_number(value)} N"
-            self.ax.annotate(text, tuple(p), xytext=(-8, -14), textcoords="offset points",
-                             ha="right", va="top", fontsize=7.5, color=COLORS["driving"], zorder=9,
-                             bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none",
-                                   "alpha": 0.75})
-
-    def _turn(self, link: str, step: int) -> float:
-        if link == GROUND:
-            return 0.0
-        return float(self.analysis.links[link].rotation[step])
-
-    def _centres(self, step: int) -> None:
-        c, s, ax = self.centres, self.unit_scale, self.ax
-        for seg in three_centre_segments(c, step, self.L):
-            seg = seg * s
-            ax.plot(seg[:, 0], seg[:, 1], color="#d62728", lw=0.7, ls=(0, (5, 3)), alpha=0.55,
-                    zorder=2)
-        (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
-        groups, off = [], []
-        for k in range(len(c.pairs)):
-            label = c.label(k)
-            if c.undefined[step, k]:
-                continue
-            if c.at_infinity[step, k]:
-                off.append(f"{label} at infinity")
-                continue
-            p = c.position[step, k]
-            if not np.all(np.isfinite(p)):
-                continue
-            q = p * s
-            if not (x0 <= q[0] <= x1 and y0 <= q[1] <= y1):
-                off.append(f"{label} off the drawing")
-                continue
-            kind = "velocity" if c.from_velocities[step, k] else _kind(c, k)
-            ax.plot([q[0]], [q[1]], ls="none", zorder=8, gid=f"centre {label}", **KIND_STYLE[kind])
-            for g in groups:  # centres close together share one label
-                if np.hypot(*(g[0] - p)) <= 0.03 * self.L:
-                    g[1].append(label)
-                    break
-            else:
-                groups.append([p, [label], KIND_STYLE[kind]["mec"]])
-        for p, labels, color in groups:
-            ax.annotate(", ".join(labels), tuple(p * s), xytext=(5, -9), textcoords="offset points",
-                        fontsize=7, color=color, zorder=9,
-                        bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none",
-                              "alpha": 0.7})
-        if off:
-            ax.text(0.99, 0.01, textwrap.fill("; ".join(off), 60), transform=ax.transAxes, ha="right", va="bottom",
-                    fontsize=7, color="0.3", zorder=9)
-
-    def _transmission(self, step: int) -> None:
-        s, ax = self.unit_scale, self.ax
-        for inner, e1, e2 in self.dyads:
-            gamma = float(self.analysis.transmission_angles[inner][step])
-            if not math.isfinite(gamma):
-                continue
-            J = np.asarray(self.analysis.joints[inner].position[step], dtype=float)
-            a1 = math.atan2(*(np.asarray(self.analysis.joints[e1].position[step]) - J)[::-1])
-            a2 = math.atan2(*(np.asarray(self.analysis.joints[e2].position[step]) - J)[::-1])
-            # the arc from the first link to the second, the short way (gamma <= 180 degrees)
-            start, stop = (a1, a2) if (a2 - a1) % (2 * math.pi) <= math.pi else (a2, a1)
-            r = 0.14 * self.L * s
-            ax.add_patch(Arc(tuple(J * s), 2 * r, 2 * r, theta1=math.degrees(start),
-                             theta2=math.degrees(stop), color=COLORS["transmission"], lw=1.4,
-                             zorder=6, gid=f"transmission {inner}"))
-            mid = start + 0.5 * ((stop - start) % (2 * math.pi))
-            at = J * s + 1.25 * r * np.array([math.cos(mid), math.sin(mid)])
-            deg = math.degrees(gamma)
-            ax.annotate(f"γ {inner} = {deg:.1f}°", tuple(at), ha="center", va="center",
-                        fontsize=7.5, color=COLORS["transmission"], zorder=9,
-                        bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none",
-                              "alpha": 0.75})
-
     def _status_note(self, step: int, status: str, pose) -> None:
         message = self.analysis.messages[step] or ""
         if status == SINGULAR:
@@ -702,7 +466,7 @@ class MechanismAnimation:
         tmp = str(path.with_name(f".{path.stem}.{os.getpid()}.{secrets.token_hex(6)}{path.suffix}"))
         try:
             if kind == "html":
-                Path(tmp).write_text(_html_page(self.scene.name, self.to_jshtml()),
+                Path(tmp).write_text(html_page(self.scene.name, self.to_jshtml()),
                                      encoding="utf-8")
             else:
                 writer = (mpl_animation.PillowWriter(fps=self.fps) if kind == "gif" else
@@ -713,37 +477,6 @@ class MechanismAnimation:
             if os.path.exists(tmp):
                 os.unlink(tmp)
         return path
-
-
-ICONS = {"fa fa-minus": "\u2212", "fa fa-fast-backward": "|\u25c0\u25c0",
-         "fa fa-step-backward": "|\u25c0", "fa fa-play fa-flip-horizontal": "\u25c0",
-         "fa fa-pause": "||", "fa fa-play": "\u25b6", "fa fa-step-forward": "\u25b6|",
-         "fa fa-fast-forward": "\u25b6\u25b6|", "fa fa-plus": "+"}
-"""The player's buttons as characters (triangles of the Geometric Shapes block, which common
-fonts have), for the icon font Matplotlib's player fetches."""
-
-
-def self_contained(html: str) -> str:
-    """Matplotlib's player (:meth:`~matplotlib.animation.Animation.to_jshtml`) without its one
-    outside reference: the stylesheet of an icon font (Font Awesome, from a CDN) is left out and
-    the buttons' icons are written as characters (:data:`ICONS`).
-
-    Examples
-    --------
-    >>> self_contained('<link rel="stylesheet"\\nhref="https://x/fa.css">'
-    ...                '<button><i class="fa fa-play"></i></button>')
-    '<button>\u25b6</button>'
-    """
-    html = re.sub(r"<link\b[^>]*\bhref\s*=\s*[\"']?https?://[^>]*>", "", html)
-    return re.sub(r'<i class="(fa [^"]*)"></i>', lambda m: ICONS.get(m.group(1), "?"), html)
-
-
-def _html_page(title: str, body: str) -> str:
-    """One HTML document around the player (no reference outside the file)."""
-    from html import escape
-
-    return (f"<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-            f"<title>{escape(title)}</title>\n</head>\n<body>\n{body}\n</body>\n</html>\n")
 
 
 def animate(scene: Scene, analysis: Analysis, *, frames=None, fps=DEFAULT_FPS, dpi=DPI,

@@ -26,12 +26,8 @@ from matplotlib.patches import FancyArrowPatch
 
 from linkage_sym.model import GROUND
 from linkage_sym.plotting import style
-from linkage_sym.plotting.paths import (
-    cam_outline,
-    joint_label_groups,
-    mechanism_snapshot,
-    points_on_link,
-)
+from linkage_sym.plotting.cam_drawing import cam_outline, points_on_link
+from linkage_sym.plotting.paths import joint_label_groups, mechanism_snapshot
 
 __all__ = ["centres_figure", "centrodes_figure", "polygons_figure", "three_centre_segments"]
 
@@ -52,7 +48,9 @@ def _middle(scene, analysis, step):
     return pts.mean(axis=0), scene.characteristic_length() or 1.0
 
 
-def _kind(centres, k):
+def centre_kind(centres, k):
+    """How centre ``k`` was found: ``"kennedy"`` (three-centre lines), ``"velocity"`` (from the
+    velocities, where the lines do not reach it) or ``"joint"``."""
     src = centres.source[k]
     return "kennedy" if src == "three-centre lines" else ("velocity" if src == "unreachable" else "joint")
 
@@ -97,7 +95,7 @@ def three_centre_segments(centres, step, L) -> list:
     drawn = set()
     out = []
     for k, (a, b) in enumerate(centres.pairs):
-        if _kind(centres, k) != "kennedy" or centres.undefined[step, k] or centres.at_infinity[step, k]:
+        if centre_kind(centres, k) != "kennedy" or centres.undefined[step, k] or centres.at_infinity[step, k]:
             continue
         i, j = names.index(a), names.index(b)
         target = pos[k]
@@ -196,7 +194,7 @@ def centres_figure(scene, analysis, centres, step, out_file):
         p = pos[k]
         if not np.all(np.isfinite(p)):
             continue
-        kind = "velocity" if centres.from_velocities[step, k] else _kind(centres, k)
+        kind = "velocity" if centres.from_velocities[step, k] else centre_kind(centres, k)
         if not near(p):
             listed.append(f"{label} ({a}, {b}): {_fmt_point(p, scale, unit)}, off the drawing")
             continue
