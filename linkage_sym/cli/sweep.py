@@ -118,7 +118,7 @@ def cmd_sweep(args) -> int:
 
 
 def _sweep(args) -> int:
-    from linkage_sym.design.api import scene_parameters, sweep
+    from linkage_sym.design.api import sweep
     from linkage_sym.design.execute import Execution
     from linkage_sym.design.parameters import MonteCarlo, parse_axis, parse_tolerance
     from linkage_sym.design.scenes import SceneFiles
@@ -126,14 +126,7 @@ def _sweep(args) -> int:
     from linkage_sym.output import check_run_memory
 
     if args.list:
-        scene = load(args.scene)
-        check_run_memory(scene, "none", copies=4)  # the model: the sweep and its path
-        rows = scene_parameters(scene)
-        w = max(len(n) for n, _, _ in rows)
-        print(f"parameters of {scene.name!r} (SI units, angles in rad):")
-        for n, v, meaning in rows:
-            print(f"  {n:<{w}}  {v:< 14.8g}  {meaning}")
-        return 0
+        return _list_parameters(args.scene)
     if args.tolerance and args.monte_carlo is None:
         raise OptionError("--tolerance: used only with --monte-carlo N")
     given = [o for o, v in (("--vary", args.vary), ("--samples", args.samples),
@@ -184,21 +177,41 @@ def _sweep(args) -> int:
     if note:
         print(note, file=out)
     if args.write_scenes:
-        print(f"wrote {len(res.files)} design scene(s) into {args.write_scenes}", file=out)
-        if res.no_scene:
-            shown = ", ".join(str(i) for i in res.no_scene[:10])
-            more = f" and {len(res.no_scene) - 10} more" if len(res.no_scene) > 10 else ""
-            print(f"  no scene for design(s) {shown}{more}: not assembled at the scene's driver "
-                  "values", file=out)
-        if res.bad_scene:
-            shown = ", ".join(str(i) for i, _ in res.bad_scene[:10])
-            n = len(res.bad_scene)
-            more = f" and {n - 10} more" if n > 10 else ""
-            print(f"  no scene for design(s) {shown}{more}: the scene's rules refuse them "
-                  f"(design {res.bad_scene[0][0]}: {res.bad_scene[0][1]})", file=out)
+        _print_scenes_written(res, args.write_scenes, out)
     for w in written:
         print(f"wrote {w}", file=out)
     return 0
+
+
+def _list_parameters(path) -> int:
+    """``--list``: the scene's parameters with their values and meanings."""
+    from linkage_sym.design.api import scene_parameters
+    from linkage_sym.output import check_run_memory
+
+    scene = load(path)
+    check_run_memory(scene, "none", copies=4)  # the model: the sweep and its path
+    rows = scene_parameters(scene)
+    w = max(len(n) for n, _, _ in rows)
+    print(f"parameters of {scene.name!r} (SI units, angles in rad):")
+    for n, v, meaning in rows:
+        print(f"  {n:<{w}}  {v:< 14.8g}  {meaning}")
+    return 0
+
+
+def _print_scenes_written(res, folder, out) -> None:
+    """``--write-scenes``: how many scenes were written, and which designs have none, why."""
+    print(f"wrote {len(res.files)} design scene(s) into {folder}", file=out)
+    if res.no_scene:
+        shown = ", ".join(str(i) for i in res.no_scene[:10])
+        more = f" and {len(res.no_scene) - 10} more" if len(res.no_scene) > 10 else ""
+        print(f"  no scene for design(s) {shown}{more}: not assembled at the scene's driver "
+              "values", file=out)
+    if res.bad_scene:
+        shown = ", ".join(str(i) for i, _ in res.bad_scene[:10])
+        n = len(res.bad_scene)
+        more = f" and {n - 10} more" if n > 10 else ""
+        print(f"  no scene for design(s) {shown}{more}: the scene's rules refuse them "
+              f"(design {res.bad_scene[0][0]}: {res.bad_scene[0][1]})", file=out)
 
 
 def _by_name(texts, parse, option: str):

@@ -208,22 +208,7 @@ def centres_figure(scene, analysis, centres, step, out_file):
         else:
             labels.append([p, [label], st["mec"]])
 
-
-    from matplotlib.lines import Line2D
-
-    handles = [Line2D([], [], ls="none", label="centre at a joint", **KIND_STYLE["joint"]),
-               Line2D([], [], ls="none", label="centre by three-centre lines (Kennedy)",
-                      **KIND_STYLE["kennedy"]),
-               Line2D([], [], color="#d62728", lw=0.7, ls=(0, (5, 3)), label="three-centre line")]
-    if centres.from_velocities[step].any():
-        handles.insert(2, Line2D([], [], ls="none", label="centre from the velocities "
-                                 "(three-centre lines run out)", **KIND_STYLE["velocity"]))
-    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8,
-              frameon=False)
-    numbers = ", ".join(f"{i + 1} {n}" for i, n in enumerate(names))
-    text = "numbering: " + numbers + ("\n" + "\n".join(listed) if listed else "")
-    ax.text(1.02, 0.0, text, transform=ax.transAxes, fontsize=7.5, va="bottom", ha="left",
-            color="0.2", wrap=True, gid="numbering")
+    text = _key(ax, centres, step, listed)
     ax.set_xlabel(f"x ({unit})")
     ax.set_ylabel(f"y ({unit})")
     ax.grid(True, color="0.92", lw=0.6, zorder=0)
@@ -248,6 +233,27 @@ def centres_figure(scene, analysis, centres, step, out_file):
     place_labels(fig, ax, [(p, text, "0.1") for p, text in far], points)
     place_labels(fig, ax, [(p * scale, ", ".join(n), c) for p, n, c in labels], points)
     return style.save(fig, out_file)
+
+
+def _key(ax, centres, step, listed) -> str:
+    """The legend of the markers and lines, and beside the drawing the links' numbering with
+    the centres not drawn (``listed``); returns that text."""
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], ls="none", label="centre at a joint", **KIND_STYLE["joint"]),
+               Line2D([], [], ls="none", label="centre by three-centre lines (Kennedy)",
+                      **KIND_STYLE["kennedy"]),
+               Line2D([], [], color="#d62728", lw=0.7, ls=(0, (5, 3)), label="three-centre line")]
+    if centres.from_velocities[step].any():
+        handles.insert(2, Line2D([], [], ls="none", label="centre from the velocities "
+                                 "(three-centre lines run out)", **KIND_STYLE["velocity"]))
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8,
+              frameon=False)
+    numbers = ", ".join(f"{i + 1} {n}" for i, n in enumerate(centres.links))
+    text = "numbering: " + numbers + ("\n" + "\n".join(listed) if listed else "")
+    ax.text(1.02, 0.0, text, transform=ax.transAxes, fontsize=7.5, va="bottom", ha="left",
+            color="0.2", wrap=True, gid="numbering")
+    return text
 
 
 def _drawn_box(scene, analysis, step, centres_drawn, L):

@@ -183,12 +183,25 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
     L = scene.characteristic_length() or 1.0
     size = 0.045 * L * unit_scale
     base_z = 3 if alpha >= 1.0 else 2
-    artists = []
 
     def P(link, local):
         return place(link, local) * unit_scale
 
-    # links: bars or convex polygons through their joints' points
+    artists = _links(scene, ax, P, colors, alpha, base_z)
+    artists += _sliding_pairs(scene, analysis, ax, P, turn, colors, alpha, base_z, unit_scale,
+                              size, L, ground)
+    for joint in scene.cams:  # the profile turning with the cam, the follower's roller or face
+        artists += draw_cam(scene, analysis, joint, step, ax, unit_scale, alpha, base_z, colors)
+    artists += _pins(scene, ax, P, alpha, base_z, size, ground)
+    artists += _centres_of_mass(scene, ax, P, colors, alpha, base_z)
+    if labels:
+        artists += _joint_labels(scene, ax, P, size)
+    return artists
+
+
+def _links(scene, ax, P, colors, alpha, base_z) -> list:
+    """Each link: a bar, or a convex polygon through its joints' points; the artists."""
+    artists = []
     for link, local_pts in link_points(scene).items():
         pts = [P(link, q) for q in local_pts]
         col = colors.get(link, "0.3")
@@ -206,8 +219,14 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
             ax.add_patch(poly)
             ax.add_patch(edge)
             artists += [poly, edge]
+    return artists
 
-    # sliding pairs: a slot on links[0], a block fixed on links[1]
+
+def _sliding_pairs(scene, analysis, ax, P, turn, colors, alpha, base_z, unit_scale, size, L,
+                   ground) -> list:
+    """Each sliding pair: a slot on ``links[0]`` (a fixed one only with ``ground``), a block
+    fixed on ``links[1]`` (gid ``"joint NAME"``); the artists."""
+    artists = []
     for joint in scene.joints:
         if joint.type != "P":
             continue
@@ -226,12 +245,13 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
         blk_col = colors.get(slider, "0.6") if slider != GROUND else "0.85"
         artists.append(_block(ax, centre, angle, 2.2 * size, 1.3 * size, blk_col, alpha,
                               base_z + 1, gid=f"joint {joint.name}"))
+    return artists
 
-    # cams: the profile turning with the cam, the follower's roller or flat face
-    for joint in scene.cams:
-        artists += draw_cam(scene, analysis, joint, step, ax, unit_scale, alpha, base_z, colors)
 
-    # pins and ground symbols
+def _pins(scene, ax, P, alpha, base_z, size, ground) -> list:
+    """Each ``R`` joint's pin (gid ``"joint NAME"``) and, with ``ground``, the ground symbol
+    of a pivot; the artists."""
+    artists = []
     for joint in scene.joints:
         on = joint.links[1] if joint.links[1] != GROUND else joint.links[0]
         p = P(on, joint.at)
@@ -242,8 +262,12 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
                          alpha=alpha, zorder=base_z + 2, gid=f"joint {joint.name}")
             ax.add_patch(pin)
             artists.append(pin)
+    return artists
 
-    # centres of mass
+
+def _centres_of_mass(scene, ax, P, colors, alpha, base_z) -> list:
+    """Each link's centre of mass, a circle with a cross; the artists."""
+    artists = []
     for link in scene.links:
         if link.com is None:
             continue
@@ -255,9 +279,6 @@ def mechanism_snapshot(scene: Scene, analysis: Analysis, step, ax, *, alpha: flo
         (x,) = ax.plot([c[0]], [c[1]], marker="+", ms=ms, mec=colors.get(link.name),
                        mew=1.3, ls="none", alpha=alpha, zorder=base_z + 2)
         artists += [m, x]
-
-    if labels:
-        artists += _joint_labels(scene, ax, P, size)
     return artists
 
 
