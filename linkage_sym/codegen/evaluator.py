@@ -94,10 +94,15 @@ class Evaluator(ABC):
     # -- the rate problems ---------------------------------------------------------------
     def rate_system(self, X, Q, QD, CS, P=None, shape=None):
         """``A`` (the backend's :meth:`block_system`) and ``B qd`` (list over the rows)."""
+        entries, Bqd = self.rate_entries(X, Q, QD, CS, P)
+        return self.block_system(entries, shape), self.vector(Bqd, shape)
+
+    def rate_entries(self, X, Q, QD, CS, P=None):
+        """The generated ``rates``: ``A``'s non-zero entries ``{(i, j): value}`` and ``B qd``,
+        as the function returns them (for a caller that needs ``B qd`` alone, no system)."""
         out = self.call("rates", P, X=X, Q=Q, QD=QD, CS=CS)
         n = len(self.art.pattern)
-        return self.block_system(dict(zip(self.art.pattern, out[:n])), shape), \
-            self.vector(out[n:], shape)
+        return dict(zip(self.art.pattern, out[:n])), out[n:]
 
     def accelerations_rhs(self, X, XD, Q, QD, QDD, CS, P=None, shape=None):
         """The right-hand side of ``A xdd = rhs``."""
@@ -120,9 +125,10 @@ class Evaluator(ABC):
         """The solution (list of ``n``) of one group's ``A_g F_g = b``: ``A_g``'s non-zero
         entries ``pattern`` ``(i, j)`` with ``values``, ``b`` a list of ``n``."""
 
+    @abstractmethod
     def force_zeros(self, like):
-        """The forces before any group is solved (a list over the force names)."""
-        return [0.0 * like] * len(self.art.force_names)
+        """The forces before any group is solved (a list over the force names), each the
+        backend's zero shaped as ``like``."""
 
     def solve_forces(self, pts, take=lambda v: v):
         """Reactions and efforts (a list over the force names): each group's block from

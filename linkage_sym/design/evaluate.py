@@ -404,7 +404,7 @@ class Model(NumpyEvaluator):
         Ak = BlockSystem({ij: sel(np.broadcast_to(v, shape).reshape(E)) for ij, v in A.entries.items()},
                          self.art.blocks, m, Ko)
         with np.errstate(invalid="ignore", over="ignore"):
-            _, Bqd = self.rate_system(list(Xk), Qk, QDo, CSk, Pk, Ko)
+            Bqd = self.vector(self.rate_entries(list(Xk), Qk, QDo, CSk, Pk)[1], Ko)
         XD = Ak.solve(Bqd)
         XDD = Ak.solve(self.accelerations_rhs(list(Xk), list(XD), Qk, QDo, QDDo, CSk, Pk, Ko))
         sol.XD = self._spread_rows(XD, idx, n)
