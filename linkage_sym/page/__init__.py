@@ -30,18 +30,36 @@ from __future__ import annotations
 
 from importlib import resources
 
-from linkage_sym.codegen.javascript import mechanism_script
-from linkage_sym.model import Scene
+import json
+import math
 
-__all__ = ["page_html"]
+from linkage_sym.codegen.javascript import CONSTANTS, evaluator_source, mechanism_script
+from linkage_sym.model import Scene
+from linkage_sym.page.cam_model import cam_page_model
+
+__all__ = ["cam_script", "page_html"]
 
 
 def _read(name: str) -> str:
     return resources.files("linkage_sym.page").joinpath(name).read_text("utf-8")
 
 
+def _json(value) -> str:
+    # JSON inside a <script>: no "</" (it would end the script element)
+    return json.dumps(value, allow_nan=False).replace("</", "<\\/")
+
+
 def _escape(text: str) -> str:
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def cam_script(scene: Scene) -> str:
+    """The script before ``cams.js`` on the page of a cam mechanism: ``CONST``, the evaluator
+    (its linear algebra, solving path and errors), no generated function and ``MODEL``
+    (:func:`~linkage_sym.page.cam_model.cam_page_model`)."""
+    consts = {k: (v if math.isfinite(v) else None) for k, v in CONSTANTS.items()}
+    return "\n".join([f"const CONST = {_json(consts)};", evaluator_source(),
+                      "const GENERATED = {};", f"const MODEL = {_json(cam_page_model(scene))};"])
 
 
 def page_html(scene: Scene) -> str:
@@ -50,9 +68,13 @@ def page_html(scene: Scene) -> str:
     Raises
     ------
     SceneError
-        A scene the symbolic layer does not derive (a cam contact), naming the joint.
+        A mechanism with cam contacts and a group the page's port of the solvers does not
+        solve (a dyad, a gear, a Newton group), naming it.
     """
-    script = mechanism_script(scene) + "\n" + _read("page.js")
+    if scene.cams:  # the symbolic layer derives no cam contact: cams.js ports the solvers
+        script = "\n".join([cam_script(scene), _read("cams.js"), _read("page.js")])
+    else:
+        script = mechanism_script(scene) + "\n" + _read("page.js")
     if "</script" in script.lower():  # pragma: no cover - nothing generated writes it
         raise ValueError("the page's script may not contain '</script'")
     out = _read("page.html")

@@ -34,7 +34,8 @@
   // -- solving --------------------------------------------------------------------------
   function rebuild(tables = true) {
     try {
-      mech = new E.Mechanism(model.artifact, GENERATED, model);
+      // a mechanism with cam contacts: the numeric layer's solvers ported (cams.js)
+      mech = model.cams ? new LinkageCams.Mechanism(model) : new E.Mechanism(model.artifact, GENERATED, model);
       problem = null;
       cycle = mech.solveSteps(sweep);
     } catch (err) {
@@ -73,6 +74,9 @@
   function moveJoint(name, x, y, tables = true) {
     // a drag: the joint's assembly position, with every joint at the same point
     if (!(name in model.joints)) throw new Error("no joint named " + JSON.stringify(name));
+    if (model.joints[name].type === "cam")
+      throw new Error("joint " + JSON.stringify(name) + " is a cam contact: its point lies on the " +
+        "cam's profile, which is fixed data on the cam; it does not move");
     const moved = together(name);
     const pivot = moved.find((n) => gearPivots.has(n));
     if (pivot !== undefined)
@@ -94,7 +98,8 @@
   }
 
   function movable(name) {
-    return model.joints[name].type !== "G" && !together(name).some((n) => gearPivots.has(n));
+    return model.joints[name].type !== "G" && model.joints[name].type !== "cam" &&
+      !together(name).some((n) => gearPivots.has(n));
   }
 
   function summary() {
@@ -126,6 +131,7 @@
       for (const p of Object.values(s.joints)) add(p);
       for (const p of Object.values(s.points)) add(p);
     }
+    if (mech !== null && mech.extent) mech.extent(cycle).forEach(add);
     for (const g of gears()) {
       const c = model.joints[g.pivot].at;
       add([c[0] - g.r, c[1] - g.r]); add([c[0] + g.r, c[1] + g.r]);
@@ -209,10 +215,15 @@
         ctx.lineTo(px + g.r * view.s * Math.cos(a), py - g.r * view.s * Math.sin(a)); ctx.stroke();
       }
     }
-    // links: the hull of their joints
+    // cams: the profile on the cam, the follower's roller or face (cams.js)
+    const camDrawn = mech !== null && mech.draw && st.status !== "unassemblable";
+    if (camDrawn) mech.draw(ctx, st, toCanvas, view.s, (link) => linkColour[link], cycle);
+    const extra = camDrawn ? mech.hullPoints(st) : {};
+    // links: the hull of their joints (a cam's contact point: the follower's element point)
     for (const link of Object.keys(model.links)) {
-      const pts = model.order.filter((n) => model.joints[n].links.includes(link) && model.joints[n].type !== "G")
-        .map((n) => jp[n]).filter((p) => p && Number.isFinite(p[0]));
+      const pts = model.order.filter((n) => model.joints[n].links.includes(link) &&
+        model.joints[n].type !== "G" && model.joints[n].type !== "cam")
+        .map((n) => jp[n]).concat(extra[link] || []).filter((p) => p && Number.isFinite(p[0]));
       if (!pts.length) continue;
       const hp = hull(pts).map(toCanvas);
       ctx.strokeStyle = linkColour[link];
@@ -372,7 +383,11 @@
         const td = document.createElement("td");
         const inp = document.createElement("input");
         inp.type = "number"; inp.step = "any"; inp.value = fmt(j.at[c]);
-        if (!movable(n)) { inp.disabled = true; inp.title = "a gear's pivot (or a mesh): fixed by the pitch radii"; }
+        if (!movable(n)) {
+          inp.disabled = true;
+          inp.title = j.type === "cam" ? "a cam contact: on the cam's profile, fixed data on the cam" :
+            "a gear's pivot (or a mesh): fixed by the pitch radii";
+        }
         inp.setAttribute("aria-label", n + (c ? " y" : " x"));
         inp.addEventListener("change", () => {
           const v = parseFloat(inp.value);
@@ -436,6 +451,16 @@
 
   function setup() {
     $("title").textContent = model.name;
+    if (model.cams) { // what a drag can do to a cam mechanism, said where the hints are
+      const note = document.createElement("p");
+      note.className = "hint"; note.id = "cam-note";
+      note.textContent = "Cam contacts (" + Object.keys(model.cams).join(", ") + "): the cam's " +
+        "profile is fixed data on the cam, so the contact point does not move and no length " +
+        "edits the profile; a dragged ground pivot re-solves the sweep (the cam turns about " +
+        "another point of its profile, or the follower turns or slides elsewhere). Edit a " +
+        "profile in the scene file.";
+      document.querySelector("aside .hint").after(note);
+    }
     const slider = $("slider");
     slider.max = String(steps - 1);
     slider.addEventListener("input", () => { index = parseInt(slider.value, 10); playing = false; $("play").textContent = "Play"; showStatus(); });

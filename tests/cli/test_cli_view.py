@@ -1,5 +1,6 @@
 """``linkage-sym view``: the page written, options and scenes refused with nothing written."""
 
+import json
 import subprocess
 import sys
 
@@ -39,11 +40,30 @@ def test_view_needs_the_output_option(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
-def test_a_cam_scene_is_refused_naming_the_joint(tmp_path):
+def test_a_cam_scene_writes_a_page_solved_by_the_port(tmp_path):
+    """A cam mechanism's page: no generated function, ``cams.js`` and the profile as data."""
     out = tmp_path / "cam.html"
     p = run("view", str(example_path("cam_eccentric_rocker")), "-o", str(out))
+    assert p.returncode == 0, p.stderr
+    html = out.read_text()
+    assert "const LinkageCams" in html and "function positions_0(" not in html
+    assert "http://" not in html and "https://" not in html
+
+
+def test_a_cam_mechanism_the_page_does_not_solve_is_refused_naming_the_group(tmp_path):
+    """A dyad driven by a cam's follower: the page's port solves input links and cam
+    followers only; the refusal names the group and its joints; nothing is written."""
+    scene = json.loads(example_path("cam_eccentric_rocker").read_text())
+    scene["links"] += [{"name": "c1"}, {"name": "c2"}]
+    scene["joints"] += [{"name": "E", "type": "R", "links": ["follower", "c1"], "at": [0.035, 0.015]},
+                        {"name": "F", "type": "R", "links": ["c1", "c2"], "at": [0.05, 0.05]},
+                        {"name": "G", "type": "R", "links": ["c2", "ground"], "at": [0.08, 0.03]}]
+    path = tmp_path / "cam_dyad.json"
+    path.write_text(json.dumps(scene))
+    out = tmp_path / "cam.html"
+    p = run("view", str(path), "-o", str(out))
     assert p.returncode == 2
-    assert "joint 'K'" in p.stderr and "cam" in p.stderr
+    assert "dyad group of link(s) c1, c2 (joints E, F, G)" in p.stderr and "cam" in p.stderr
     assert "Traceback" not in p.stderr
     assert not out.exists()
 

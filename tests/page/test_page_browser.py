@@ -1,6 +1,7 @@
 """The page of ``linkage-sym view`` in a real browser (headless Chromium through Selenium).
 
-For every shipped example the symbolic layer derives, the page written by
+For every shipped example (those with cam contacts solved by ``cams.js``, the others by the
+symbolic layer's generated functions), the page written by
 :func:`linkage_sym.page.page_html` is opened from a file, and:
 
 * ``window.linkageSym.solve(q)`` at 12 driver values across the sweep equals the numeric
@@ -30,7 +31,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tests.support.example_sets import symbolic_examples
+from linkage_sym.examples import example_names
 
 CHROMIUM = Path("/usr/bin/chromium")
 CHROMEDRIVER = shutil.which("chromedriver") or "/usr/bin/chromedriver"
@@ -128,7 +129,7 @@ def solver_at(scene, Q):
                                    zeros, zeros)
 
 
-@pytest.mark.parametrize("name", symbolic_examples())
+@pytest.mark.parametrize("name", example_names())
 def test_the_page_solves_as_the_python_solver(browser, pages, name):
     scene = load_example(name)
     assert open_page(browser, pages(name))["error"] is None
@@ -136,7 +137,7 @@ def test_the_page_solves_as_the_python_solver(browser, pages, name):
     assert_positions(page_solve(browser, qs), solver_at(scene, Q), scene, "as loaded")
 
 
-@pytest.mark.parametrize("name", symbolic_examples())
+@pytest.mark.parametrize("name", example_names())
 def test_a_moved_ground_pivot_solves_as_analyze_of_the_downloaded_scene(browser, pages, name):
     scene = load_example(name)
     open_page(browser, pages(name))
@@ -162,7 +163,7 @@ def test_a_moved_ground_pivot_solves_as_analyze_of_the_downloaded_scene(browser,
                      "after the move", idx)
 
 
-@pytest.mark.parametrize("name", symbolic_examples())
+@pytest.mark.parametrize("name", example_names())
 def test_the_page_loads_alone_without_errors_and_draws(browser, pages, name):
     path = pages(name)
     html = path.read_text()
@@ -229,3 +230,68 @@ def test_a_typed_length_moves_the_second_joint_along_the_line(browser, pages):
     want = {str(s): int(np.sum(status == s)) for s in set(status)}
     assert browser.execute_script("return window.linkageSym.summary()")["counts"] == want
     assert want["unassemblable"] > 0
+
+
+CAMS = [n for n in example_names() if any(j.type == "cam" for j in load_example(n).joints)]
+
+
+def _profiles():
+    """Each shipped cam's profile, and a spline through points (no example has one)."""
+    from linkage_sym.numeric.kinematics.cam_profile import CamProfile
+    from linkage_sym.numeric.kinematics.cams import cam_geometry
+
+    out = [(n, cam_geometry(j).profile) for n in CAMS for j in load_example(n).cams]
+    t = np.linspace(0.0, 2 * np.pi, 13)[:-1]
+    pts = np.stack([0.03 * np.cos(t) + 0.004 * np.cos(2 * t), 0.02 * np.sin(t)], axis=-1)
+    return out + [("points", CamProfile("points", (pts[::-1],)))]
+
+
+def test_the_page_evaluates_a_profile_as_scipy(browser, pages):
+    """``cams.js``'s profile (SciPy's splines as data, evaluated as ``PPoly`` is) against
+    :class:`~linkage_sym.numeric.kinematics.cam_profile.CamProfile` (SciPy itself): the
+    point and its two derivatives at 97 parameters, to 1e-12 of the profile's size."""
+    from linkage_sym.page.cam_model import profile_data
+
+    open_page(browser, pages(CAMS[0]))
+    u = np.linspace(-0.3, 2 * np.pi + 0.3, 97)
+    for name, prof in _profiles():
+        got = np.array(browser.execute_script(
+            "const p = new LinkageCams.Profile(arguments[0], 720);"
+            "return arguments[1].map((u) => p.evaluate(u));", profile_data(prof), u.tolist()))
+        want = np.concatenate([np.stack(d, axis=-1) for d in prof.evaluate(u)], axis=-1)
+        size = np.max(np.abs(want[:, :2]))
+        assert np.max(np.abs(got - want)) <= 1e-12 * size, name
+
+
+@pytest.mark.parametrize("name", CAMS)
+def test_the_page_condition_number_of_a_cam_mechanism_is_the_solver_s(browser, pages, name):
+    """The page's constraint Jacobian of a cam mechanism (its singularity test, used where a
+    pressure angle nears 90 degrees) has the numeric solver's exact condition number at the
+    12 steps, to 1e-6 relative."""
+    scene = load_example(name)
+    open_page(browser, pages(name))
+    _, Q, qs = twelve(scene)
+    got = browser.execute_script("""
+        const m = new LinkageCams.Mechanism(MODEL);
+        return m.solveSteps(arguments[0]).map((s) => {
+          const sv = LinkageEvaluator.singularValues(m.jacobian(s.S));
+          return sv[0] / sv[sv.length - 1];
+        });""", qs)
+    zeros = {d.joint: np.zeros(12) for d in scene.drivers}
+    res = compile_plan(scene).run({d.joint: Q[i] for i, d in enumerate(scene.drivers)},
+                                  zeros, zeros, exact_condition=True)
+    np.testing.assert_allclose(got, res.condition, rtol=1e-6)
+
+
+@pytest.mark.parametrize("name", CAMS)
+def test_a_cam_page_says_what_a_drag_edits_and_keeps_the_contact(browser, pages, name):
+    """The contact point lies on the profile (data): ``moveJoint`` refuses it, its inputs are
+    disabled, and the page says so beside the joints."""
+    scene = load_example(name)
+    open_page(browser, pages(name))
+    (cam,) = scene.cams
+    with pytest.raises(JavascriptException, match="is a cam contact"):
+        browser.execute_script("window.linkageSym.moveJoint(arguments[0], 0.1, 0.1)", cam.name)
+    assert browser.find_element("css selector", f"input[aria-label='{cam.name} x']").get_attribute(
+        "disabled")
+    assert "profile is fixed data" in browser.find_element("id", "cam-note").text
