@@ -2,7 +2,9 @@
 
 ``demo`` analyses examples and writes their result, motion diagrams, coupler
 curves, efforts, reactions, frame loads and shaking force and moment, and for a
-hinged example Song and Wang's (1992) balancing (:func:`demo_balance`);
+hinged example Song and Wang's (1992) balancing (:func:`demo_balance`); then the
+self-contained page of every shipped example (of those ``--example`` names, when it
+does) and ``gallery.html`` linking them (:mod:`linkage_sym.page.gallery`);
 ``examples`` lists them.
 """
 
@@ -74,6 +76,14 @@ def cmd_demo(args) -> int:
             print(f"{name}: balancing conditions and force-balancing counterweights; wrote")
             for f in files:
                 print(f"  {f}")
+    # the pages of the examples (every shipped one unless --example names some) and their gallery
+    from linkage_sym.examples import example_names as _all
+    from linkage_sym.page.gallery import write_gallery
+
+    gallery, *pages = write_gallery(out, args.example or _all())
+    print(f"gallery of {len(pages)} example page(s) (open it in a browser; nothing is fetched); wrote")
+    print(f"  {gallery}")
+    print(f"  {len(pages)} pages in {pages[0].parent}")
     print(f"demo output is in {out.resolve()}")
     return 0
 
@@ -99,12 +109,13 @@ def demo_balance(scene, stem, out) -> list:
 
 def register(sub) -> None:
     """Add the ``demo`` and ``examples`` commands to the ``linkage-sym`` subparsers ``sub``."""
-    d = sub.add_parser("demo", help="analyse shipped examples and write plots")
+    d = sub.add_parser("demo", help="analyse shipped examples and write plots, and a gallery of "
+                                    "every example's page")
     d.add_argument("-o", "--output", default="demo_out", metavar="DIR", help="output folder (default demo_out)")
     d.add_argument(
         "--example", action="append", metavar="NAME",
-        help=f"example to run (repeatable; default {', '.join(DEMO_EXAMPLES)}; "
-        "`linkage-sym examples` lists them)",
+        help=f"example to run (repeatable; default {', '.join(DEMO_EXAMPLES)}, and the gallery "
+        "of every example's page; `linkage-sym examples` lists them)",
     )
     d.set_defaults(func=cmd_demo)
     e = sub.add_parser("examples", help="list the shipped example scenes")

@@ -460,6 +460,8 @@
         "another point of its profile, or the follower turns or slides elsewhere). Edit a " +
         "profile in the scene file.";
       document.querySelector("aside .hint").after(note);
+      document.querySelector("header .by").textContent = "solved in this page by linkage_sym's " +
+        "numeric cam solver, ported to JavaScript (the symbolic layer derives no cam contact)";
     }
     const slider = $("slider");
     slider.max = String(steps - 1);

@@ -295,3 +295,30 @@ def test_a_cam_page_says_what_a_drag_edits_and_keeps_the_contact(browser, pages,
     assert browser.find_element("css selector", f"input[aria-label='{cam.name} x']").get_attribute(
         "disabled")
     assert "profile is fixed data" in browser.find_element("id", "cam-note").text
+
+
+def test_the_gallery_opens_alone_and_its_links_open_the_pages(browser, tmp_path):
+    """The demo's gallery (three examples: a cam, a gear train, a linkage) loads with no
+    console error and fetches nothing but itself; clicking a card opens that example's page,
+    which solves its sweep."""
+    from linkage_sym.page.gallery import write_gallery
+
+    names = ["cam_cycloidal_roller", "planetary_train", "crank_rocker"]
+    gallery = write_gallery(tmp_path, names)[0]
+    for name in names:
+        browser.get(gallery.as_uri())
+        assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
+        entries = browser.execute_script(
+            "return performance.getEntries().map((e) => [e.entryType, e.name]);")
+        assert {n for t, n in entries if t in ("navigation", "resource")} == {gallery.as_uri()}
+        browser.find_element("id", name).click()
+        assert browser.current_url == (tmp_path / "pages" / f"{name}.html").as_uri()
+        assert browser.execute_script("return window.linkageSym.summary()")["error"] is None
+        assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
+
+
+@pytest.mark.parametrize("name", CAMS)
+def test_a_cam_page_does_not_claim_the_symbolic_layer_s_equations(browser, pages, name):
+    open_page(browser, pages(name))
+    by = browser.find_element("css selector", "header .by").text
+    assert "numeric cam solver" in by and "SymPy" not in by
