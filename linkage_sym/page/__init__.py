@@ -18,6 +18,13 @@ file.  For tests and scripts it defines ``window.linkageSym``:
   it); returns ``{error, counts}`` (the sweep's statuses counted);
 - ``scene()``: the current scene in the format's JSON (what ``linkage-sym analyze`` reads).
 
+A mechanism with cam contacts, which the symbolic layer does not derive, is solved instead by
+``cams.js`` (inlined after the evaluator): a port of the numeric layer's input-link and
+cam-follower solvers reading :func:`~linkage_sym.page.cam_model.cam_page_model` (each
+profile as data); the page draws the profile and the follower's roller or face.  Gear
+meshes are the symbolic layer's.  :mod:`linkage_sym.page.gallery` writes the pages of the
+shipped examples and a gallery linking them (the demo does).
+
 Examples
 --------
 >>> from linkage_sym.examples import load_example
