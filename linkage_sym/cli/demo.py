@@ -2,10 +2,10 @@
 
 ``demo`` analyses examples and writes their result, motion diagrams, coupler
 curves, efforts, reactions, frame loads and shaking force and moment, and for a
-hinged example Song and Wang's (1992) balancing (:func:`demo_balance`); then the
-self-contained page of every shipped example (of those ``--example`` names, when it
-does) and ``gallery.html`` linking them (:mod:`linkage_sym.page.gallery`);
-``examples`` lists them.
+hinged example Song and Wang's (1992) balancing (:func:`demo_balance`); without
+``--example``, also the self-contained page of every shipped example and
+``gallery.html`` linking them (:mod:`linkage_sym.page.gallery`); ``examples`` lists
+them.
 """
 
 from __future__ import annotations
@@ -76,14 +76,14 @@ def cmd_demo(args) -> int:
             print(f"{name}: balancing conditions and force-balancing counterweights; wrote")
             for f in files:
                 print(f"  {f}")
-    # the pages of the examples (every shipped one unless --example names some) and their gallery
-    from linkage_sym.examples import example_names as _all
-    from linkage_sym.page.gallery import write_gallery
+    if not args.example:  # the demo itself: every shipped example's page, and their gallery
+        from linkage_sym.page.gallery import write_gallery
 
-    gallery, *pages = write_gallery(out, args.example or _all())
-    print(f"gallery of {len(pages)} example page(s) (open it in a browser; nothing is fetched); wrote")
-    print(f"  {gallery}")
-    print(f"  {len(pages)} pages in {pages[0].parent}")
+        gallery, *pages = write_gallery(out, example_names())
+        print(f"the page of every shipped example and their gallery (open it in a browser; "
+              "nothing is fetched); wrote")
+        print(f"  {gallery}")
+        print(f"  {len(pages)} pages in {pages[0].parent}")
     print(f"demo output is in {out.resolve()}")
     return 0
 
@@ -114,8 +114,8 @@ def register(sub) -> None:
     d.add_argument("-o", "--output", default="demo_out", metavar="DIR", help="output folder (default demo_out)")
     d.add_argument(
         "--example", action="append", metavar="NAME",
-        help=f"example to run (repeatable; default {', '.join(DEMO_EXAMPLES)}, and the gallery "
-        "of every example's page; `linkage-sym examples` lists them)",
+        help=f"example to run (repeatable; default {', '.join(DEMO_EXAMPLES)}, and then the "
+        "gallery of every example's page; `linkage-sym examples` lists them)",
     )
     d.set_defaults(func=cmd_demo)
     e = sub.add_parser("examples", help="list the shipped example scenes")
