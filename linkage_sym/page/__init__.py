@@ -19,8 +19,8 @@ file.  For tests and scripts it defines ``window.linkageSym``:
 - ``scene()``: the current scene in the format's JSON (what ``linkage-sym analyze`` reads).
 
 A mechanism with cam contacts, which the symbolic layer does not derive, is solved instead by
-``cams.js`` (inlined after the evaluator): a port of the numeric layer's input-link and
-cam-follower solvers reading :func:`~linkage_sym.page.cam_model.cam_page_model` (each
+``cams.js`` (inlined after the evaluator): a port of the numeric layer's input-link, RRR
+dyad and cam-follower solvers reading :func:`~linkage_sym.page.cam_model.cam_page_model` (each
 profile as data); the page draws the profile and the follower's roller or face.  Gear
 meshes are the symbolic layer's.  :mod:`linkage_sym.page.gallery` writes the pages of the
 shipped examples and a gallery linking them (the demo does).
@@ -76,7 +76,7 @@ def page_html(scene: Scene) -> str:
     ------
     SceneError
         A mechanism with cam contacts and a group the page's port of the solvers does not
-        solve (a dyad, a gear, a Newton group), naming it.
+        solve (a dyad other than RRR, a gear, a Newton group), naming it.
     """
     if scene.cams:  # the symbolic layer derives no cam contact: cams.js ports the solvers
         script = "\n".join([cam_script(scene), _read("cams.js"), _read("page.js")])

@@ -2,8 +2,8 @@
 
 The symbolic layer does not derive cam contacts, so a page of a mechanism with one solves it
 with ``cams.js`` (beside this module): a JavaScript port of the numeric layer's solvers of
-the groups a cam mechanism is made of -- input links (a driver on a known link) and cam
-followers (:class:`~linkage_sym.numeric.kinematics.cams.CamSolver`: the contact condition
+the groups a cam mechanism is made of -- input links (a driver on a known link), RRR
+dyads (the closed form) and cam followers (:class:`~linkage_sym.numeric.kinematics.cams.CamSolver`: the contact condition
 in the profile parameter, bracketed on a grid and bisected, the assembly branch kept by its
 sign) -- and of its singularity screen (the pressure angle's cosine, then the condition
 number of the constraint Jacobian).  :func:`cam_model` gives what the port reads besides
@@ -11,8 +11,9 @@ the scene: each profile exactly as the numeric layer evaluates it (a circle's ce
 radius; the periodic cubic splines' breakpoints and coefficients, as SciPy's
 ``CubicSpline`` holds them) and the groups in solving order.
 
-A mechanism with a group of another kind (a dyad, a gear, a Newton group) besides its cam
-contacts is refused by name: the port covers input links and cam followers only.
+A mechanism with a group of another kind (a dyad of another type, a gear, a Newton group)
+besides its cam contacts is refused by name: the port covers input links, RRR dyads and cam
+followers only.
 
 Examples
 --------
@@ -28,13 +29,14 @@ from linkage_sym.errors import SceneError
 from linkage_sym.model import Scene
 from linkage_sym.numeric.kinematics.cam_profile import GRID, CamProfile
 from linkage_sym.numeric.kinematics.cams import BISECTIONS, STRAIGHT, cam_geometry
+from linkage_sym.numeric.kinematics.closed_form import ASSEMBLY_TOL
 from linkage_sym.scene.load import dump_scene
 from linkage_sym.structure import decompose
 
 __all__ = ["PAGE_GROUPS", "cam_model", "cam_page_model", "profile_data"]
 
-PAGE_GROUPS = ("input", "cam")
-"""The group kinds ``cams.js`` solves."""
+PAGE_GROUPS = ("input", "cam", "dyad RRR")
+"""The groups ``cams.js`` solves (kind, and a dyad's type)."""
 
 
 def _spline(s) -> dict:
@@ -68,6 +70,10 @@ def _group(scene: Scene, g) -> dict:
         j = scene.joint(g.drivers[0])
         return {"kind": "input", "link": link, "joint": j.name, "known": _other(j, link),
                 "sign": 1.0 if j.links[1] == link else -1.0}
+    if g.kind == "dyad":  # RRR: links[0] carries the first external joint
+        e0, ji, e1 = (scene.joint(n) for n in g.joints)
+        return {"kind": "dyad", "links": list(g.links), "joints": [e0.name, ji.name, e1.name],
+                "known": [_other(e0, g.links[0]), _other(e1, g.links[1])]}
     cam = next(scene.joint(n) for n in g.joints if scene.joint(n).type == "cam")
     if len(g.links) != 1 or cam.links[1] != g.links[0]:
         raise SceneError([f"joints: cam contact '{cam.name}': its follower must be a link "
@@ -85,13 +91,14 @@ def cam_model(scene: Scene) -> dict:
     Returns
     -------
     dict
-        ``groups`` (solving order: ``{"kind": "input", "link", "joint", "known", "sign"}`` or
-        ``{"kind": "cam", "link", "joint", "pivot", "known"}``), ``cams`` (per contact: the
+        ``groups`` (solving order: ``{"kind": "input", "link", "joint", "known", "sign"}``,
+        ``{"kind": "cam", "link", "joint", "pivot", "known"}`` or ``{"kind": "dyad", "links",
+        "joints", "known"}``, an RRR dyad's joints external, internal, external), ``cams`` (per contact: the
         cam and follower links, the follower's kind, the roller's radius, ``pitch``, the
         radius ``rho`` of the curve the element point keeps from the profile, the flat
         face's direction ``face`` (rad) and its normal ``m0`` pointing away from the cam,
         and :func:`profile_data`), ``cam_constants`` (the numeric layer's ``GRID``,
-        ``BISECTIONS`` and ``STRAIGHT``).
+        ``BISECTIONS`` and ``STRAIGHT``; ``closed_form.ASSEMBLY_TOL``).
 
     Raises
     ------
@@ -100,11 +107,13 @@ def cam_model(scene: Scene) -> dict:
     """
     groups = []
     for g in decompose(scene).groups:
-        if g.kind not in PAGE_GROUPS:
+        kind = g.kind if g.kind != "dyad" else f"dyad {g.dyad_type}"
+        if kind not in PAGE_GROUPS:
             raise SceneError([
-                f"joints: a page of a mechanism with cam contacts solves input links and cam "
-                f"followers only; its {g.kind} group of link(s) {', '.join(g.links)} (joints "
-                f"{', '.join(g.joints)}) is not supported yet; the numeric solvers analyse it"])
+                f"joints: a page of a mechanism with cam contacts solves input links, cam "
+                f"followers and RRR dyads only; its {kind} group of link(s) {', '.join(g.links)} "
+                f"(joints {', '.join(g.joints)}) is not supported yet; the numeric solvers "
+                "analyse it"])
         groups.append(_group(scene, g))
     cams = {}
     for j in scene.cams:
@@ -116,7 +125,8 @@ def cam_model(scene: Scene) -> dict:
             "m0": None if geo.m0 is None else [float(v) for v in geo.m0],
             "profile": profile_data(geo.profile)}
     return {"groups": groups, "cams": cams,
-            "cam_constants": {"GRID": GRID, "BISECTIONS": BISECTIONS, "STRAIGHT": STRAIGHT}}
+            "cam_constants": {"GRID": GRID, "BISECTIONS": BISECTIONS, "STRAIGHT": STRAIGHT,
+                              "ASSEMBLY_TOL": ASSEMBLY_TOL}}
 
 
 def cam_page_model(scene: Scene) -> dict:

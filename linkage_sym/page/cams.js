@@ -6,6 +6,7 @@
 // of MODEL.groups, as the numeric layer does (numeric/kinematics/closed_form.py InputSolver,
 // numeric/kinematics/cams.py CamSolver, cam_profile.py CamProfile):
 // - an input link: its driver's value on its known link;
+// - an RRR dyad: its closed form (two circles' intersection) on the assembly side;
 // - a cam follower on its pivot or slide: one equation f(u) = 0 in the profile parameter u
 //   (the roller centre or knife point at the arm's length from the pivot or on the slide's
 //   line; a flat face's normal at the face's distance or along the slide), its up-crossings
@@ -359,6 +360,61 @@ const LinkageCams = (function () {
     }
   }
 
+  // -- an RRR dyad (numeric.kinematics.closed_form.DyadSolver, loci.circle_circle) ------------
+  class DyadRRR {
+    constructor(mech, g) {
+      const at = (n) => mech.model.joints[n].at;
+      this.g = g;
+      [this.E0, this.J0, this.E1] = g.joints.map(at);
+      const [E0, J0, E1] = [this.E0, this.J0, this.E1];
+      this.r = [Math.hypot(J0[0] - E0[0], J0[1] - E0[1]), Math.hypot(J0[0] - E1[0], J0[1] - E1[1])];
+      const cross = (E1[0] - E0[0]) * (J0[1] - E0[1]) - (E1[1] - E0[1]) * (J0[0] - E0[0]);
+      if (Math.abs(cross) <= mech.constants.ASSEMBLY_TOL * ((E1[0] - E0[0]) ** 2 + (E1[1] - E0[1]) ** 2))
+        throw new E.SceneError("joints: the assembly configuration is a singular position of the dyad RRR (" +
+          g.links.join(", ") + "): its assembly mode is undefined; move the joints' `at` points off the " +
+          "dead-centre position");
+      this.sigma = cross > 0 ? 1.0 : -1.0;
+    }
+
+    position(S) {
+      // the two circles' intersection on the assembly side (Heron's half-chord, a rounding-level
+      // miss of a tangency taken as the tangency); the links' poses; the indicator
+      const C0 = point(S[this.g.known[0]], this.E0), C1 = point(S[this.g.known[1]], this.E1);
+      const [r1, r2] = this.r;
+      let ex = C1[0] - C0[0], ey = C1[1] - C0[1];
+      const d = Math.hypot(ex, ey);
+      const f1 = r1 + r2 - d, f2 = d + r1 - r2, f3 = d - r1 + r2;
+      let prod = f1 * f2 * f3 * (r1 + r2 + d);
+      if (prod < 0) {
+        const size = Math.max(Math.abs(r1), Math.abs(r2), ...C0.map(Math.abs), ...C1.map(Math.abs));
+        prod = Math.min(f1, f2, f3) >= -CONST.TANGENT_ULPS * CONST.EPS * size ? 0.0 : NaN;
+      }
+      const h = Math.sqrt(prod) / (2.0 * d), a = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);
+      ex /= d; ey /= d;
+      const Y = [C0[0] + a * ex - this.sigma * h * ey, C0[1] + a * ey + this.sigma * h * ex];
+      [C0, C1].forEach((C, i) => {
+        const v = [Y[0] - C[0], Y[1] - C[1]], E = i === 0 ? this.E0 : this.E1;
+        const v0 = [this.J0[0] - E[0], this.J0[1] - E[1]];
+        const cr = v0[0] * v[1] - v0[1] * v[0], dt = v0[0] * v[0] + v0[1] * v[1];
+        const scale = 1.0 / (Math.hypot(v0[0], v0[1]) * Math.hypot(v[0], v[1]));
+        const st = pose(Math.atan2(cr, dt), 0.0, 0.0, dt * scale, cr * scale);
+        const rr = rot(st, this.J0);
+        st.dx = Y[0] - rr[0]; st.dy = Y[1] - rr[1];
+        S[this.g.links[i]] = st;
+      });
+      this.d = d;
+      return Math.abs(h * d / (r1 * r2));
+    }
+
+    failure() {
+      const [e0, , e1] = this.g.joints, [b0, b1] = this.g.links, [r0, r1] = this.r;
+      const g6 = (v) => Number(v.toPrecision(6)).toString();
+      return "dyad RRR (" + b0 + ", " + b1 + "): joints " + e0 + " and " + e1 + " are " + g6(this.d) +
+        " m apart, outside the reach [" + g6(Math.abs(r0 - r1)) + ", " + g6(r0 + r1) + "] m of links " +
+        b0 + " and " + b1;
+    }
+  }
+
   // -- the mechanism -------------------------------------------------------------------------
   class Mechanism {
     // what page.js reads of a mechanism: L, angleOf, geometry.frames, solveSteps
@@ -385,7 +441,8 @@ const LinkageCams = (function () {
       });
       this.lim = model.drivers.map((d) =>
         d.kind === "R" ? CONST.MAX_ANGLE_STEP : CONST.MAX_SLIDE_STEP * this.L);
-      this.groups = model.groups.map((g) => (g.kind === "cam" ? new CamGroup(this, g) : g));
+      this.groups = model.groups.map((g) =>
+        (g.kind === "cam" ? new CamGroup(this, g) : g.kind === "dyad" ? new DyadRRR(this, g) : g));
       this.outlines = {};
     }
 
@@ -402,7 +459,7 @@ const LinkageCams = (function () {
       let failed = -1, ind = Infinity, why = null;
       this.groups.forEach((g, gi) => {
         if (failed >= 0) return;
-        if (g instanceof CamGroup) {
+        if (g instanceof CamGroup || g instanceof DyadRRR) {
           const got = g.position(S, walks[gi]);
           if (!Number.isFinite(got)) { failed = gi; why = g.failure(); }
           else ind = Math.min(ind, got);
@@ -420,7 +477,7 @@ const LinkageCams = (function () {
           S[g.link] = pose(k.th, k.dx + g.sign * qq * u[0], k.dy + g.sign * qq * u[1], k.c, k.s);
         }
       });
-      for (const g of this.groups) if (!(g.link in S)) S[g.link] = pose(NaN, NaN, NaN);
+      for (const n of this.links) if (!(n in S)) S[n] = pose(NaN, NaN, NaN);
       return { S: S, Q: Q, failed: failed, why: why, ind: ind };
     }
 

@@ -51,19 +51,20 @@ def test_a_cam_scene_writes_a_page_solved_by_the_port(tmp_path):
 
 
 def test_a_cam_mechanism_the_page_does_not_solve_is_refused_naming_the_group(tmp_path):
-    """A dyad driven by a cam's follower: the page's port solves input links and cam
-    followers only; the refusal names the group and its joints; nothing is written."""
+    """An RRP dyad driven by a cam's follower: the page's port solves input links, RRR dyads
+    and cam followers only; the refusal names the group and its joints; nothing is written."""
     scene = json.loads(example_path("cam_eccentric_rocker").read_text())
     scene["links"] += [{"name": "c1"}, {"name": "c2"}]
     scene["joints"] += [{"name": "E", "type": "R", "links": ["follower", "c1"], "at": [0.035, 0.015]},
                         {"name": "F", "type": "R", "links": ["c1", "c2"], "at": [0.05, 0.05]},
-                        {"name": "G", "type": "R", "links": ["c2", "ground"], "at": [0.08, 0.03]}]
+                        {"name": "G", "type": "P", "links": ["ground", "c2"], "at": [0.08, 0.03],
+                         "axis_deg": 0}]
     path = tmp_path / "cam_dyad.json"
     path.write_text(json.dumps(scene))
     out = tmp_path / "cam.html"
     p = run("view", str(path), "-o", str(out))
     assert p.returncode == 2
-    assert "dyad group of link(s) c1, c2 (joints E, F, G)" in p.stderr and "cam" in p.stderr
+    assert "dyad RRP group of link(s) c1, c2 (joints E, F, G)" in p.stderr and "cam" in p.stderr
     assert "Traceback" not in p.stderr
     assert not out.exists()
 

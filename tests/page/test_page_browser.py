@@ -366,3 +366,31 @@ def test_the_page_solves_every_follower_case_as_analyze(browser, tmp_path, case)
     if case != "flat face on a slide":
         assert {g["status"] for g in got} == {"ok", "unassemblable"}
     assert_positions(got, res, scene, case)
+
+
+def test_the_page_solves_a_linkage_driven_by_a_cam_s_follower_as_the_solver(browser, tmp_path):
+    """An RRR dyad driven by the flat-faced rocker of problem 3-8 (its follower): the 12
+    steps as the numeric solver, and after a ground pivot of the dyad moves, as ``analyze``
+    of the scene ``scene()`` returns."""
+    d = json.loads(json.dumps(dump_scene_of("cam_eccentric_rocker")))
+    d["links"] += [{"name": "c1"}, {"name": "c2"}]
+    d["joints"] += [{"name": "E", "type": "R", "links": ["follower", "c1"], "at": [0.035, 0.015]},
+                    {"name": "F", "type": "R", "links": ["c1", "c2"], "at": [0.05, 0.05]},
+                    {"name": "G", "type": "R", "links": ["c2", "ground"], "at": [0.08, 0.03]}]
+    d["points"] = [{"name": "T", "link": "c1", "at": [0.045, 0.04]}]
+    scene = parse_scene(d)
+    path = tmp_path / "cam_linkage.html"
+    path.write_text(page_html(scene))
+    assert open_page(browser, path)["error"] is None
+    _, Q, qs = twelve(scene)
+    assert_positions(page_solve(browser, qs), solver_at(scene, Q), scene, "as loaded")
+    browser.execute_script("window.linkageSym.moveJoint('G', 0.081, 0.0295)")
+    edited = parse_scene(browser.execute_script("return window.linkageSym.scene()"))
+    idx, _, qs = twelve(edited)
+    assert_positions(page_solve(browser, qs), linkage_sym.analyze(edited), edited, "moved", idx)
+
+
+def dump_scene_of(name):
+    from linkage_sym.scene.load import dump_scene
+
+    return dump_scene(load_example(name))
