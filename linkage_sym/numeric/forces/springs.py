@@ -27,9 +27,9 @@ Examples
 >>> scene = dataclasses.replace(scene, springs=(k,),
 ...                             effects=dataclasses.replace(scene.effects, springs=True))
 >>> res = linkage_sym.analyze(scene)
->>> L, T = res.forces.springs["k"]
->>> bool(abs(T[0] - 100.0 * (L[0] - 0.03)) < 1e-12)
-True
+>>> rec = res.forces.springs["k"]
+>>> list(rec), bool(abs(rec["force"][0] - 100.0 * (rec["length"][0] - 0.03)) < 1e-12)
+(['length', 'force'], True)
 """
 
 from __future__ import annotations
