@@ -111,25 +111,31 @@ class SymbolicUnsupportedError(SceneError):
 
     field = "method"
 
-    def __init__(self, joints):
+    def __init__(self, joints, springs=()):
         self.joints = [tuple(j) for j in joints]
+        self.springs = [tuple(k) for k in springs]
         super().__init__(self.problems_naming(f"{self.field} 'dyad' or 'global'"))
 
     def problems_naming(self, choice: str) -> list[str]:
         """The problems, ``choice`` saying how to pick a numeric method."""
         return [f"joints[{i}]: the symbolic method does not support {SYMBOLIC_LACKS[t]} yet "
                 f"(joint '{name}' is of type {t}); the numeric methods do ({choice})"
-                for i, name, t in self.joints]
+                for i, name, t in self.joints] + [
+                f"springs[{i}]: the symbolic method does not derive springs and dampers in its "
+                f"force equations yet (spring '{name}'); the numeric methods do ({choice})"
+                for i, name in self.springs]
 
 
-def refuse_symbolic_unsupported(scene) -> None:
+def refuse_symbolic_unsupported(scene, forces: bool = False) -> None:
     """Raise :class:`SymbolicUnsupportedError` if ``scene`` has joints the symbolic layer
-    does not derive.
+    does not derive, or (``forces``: its force equations are wanted) springs that act.
 
     The symbolic method (derived equations, their compiled and arbitrary-precision
     runs, and what builds on them: LaTeX, balancing conditions, design sweeps)
     does not support cam contacts yet (issue 20); the numeric methods do.
-    Every such joint is named.
+    Nor does it derive springs and dampers in its force equations yet: with
+    ``forces`` true, a scene whose springs act (``effects.springs``) is refused
+    too (its kinematics alone are derived).  Every such joint and spring is named.
 
     Examples
     --------
@@ -142,5 +148,8 @@ def refuse_symbolic_unsupported(scene) -> None:
       joints[1]: the symbolic method does not support cam contacts yet (joint 'K' is of type cam); the numeric methods do (method 'dyad' or 'global')
     """
     joints = [(i, j.name, j.type) for i, j in enumerate(scene.joints) if j.type in SYMBOLIC_LACKS]
-    if joints:
-        raise SymbolicUnsupportedError(joints)
+    springs = []
+    if forces and scene.active_springs:  # the contract's springs, acting
+        springs = [(i, k.name) for i, k in enumerate(scene.springs)]
+    if joints or springs:
+        raise SymbolicUnsupportedError(joints, springs)

@@ -351,7 +351,7 @@ def compile_mechanism(scene: Scene, use_cache: bool = True) -> CompiledMechanism
     >>> round(float(result.forces.driving["A"][0]), 4)  # as the numeric solver
     -0.0755
     """
-    refuse_symbolic_unsupported(scene)
+    refuse_symbolic_unsupported(scene, forces="forces" in needed_stages(scene))
     if use_cache:
         got = load_compiled(scene)
         if got is not None:

@@ -12,8 +12,9 @@ from linkage_sym.model.scene import (
     Load,
     LoadTable,
     Scene,
+    Spring,
     TracedPoint,
 )
 
 __all__ = ["GROUND", "OUTPUTS", "STAGES", "CamSpec", "Driver", "Effects", "Joint", "Link", "Load", "LoadTable", "Scene",
-           "TracedPoint"]
+           "Spring", "TracedPoint"]

@@ -16,6 +16,7 @@ rotation angle is its rotation *from* the assembly configuration.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 GROUND = "ground"
@@ -197,12 +198,50 @@ class TracedPoint:
 
 
 @dataclass(frozen=True)
+class Spring:
+    """A spring and damper (the contract's ``springs``; see ``docs/scene-format.md``).
+
+    Between two links (``links``, ``at`` given): ``at[0]`` fixed on
+    ``links[0]``, ``at[1]`` on ``links[1]`` (assembly configuration); the
+    tension ``stiffness (L - free_length) + damping dL/dt`` pulls the two
+    points together when positive.  ``free_length`` is the assembly distance
+    when the scene does not give it (the reader fills it in).
+
+    At an ``R`` joint (``joint`` given, ``links``, ``at`` and ``free_length``
+    ``None``): the torque on the joint's ``links[1]`` is
+    ``-stiffness (theta - free_angle) - damping omega``, ``theta`` the
+    rotation of ``links[1]`` relative to ``links[0]`` from the assembly
+    configuration.  ``free_angle_deg`` keeps the scene's degrees;
+    :attr:`free_angle` is its radians.
+    """
+
+    name: str
+    stiffness: float
+    damping: float = 0.0
+    links: tuple[str, str] | None = None
+    at: tuple[Point, Point] | None = None
+    free_length: float | None = None
+    joint: str | None = None
+    free_angle_deg: float = 0.0
+
+    @property
+    def free_angle(self) -> float:
+        """``free_angle_deg`` in radians."""
+        return math.radians(self.free_angle_deg)
+
+
+@dataclass(frozen=True)
 class Effects:
-    """Which physical effects a scene asks to simulate."""
+    """Which physical effects a scene asks to simulate.
+
+    ``springs``: the scene's springs act (default false here; the scene reader
+    makes it true when a scene gives ``springs`` without saying otherwise).
+    """
 
     inertia: bool = False
     gravity: Point | None = None
     loads: bool = True
+    springs: bool = False
 
 
 @dataclass(frozen=True)
@@ -217,6 +256,12 @@ class Scene:
     effects: Effects = field(default_factory=Effects)
     outputs: tuple[str, ...] = OUTPUTS
     points: tuple[TracedPoint, ...] = ()
+    springs: tuple[Spring, ...] = ()
+
+    @property
+    def active_springs(self) -> tuple[Spring, ...]:
+        """The springs that act: the scene's, when ``effects.springs`` says so."""
+        return self.springs if self.effects.springs else ()
 
     @property
     def link_names(self) -> tuple[str, ...]:

@@ -55,7 +55,7 @@ def load_scene(source: str | os.PathLike[str] | Mapping[str, Any]) -> Scene:
     >>> scene.drivers[0]
     Driver(joint='S', kind='P', start=0.0, stop=0.1, steps=11, speed=0.5, acceleration=0.0, toward=None)
     >>> scene.effects, scene.outputs
-    (Effects(inertia=False, gravity=None, loads=True), ('kinematics', 'reactions', 'driving', 'frame'))
+    (Effects(inertia=False, gravity=None, loads=True, springs=False), ('kinematics', 'reactions', 'driving', 'frame'))
     >>> load_scene("no/such/scene.json")
     Traceback (most recent call last):
       ...
@@ -130,7 +130,8 @@ def dump_scene(scene: Scene) -> dict[str, Any]:
     Angles go back to degrees (``axis_deg``, and ``start_deg``/``stop_deg`` of
     ``R`` drivers; ``P`` drivers keep ``start``/``stop`` in metres).  Every
     default is written out, except absent optional values (``com``, a load's
-    force, gravity) and ``points`` when there are none.
+    force, gravity), ``points`` and ``springs`` when there are none, and
+    ``effects.springs`` when false.
     ``parse_scene(dump_scene(s)) == s`` for every scene ``s`` that
     :func:`parse_scene` produces.
 
@@ -164,6 +165,22 @@ def dump_scene(scene: Scene) -> dict[str, Any]:
     }
     if scene.points:  # an extension of the format: written only when used
         out["points"] = [{"name": p.name, "link": p.link, "at": list(p.at)} for p in scene.points]
+    if scene.springs:  # the contract's second part: written only when used
+        out["springs"] = [_dump_spring(k) for k in scene.springs]
+        out["effects"]["springs"] = scene.effects.springs  # false too: true is the default then
+    return out
+
+
+def _dump_spring(spring) -> dict[str, Any]:
+    """A spring in the file layout (its free length or angle written out)."""
+    out: dict[str, Any] = {"name": spring.name}
+    if spring.joint is not None:
+        out.update(joint=spring.joint, stiffness=spring.stiffness,
+                   free_angle_deg=spring.free_angle_deg)
+    else:
+        out.update(links=list(spring.links), at=[list(p) for p in spring.at],
+                   stiffness=spring.stiffness, free_length=spring.free_length)
+    out["damping"] = spring.damping
     return out
 
 
@@ -258,6 +275,8 @@ def _dump_effects(effects: Effects) -> dict[str, Any]:
     if effects.gravity is not None:
         out["gravity"] = list(effects.gravity)
     out["loads"] = effects.loads
+    if effects.springs:  # the contract's second part: written only when they act
+        out["springs"] = True
     return out
 
 

@@ -18,8 +18,9 @@ drivers (:mod:`~linkage_sym.scene.drivers`) and the checks across sections
 points, effects and outputs.  The field readers
 (:mod:`~linkage_sym.scene.fields`), the loads over the cycle
 (:mod:`~linkage_sym.scene.schedules`), the gear meshes
-(:mod:`~linkage_sym.scene.gears`) and the cam contacts
-(:mod:`~linkage_sym.scene.cams`) are apart too.  The public names of the
+(:mod:`~linkage_sym.scene.gears`), the cam contacts
+(:mod:`~linkage_sym.scene.cams`) and the springs (:mod:`~linkage_sym.scene.springs`)
+are apart too.  The public names of the
 joints, drivers and checks modules are importable from here.
 """
 
@@ -66,14 +67,15 @@ from linkage_sym.scene.joints import (  # noqa: F401
     joint_type_problem,
 )
 from linkage_sym.scene.schedules import SCHEDULE_KEYS, read_schedule
+from linkage_sym.scene.springs import read_springs, springs_effect
 
 __all__ = ["parse_scene", "value_problem", "MASS_RULE", "ANGLE_RULE"]
 
-TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs", "points")
+TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs", "points", "springs")
 LINK_KEYS = ("name", "mass", "com", "inertia")
 LOAD_KEYS = ("link", "force", "at", "torque")
 POINT_KEYS = ("name", "link", "at")
-EFFECTS_KEYS = ("inertia", "gravity", "loads")
+EFFECTS_KEYS = ("inertia", "gravity", "loads", "springs")
 
 MASS_RULE = {"minimum": 0.0}
 """The rule of a link's ``mass`` and ``inertia`` (besides every number's magnitude)."""
@@ -189,13 +191,14 @@ class _SceneReader(JointSection, DriverSection, SceneChecks):
         effects = self.read_effects(data)
         outputs = self.read_outputs(data)
         points = self.read_points(data)
+        springs = read_springs(self, data)  # the contract's springs and dampers
         self.check_size()
         if self.links_ok and self.joints_ok and self.check_connected() and self.drivers_ok:
             self.check_mobility(len(data["drivers"]))
         if self.problems:
             raise SceneError(self.problems)
         assert name is not None and effects is not None and outputs is not None
-        return Scene(name, links, joints, drivers, loads, effects, outputs, points)
+        return Scene(name, links, joints, drivers, loads, effects, outputs, points, springs)
 
     def read_links(self, data: Mapping[str, Any]) -> tuple[Link, ...]:
         entries = self.array(data, "links", "")
@@ -299,7 +302,7 @@ class _SceneReader(JointSection, DriverSection, SceneChecks):
 
     def read_effects(self, data: Mapping[str, Any]) -> Effects | None:
         if "effects" not in data:
-            return Effects()
+            return Effects(springs=springs_effect(self, None, data))
         effects = data["effects"]
         if not self.object(effects, "effects"):
             return None
@@ -311,7 +314,7 @@ class _SceneReader(JointSection, DriverSection, SceneChecks):
             gravity = None
         else:
             gravity = self.point(effects, "gravity", "effects", expected=f"false, null or {POINT_EXPECTED}")
-        return Effects(inertia, gravity, loads)
+        return Effects(inertia, gravity, loads, springs=springs_effect(self, effects, data))
 
     def read_outputs(self, data: Mapping[str, Any]) -> tuple[str, ...] | None:
         if "outputs" not in data:

@@ -133,7 +133,10 @@ class MechanismEquations(ClosedForms, ForceEquations):
     """
 
     def __init__(self, scene: Scene, symbolic=True, forces=None, decomposition=None):
-        refuse_symbolic_unsupported(scene)  # cams not derived yet: refused by name, never wrong
+        outs = set(scene.outputs)
+        want = bool(outs & {"reactions", "driving", "frame"}) if forces is None else forces
+        # cams, and springs in the force equations, not derived yet: refused by name, never wrong
+        refuse_symbolic_unsupported(scene, forces=want)
         self.scene = scene
         self.decomposition: Decomposition = decomposition or decompose(scene)
         self.table = ParameterTable(scene)
@@ -175,8 +178,6 @@ class MechanismEquations(ClosedForms, ForceEquations):
         V = self.A * xd - self.B * qd  # dPhi/dt
         self.acc_rhs = self.B * sp.Matrix(self.qdd) - V.jacobian(self.x) * xd - V.jacobian(self.q) * qd
         self._points()
-        outs = set(scene.outputs)
-        want = bool(outs & {"reactions", "driving", "frame"}) if forces is None else forces
         self.has_forces = want
         if want:
             self._forces()

@@ -33,6 +33,7 @@ EXPECTED = [
     "cam_cycloidal_roller",
     "cam_eccentric_rocker",
     "crank_rocker",
+    "crank_rocker_spring",
     "engine_four_stroke",
     "fivebar",
     "gear_linkage",

@@ -8,7 +8,8 @@ identity from the scene-format conventions alone:
   reported joint reactions, driver efforts, weight, loads and d'Alembert
   terms;
 * :func:`power_residual`: driver power against the rate of change of kinetic
-  energy minus the power of gravity and loads;
+  energy minus the power of gravity, loads and springs (the springs' forces
+  and power from :mod:`tests.support.spring_checks`);
 * :func:`momentum_frame`: ``-sum m a_G`` and ``-dH_O/dt`` (the shaking force
   and moment when inertia is the only effect);
 * :func:`mesh_residuals`: each gear mesh's force on the line of action: at the
@@ -22,6 +23,8 @@ the magnitudes of the terms), so tests assert ``|residual| <= tol * scale``.
 from __future__ import annotations
 
 import numpy as np
+
+from tests.support.spring_checks import spring_power, spring_terms
 
 GROUND = "ground"
 
@@ -96,6 +99,9 @@ def applied(scene, a, inertia=None, gravity=None, loads=None):
                 forces.append((k * np.broadcast_to(np.asarray(ld.force, float), p.shape), p))
             if ld.torque:
                 couples.append(k[:, 0] * np.full(a.n_steps, ld.torque))
+    for name, (forces, couples) in spring_terms(scene, a).items():  # the acting springs
+        out[name][0].extend(forces)
+        out[name][1].extend(couples)
     return out
 
 
@@ -169,7 +175,7 @@ def kinetic_energy_rate(scene, a):
 
 
 def power_residual(scene, a):
-    """``sum effort qd - (dT/dt - P_gravity - P_loads)`` and its scale at each step.
+    """``sum effort qd - (dT/dt - P_gravity - P_loads - P_springs)`` and its scale at each step.
 
     The scale is what rounding is relative to: for each power term ``F . v`` the
     product of the magnitudes ``|F| |v|`` (not ``|F . v|``, which vanishes where
@@ -221,6 +227,9 @@ def power_residual(scene, a):
                 p = k * ld.torque * lk.omega
                 rhs = rhs - p
                 terms.append(np.abs(p))
+    springs, spring_scale = spring_power(scene, a)  # -dV/dt less the dampers' loss
+    rhs = rhs - springs
+    terms.append(spring_scale)
     scale = np.zeros(a.n_steps)
     for t in terms:
         scale = scale + t

@@ -387,15 +387,17 @@ def needed_stages(scene: Scene) -> tuple[str, ...]:
     Kinematics output needs positions, velocities and accelerations (so does
     the ``instant_centres`` extension: velocities, and accelerations for the
     polygons); forces need velocities and accelerations only when inertia acts
-    on a link with mass.
+    on a link with mass, or a spring with damping acts (its force follows its
+    rate of extension).
     """
     outs = set(scene.outputs)
     forces = bool(outs & {"reactions", "driving", "frame"})
     inertia = scene.effects.inertia and any(
         link.mass > 0 or link.inertia > 0 for link in scene.links
     )
+    damping = any(k.damping != 0.0 for k in scene.active_springs)
     stages = ["position"]
-    if "kinematics" in outs or "instant_centres" in outs or (forces and inertia):
+    if "kinematics" in outs or "instant_centres" in outs or (forces and (inertia or damping)):
         stages += ["velocity", "acceleration"]
     if forces:
         stages.append("forces")

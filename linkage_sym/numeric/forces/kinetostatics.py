@@ -38,6 +38,7 @@ from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.kinematics.gears import GearForces, pulling_note
 from linkage_sym.numeric.forces.global_statics import frame_wrench, solve_dense, solve_global
 from linkage_sym.numeric.forces.loads import applied_wrenches
+from linkage_sym.numeric.forces.springs import record_keys, spring_values
 from linkage_sym.numeric.results.result import Forces, GroupForces
 from linkage_sym.numeric.results.wording import steps_text
 from linkage_sym.numeric.forces.statics import DyadForces, Geometry, InputForces, push
@@ -227,6 +228,9 @@ class ForcePlan:
         for name, bad in pulling.items():  # never settled: said, not hidden
             steps = bad if idx is None else idx[bad]
             notes.append(pulling_note(name, steps, solves))
+        values = spring_values(scene, Sk)
+        springs = {k.name: dict(zip(record_keys(k), (_spread(x, idx, N) for x in values[k.name])))
+                   for k in scene.active_springs}
         out_r, out_m = {}, {}
         for j in scene.joints:
             fx, fy, m = reactions[j.name]
@@ -241,6 +245,7 @@ class ForcePlan:
             frame_moment=_spread(frame[2], idx, N),
             groups=groups,
             notes=notes,
+            springs=springs,
         )
 
     def _solve(self, Sk, geo, qk, method, K, idx, N):
@@ -264,6 +269,9 @@ class ForcePlan:
         elif method == "global":
             reactions, efforts = solve_global(scene, geo, W, self.L, K)
             frame = frame_wrench(scene, geo, reactions, efforts)
+            if scene.active_springs:  # a spring anchored on the ground pulls on the frame too
+                g = W[GROUND]
+                frame = (frame[0] + g.fx, frame[1] + g.fy, frame[2] + g.m)
             groups = [GroupForces(g.links, "global") for g in self.decomposition.groups]
         else:
             reactions, efforts = {}, {}

@@ -18,6 +18,7 @@ import numpy as np
 
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.model.scene import Load
+from linkage_sym.numeric.forces.springs import add_spring_wrenches
 
 
 class Wrench:
@@ -144,6 +145,10 @@ def applied_wrenches(scene: Scene, S, *, inertia=None, gravity=None, loads=None,
 
     Notes
     -----
+    The scene's acting springs (``effects.springs``) are loads too
+    (:mod:`~linkage_sym.numeric.forces.springs`); the part of a spring
+    anchored on the ground goes into the ground's wrench.
+
     Only what acts is computed: a massless link gets no inertia or weight
     term, and accelerations are not touched without inertia.  The
     d'Alembert terms are ``-m a_G`` at the centre of mass and the couple
@@ -180,4 +185,6 @@ def applied_wrenches(scene: Scene, S, *, inertia=None, gravity=None, loads=None,
                 w.add_force(k * load.force[0], k * load.force[1], px, py)
             if load.torque:
                 w.add_couple(k * load.torque)
+    if scene.active_springs:  # the contract's springs and dampers, the ground's end included
+        add_spring_wrenches(scene, S, W)
     return W

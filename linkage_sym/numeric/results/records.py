@@ -85,6 +85,8 @@ class RecordBlock:
                 for name, r in forces.reactions.items()} if "reactions" in res.outputs else {}
             self.driving = {k: rows(v) for k, v in forces.driving.items()}
             self.frame_force, self.frame_moment = rows(forces.frame_force), rows(forces.frame_moment)
+            self.springs = {name: {k: rows(v) for k, v in rec.items()}
+                            for name, rec in forces.springs.items()}
         # extension: each ok step's estimated relative accuracy (numeric.results.accuracy)
         self.accuracy = {k: rows(v) for k, v in res.accuracy.items()} if res.accuracy else None
         self.centres = res.instant_centres if "instant_centres" in res.outputs else None
@@ -117,7 +119,7 @@ class RecordBlock:
             step["transmission_angles"] = {name: v[i] for name, v in self.angles.items()}
 
     def force_parts(self, step: dict, i: int) -> None:
-        """Step ``i``'s reactions (into its joints), driving efforts and frame loads."""
+        """Step ``i``'s reactions (into its joints), driving efforts, frame loads and springs."""
         if "reactions" in self.outputs:
             out_joints = step.setdefault("joints", {})
             for name, (r, m) in self.reactions.items():
@@ -129,3 +131,6 @@ class RecordBlock:
             step["driving"] = {k: v[i] for k, v in self.driving.items()}
         if "frame" in self.outputs:
             step["frame"] = {"force": self.frame_force[i], "moment": self.frame_moment[i]}
+        if self.springs:  # the contract's second part: each spring's length and force
+            step["springs"] = {name: {k: v[i] for k, v in rec.items()}
+                               for name, rec in self.springs.items()}

@@ -156,6 +156,11 @@ class Forces:
     notes : list of str
         What the force solve could not settle (a gear mesh whose tooth load pulls
         with either flank), added to the run's warnings.
+    springs : dict of str to dict of str to ndarray (N,)
+        Each acting spring's ``{"length", "force"}`` (between two links: the
+        tension) or ``{"angle", "torque"}`` (at a joint), by name (the
+        contract's ``springs``; :mod:`linkage_sym.numeric.forces.springs`);
+        empty without springs.
     """
 
     method: str
@@ -167,6 +172,7 @@ class Forces:
     groups: list = field(default_factory=list)
     notes: list = field(default_factory=list)
     """What the force solve could not settle, worded for the run's warnings."""
+    springs: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -429,7 +435,7 @@ class Analysis:
         record: ``status`` (strings), ``message`` (a list of str or None),
         ``drivers.*``, ``joints.*`` (motion, then ``reaction``,
         ``reaction_moment``), ``links.*``, ``points.*``, ``driving.*``,
-        ``frame.*``, ``accuracy.*``.  Numeric columns are (N,) float arrays (views of the
+        ``frame.*``, ``springs.*``, ``accuracy.*``.  Numeric columns are (N,) float arrays (views of the
         result, NaN where the JSON leaves the value out because it was not
         computed).  ``when`` says at which steps the JSON holds the value:
         ``"always"``, ``"positions"`` (``ok`` and ``singular`` steps),
@@ -485,6 +491,8 @@ class Analysis:
             if "frame" in self.outputs:
                 out += vec("frame.force", forces.frame_force)
                 out.append(("frame.moment", forces.frame_moment, "ok"))
+            for name, rec in forces.springs.items():  # the contract's second part
+                out += [(f"springs.{name}.{k}", v, "ok") for k, v in rec.items()]
         if self.accuracy:  # extension: each ok step's estimated relative accuracy
             out += [(f"accuracy.{k}", v, "ok") for k, v in self.accuracy.items()]
         centres = self.instant_centres if "instant_centres" in self.outputs else None
