@@ -31,11 +31,9 @@ from linkage_sym.numeric.results import accuracy
 from linkage_sym.numeric.kinematics import loop_closure
 from linkage_sym.numeric.engine.block import ResultLayout
 from linkage_sym.numeric.kinematics.closed_form import DyadSolver, InputSolver
-from linkage_sym.numeric.kinematics.cams import CamSolver, cam_records
 from linkage_sym.numeric.kinematics.constraints import jacobian
 from linkage_sym.numeric.kinematics.joint_rows import scene_constraints
-from linkage_sym.numeric.kinematics.gears import GearSolver
-from linkage_sym.numeric.forces.kinetostatics import ForcePlan, check_method
+from linkage_sym.numeric.forces.policy import check_method
 from linkage_sym.numeric.kinematics.loop_closure import LoopClosureSolver
 from linkage_sym.numeric.kinematics.newton import NewtonSolver
 from linkage_sym.numeric.results.result import Analysis
@@ -82,8 +80,12 @@ class Plan:
             elif g.kind == "dyad":
                 self.solvers.append(DyadSolver(scene, g))
             elif g.kind == "gear" and len(g.links) == 1:
+                from linkage_sym.numeric.kinematics.gears import GearSolver  # a scene with gears
+
                 self.solvers.append(GearSolver(scene, g))
             elif g.kind == "cam":  # a follower on its pivot or slide (others refused by name)
+                from linkage_sym.numeric.kinematics.cams import CamSolver  # a scene with cams
+
                 self.solvers.append(CamSolver(scene, g, self.L))
             elif loop_closure.applies(scene, g, self.constraints):
                 self.solvers.append(LoopClosureSolver(scene, g, self.constraints, self.L))
@@ -109,9 +111,11 @@ class Plan:
         # rotations it reads must be unwrapped before a later group uses them
         self.unwrap_early = bool(scene.meshes)
         self.all_constraints = [c for rows in self.constraints.values() for c in rows.rows]
-        self.force_plan = (
-            ForcePlan(scene, decomposition, self.L, disconnection) if "forces" in self.stages else None
-        )
+        self.force_plan = None
+        if "forces" in self.stages:  # the force layer loads only for a scene that asks for forces
+            from linkage_sym.numeric.forces.kinetostatics import ForcePlan
+
+            self.force_plan = ForcePlan(scene, decomposition, self.L, disconnection)
         # the scene's own sweep, its solving path and the accuracy calibration belong to the
         # scene, not to a call: made here, once (compile once, run many), so that every run,
         # the first one too, only solves
@@ -193,6 +197,8 @@ class Plan:
             forces = self.force_plan.run(S, ok, method, q)
         res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
         if self.scene.cams:  # each contact's point and pressure angle, in its joint's record
+            from linkage_sym.numeric.kinematics.cams import cam_records
+
             cam_records(self.solvers, S, res.joints, status)
         finish(res, self.scene, [n for sv in self.solvers for n in sv.notes], path_index,
                self.decomposition)

@@ -13,7 +13,7 @@ from linkage_sym.numeric.engine.run import WARN_COND, cancelling_warning, ill_co
 from linkage_sym.numeric.results.result import OK, UNASSEMBLABLE, Analysis
 from linkage_sym.numeric.results.strict_json import LeftOut
 from linkage_sym.numeric.results.wording import driver_number
-from linkage_sym.numeric.forces.superposition import AMPLIFICATION_LIMIT
+from linkage_sym.numeric.forces.policy import AMPLIFICATION_LIMIT
 
 
 

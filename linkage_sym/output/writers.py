@@ -5,9 +5,6 @@ from __future__ import annotations
 
 import io
 import json
-import shutil
-import tempfile
-import zipfile
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable
 
@@ -203,6 +200,8 @@ class NpzWriter(Writer):
     """
 
     def __init__(self, path: Path):
+        import tempfile  # shutil, tempfile, zipfile: only where an npz is written (start-up)
+
         self.path = path
         self.tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", dir=path.parent))
         self.names: list = []
@@ -236,6 +235,9 @@ class NpzWriter(Writer):
         progress(n)
 
     def finish(self, stats):
+        import shutil
+        import zipfile
+
         with zipfile.ZipFile(self.path, "w", zipfile.ZIP_STORED, allowZip64=True) as zf:
             raw = dict(zip(self.cols, range(len(self.cols))))
             for name in self.names:
@@ -258,6 +260,8 @@ class NpzWriter(Writer):
 
     def _messages(self, zf):
         """The ``message`` column: fixed-width text as wide as the longest ("" for none)."""
+        import zipfile
+
         src = self.tmp / "message.jsonl"
         width = 1
         with open(src, encoding="utf-8") as fh:
@@ -284,6 +288,8 @@ class NpzWriter(Writer):
                 out.write(block.tobytes())
 
     def discard(self):
+        import shutil
+
         shutil.rmtree(self.tmp, ignore_errors=True)
 
 

@@ -10,7 +10,6 @@ its fields with the same checks and wording.
 
 from __future__ import annotations
 
-import difflib
 import json
 import math
 from collections.abc import Mapping
@@ -293,5 +292,7 @@ def did_you_mean(word: str, choices: Any) -> str:
     >>> did_you_mean("crnk", ["crank", "rocker"]), did_you_mean("zzz", ["crank"])
     (" (did you mean 'crank'?)", '')
     """
+    import difflib  # only for a refusal's suggestion
+
     match = difflib.get_close_matches(word, [str(c) for c in choices], n=1)
     return f" (did you mean '{match[0]}'?)" if match else ""

@@ -39,6 +39,7 @@ import math
 
 from linkage_sym.structure.grashof import classify
 from linkage_sym.synthesis.common import (
+    COINCIDENCE,
     MAX_ANGLE_DEG,
     MAX_SPREAD,
     TANGENCY,
@@ -182,7 +183,10 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
         crank angle at
         which the four-bar cannot be assembled (``|BD|`` outside
         ``[|b - c|, b + c]``) or sits at a dead centre (coupler and rocker
-        in line: the assembly mode is not defined there).
+        in line: the assembly mode is not defined there), or puts the crank
+        pin ``B`` within :data:`~linkage_sym.synthesis.common.COINCIDENCE`
+        of the linkage's size from ``D`` (the direction ``B -> D``, which
+        places ``C``, is lost in rounding there).
 
     Examples
     --------
@@ -228,7 +232,7 @@ def fourbar(crank, coupler, rocker, ground, *, crank_deg=0.0, branch="open", cou
 
 def _fourbar_assembly(a, b, c, d, phi_deg, branch, g_name, full) -> tuple:
     """``(bx, by, cx, cy)``: the pins ``B`` and ``C`` at the crank angle, refused where the
-    four-bar cannot be assembled or sits at a dead centre (``g_name``, ``full``: its
+    four-bar cannot be assembled, sits at a dead centre or has ``B`` on ``D`` (``g_name``, ``full``: its
     Grashof class and whether the crank turns fully, for the refusal)."""
     bx, by = _crank_pin(a, phi_deg)
     r = math.hypot(d - bx, by)
@@ -241,15 +245,20 @@ def _fourbar_assembly(a, b, c, d, phi_deg, branch, g_name, full) -> tuple:
     if r < abs(b - c):
         raise SynthesisError("crank_deg", f"{where}: |BD| = {fmt_len(r)} is less than |coupler - "
                                           f"rocker| = {fmt_len(abs(b - c))}{turns}")
-    if r == 0.0:
-        raise SynthesisError("crank_deg", f"at {phi_deg:g}° the crank pin B falls on D")
+    if not r > COINCIDENCE * max(a, b, c, d):
+        raise SynthesisError("crank_deg", f"at {phi_deg:g}° the crank pin B is {fmt_len(r)} from "
+                             f"the rocker pivot D, within {COINCIDENCE:.0e} of the linkage's size, "
+                             "where the scene format takes them for one point: the direction B -> D"
+                             ", which places C, is lost in the coordinates' rounding (a singular "
+                             f"assembly: crank {fmt_len(a)} and ground {fmt_len(d)} bring B onto D, "
+                             "coupler and rocker fold onto each other); choose another crank angle")
     h = half_chord(r, b, c)
     if not h > TANGENCY * min(b, c):
         raise SynthesisError("crank_deg", f"at {phi_deg:g}° the coupler and rocker are in line (a "
                                           "dead-centre position): the assembly mode is not defined "
                                           "there; choose another crank angle")
     ux, uy = (d - bx) / r, (0.0 - by) / r
-    x = (b * b - c * c + r * r) / (2.0 * r)
+    x = 0.5 * ((b - c) * ((b + c) / r) + r)  # b - c exact when close; no r * r to underflow
     sign = 1.0 if branch == "open" else -1.0
     cx, cy = bx + x * ux - sign * h * uy, by + x * uy + sign * h * ux
     return bx, by, cx, cy

@@ -145,7 +145,9 @@ def crank_rocker(K, rocker, swing_deg, *, ground=None, crank=None, name="crank-r
         ``K <= 1``; ``theta >= 90 + psi/2`` degrees (no admissible pivot);
         a length not > 0; ``psi`` outside (0, 180); both
         ``ground`` and ``crank``; a ``ground`` or ``crank`` that no admissible
-        pivot has (the message gives the admissible ranges).
+        pivot has (the message gives the admissible ranges), or whose pivot is
+        so close to an end of an admissible arc that the four-bar is a change
+        point (:data:`~linkage_sym.structure.grashof.CHANGE_POINT_TOL`).
 
     Examples
     --------
@@ -173,11 +175,18 @@ def crank_rocker(K, rocker, swing_deg, *, ground=None, crank=None, name="crank-r
         found, how, exact = _by_transmission(fr, arcs), None, {}
     side, alpha, notes = _choose(fr, found, how)
     _check_rocker(K, fr, alpha, side, exact, psi_deg)
+    field = "ground" if ground is not None else "crank" if crank is not None else "K"
     design = _rocker_design(fr, alpha, side, name, steps, speed, exact)
+    if design.K is None:  # the builder's Grashof class: not a crank-rocker
+        raise SynthesisError(field, f"the crank pivot of this request is next to an end of an "
+                                    "admissible arc (A almost in line with D and C1 or C2), where "
+                                    f"the four-bar is no crank-rocker: {design.notes[0]}; its "
+                                    "limit positions, which fix K, are ill-conditioned there (a "
+                                    "limit position's triangle A C D is nearly flat); ask for "
+                                    f"another {field}")
     extra = {**design.extra, "arc": "far" if side == 1 else "near", "alpha": alpha,
              "pivot_design_frame": fr.pivot(alpha, side).tolist()}
     design = dataclasses.replace(design, K=K, theta=theta, notes=(*design.notes, *notes), extra=extra)
-    field = "ground" if ground is not None else "crank" if crank is not None else "K"
     return checked(design, K, field, f"ask for another {field}")
 
 

@@ -10,10 +10,11 @@ solver's joint positions.
 """
 
 import math
+from fractions import Fraction
 
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 import linkage_sym
@@ -42,6 +43,8 @@ angle = st.floats(-720.0, 720.0)
 @settings(max_examples=200, deadline=None)
 @given(length, length, length, length, angle, st.sampled_from(["open", "crossed"]),
        st.floats(-5, 5), st.floats(-5, 5))
+# the crank pin B within 2e-159 m of D (found by hypothesis): it gave a coupler 6e-8 too long
+@example(a=1.0, b=1.0, c=1.0, d=1.0, phi=1.24e-157, branch="open", u=0.0, v=0.0)
 def test_fourbar_lengths_branch_and_point(a, b, c, d, phi, branch, u, v):
     try:
         design = builders.fourbar(a, b, c, d, crank_deg=phi, branch=branch, coupler_point=(u, v))
@@ -182,6 +185,49 @@ def test_refusals_name_the_field_and_the_reason(call, field, words):
         call()
     assert err.value.field == field
     assert words in err.value.reason
+
+
+def test_fourbar_crank_pin_on_the_rocker_pivot_is_refused():
+    """Crank = ground and coupler = rocker: at a crank angle of 1.24e-157 deg the pin B is 2.2e-159 m
+    from D; the direction B -> D, which places C, is rounding (the old code wrote a coupler 6e-8 too
+    long): refused, naming the crank angle and the lengths that bring B onto D."""
+    with pytest.raises(SynthesisError) as err:
+        builders.fourbar(1, 1, 1, 1, crank_deg=1.24e-157)
+    assert err.value.field == "crank_deg"
+    assert "the crank pin B is 2.16421e-159 m from the rocker pivot D" in err.value.reason
+    assert "crank 1 m and ground 1 m bring B onto D" in err.value.reason
+
+
+def _exact_length(p, q) -> float:
+    """|pq| of two written points: the squared distance exact in rationals, one rounding."""
+    return math.sqrt(float((Fraction(p[0]) - Fraction(q[0])) ** 2 + (Fraction(p[1]) - Fraction(q[1])) ** 2))
+
+
+@pytest.mark.parametrize("scale", [1e-3, 1.0, 7.5])
+@pytest.mark.parametrize("mismatch", [0.0, 2.0 ** -40, -(2.0 ** -40), 2.0 ** -30])
+def test_fourbar_near_the_rocker_pivot_builds_exact_or_is_refused(scale, mismatch):
+    """B approaching D (crank = ground, rocker = coupler (1 + mismatch)): |BD| from 1e-3 to 1e-15 of
+    the size.  Each build is refused (``crank_deg``) exactly when |BD| <= 1e-9 of the largest length,
+    or the written lengths are the requested ones to 1e-12 relative: distances of the written
+    coordinates in exact rational arithmetic against the request.  (The old code wrote a rocker
+    4e-12 too long at mismatch 2**-30, |BD| = 1e-8 (b*b - c*c over a small |BD|), and 6e-8 at
+    |BD| = 2e-159.)"""
+    a = d = 1.3 * scale
+    b, c = 0.9 * scale, 0.9 * scale * (1.0 + mismatch)
+    for k in range(3, 16):
+        phi = 2.0 * math.asin(10.0 ** -k / 2.0)  # |BD| = 1e-k a (to B's rounding, 2e-16 a)
+        for branch in ("open", "crossed"):
+            bd = 10.0 ** -k * a
+            try:
+                design = builders.fourbar(a, b, c, d, crank_deg=math.degrees(phi), branch=branch)
+            except SynthesisError as err:
+                assert err.field == "crank_deg"
+                assert bd <= 1.01e-9 * a or bd < abs(b - c) * 1.01  # not assemblable there
+                continue
+            assert bd > 0.99e-9 * a
+            j = {x["name"]: x["at"] for x in design.scene["joints"]}
+            for (p, q), want in ((("A", "B"), a), (("B", "C"), b), (("C", "D"), c)):
+                assert _exact_length(j[p], j[q]) == pytest.approx(want, rel=REL, abs=0)
 
 
 def test_dead_centre_refusal_is_the_solver_s_singular_assembly():

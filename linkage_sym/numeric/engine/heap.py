@@ -24,7 +24,6 @@ sweep too large for it is refused before its arrays are made).
 from __future__ import annotations
 
 import os
-from decimal import Decimal
 from pathlib import Path
 
 import numpy as np
@@ -127,4 +126,6 @@ def gib(nbytes: int) -> str:
     >>> gib(3 * 2**30), gib(10**400)
     ('3 GiB', '9.31e+390 GiB')
     """
+    from decimal import Decimal  # only for a message
+
     return f"{Decimal(int(nbytes)) / 2**30:.3g} GiB"

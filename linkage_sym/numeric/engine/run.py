@@ -34,7 +34,7 @@ from linkage_sym.numeric.results import accuracy
 from linkage_sym.numeric.continuation.messages import step_warnings
 from linkage_sym.numeric.engine import heap
 from linkage_sym.numeric.results.result import OK, SINGULAR, UNASSEMBLABLE, Analysis
-from linkage_sym.numeric.forces.superposition import AMPLIFICATION_LIMIT
+from linkage_sym.numeric.forces.policy import AMPLIFICATION_LIMIT
 from linkage_sym.numeric.results.transmission import transmission_angles
 from linkage_sym.numeric.results.wording import steps_text
 

@@ -39,6 +39,7 @@ from linkage_sym.numeric.kinematics.gears import GearForces, pulling_note
 from linkage_sym.numeric.forces.global_statics import frame_wrench, solve_dense, solve_global
 from linkage_sym.numeric.forces.loads import applied_wrenches
 from linkage_sym.numeric.forces.springs import record_keys, spring_values
+from linkage_sym.numeric.forces.policy import check_method
 from linkage_sym.numeric.results.result import Forces, GroupForces
 from linkage_sym.numeric.results.wording import steps_text
 from linkage_sym.numeric.forces.statics import DyadForces, Geometry, InputForces, push
@@ -46,15 +47,6 @@ from linkage_sym.numeric.forces.superposition import SuperpositionForces
 from linkage_sym.structure.disconnection import usable_disconnections
 from linkage_sym.structure import Decomposition, Group
 
-METHODS = ("dyad", "global")
-
-
-def check_method(method):
-    """Refuse a force method that does not exist, naming the field."""
-    if method not in METHODS:
-        raise ValueError(
-            f"method: unknown force method {method!r} (use one of {', '.join(METHODS)})"
-        )
 
 
 @dataclass

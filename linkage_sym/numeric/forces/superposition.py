@@ -37,13 +37,12 @@ from linkage_sym.errors import POINTERS, SceneError
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.forces.global_statics import assemble, dense_system, unpack
 from linkage_sym.numeric.forces.loads import Wrench, applied_wrenches
+from linkage_sym.numeric.forces.policy import AMPLIFICATION_LIMIT
 from linkage_sym.numeric.kinematics.state import LinkState
 from linkage_sym.numeric.forces.statics import DyadForces, Geometry, InputForces, push
 from linkage_sym.structure import Group
 from linkage_sym.structure.disconnection import Disconnection, default_choice, usable_disconnections
 
-AMPLIFICATION_LIMIT = 1e3
-"""Above this cancellation factor (3 digits lost) another disconnection is tried."""
 
 
 @dataclass

@@ -11,7 +11,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 from linkage_sym.model import Scene
-from linkage_sym.numeric.kinematics.cams import CamContact
 from linkage_sym.numeric.kinematics.constraints import Constraint, GMesh, PDriver, PJoint, RDriver, RJoint
 
 
@@ -40,7 +39,9 @@ def scene_constraints(scene: Scene, phi0: dict[str, float]) -> dict[str, JointRo
         if j.type == "G":
             out[j.name] = JointRows(GMesh(a, b, j.carrier, j.radii, j.internal))
             continue
-        if j.type == "cam":  # the contact's replacement rows
+        if j.type == "cam":  # the contact's replacement rows (the cam module: scenes with cams)
+            from linkage_sym.numeric.kinematics.cams import CamContact
+
             out[j.name] = JointRows(CamContact(j, scene.characteristic_length() or 1.0))
             continue
         row: Constraint = RJoint(a, b, j.at) if j.type == "R" else PJoint(a, b, j.axis)

@@ -62,8 +62,15 @@ FIELDS = ("position", "velocity", "acceleration", "forces")
 
 
 def calibration_steps(n_steps: int) -> np.ndarray:
-    """The steps of a sweep of ``n_steps`` where ``K`` is computed to calibrate ``G``."""
-    return np.unique(np.linspace(0, n_steps - 1, min(CALIBRATION_STEPS, n_steps)).astype(int))
+    """The steps of a sweep of ``n_steps`` where ``K`` is computed to calibrate ``G``.
+
+    Increasing and distinct (``np.unique`` of the sorted steps, without it: its check for a
+    masked array imports ``numpy.ma``, a sixth of a kinematics-only ``analyze``'s start-up).
+    """
+    steps = np.linspace(0, n_steps - 1, min(CALIBRATION_STEPS, n_steps)).astype(int)
+    first = np.ones(steps.size, dtype=bool)
+    first[1:] = steps[1:] != steps[:-1]
+    return steps[first]
 
 
 def calibration(K, ok, indicator=None) -> float | None:
