@@ -90,6 +90,9 @@ def finite_number(field: str, value, error: type) -> float:
 
 SYMBOLIC_LACKS = {"cam": "cam contacts"}
 """Joint types the symbolic layer does not derive yet, with their plural names."""
+FRICTION = "friction"
+"""What :class:`SymbolicUnsupportedError` names for a joint whose friction acts (``joints[i].friction``
+with ``effects.friction``): the symbolic layer does not derive friction yet."""
 
 
 class SymbolicUnsupportedError(SceneError):
@@ -117,7 +120,10 @@ class SymbolicUnsupportedError(SceneError):
 
     def problems_naming(self, choice: str) -> list[str]:
         """The problems, ``choice`` saying how to pick a numeric method."""
-        return [f"joints[{i}]: the symbolic method does not support {SYMBOLIC_LACKS[t]} yet "
+        return [f"joints[{i}].friction: the symbolic method does not derive joint friction yet "
+                f"(joint '{name}', with effects.friction true); the numeric methods do ({choice})"
+                if t == FRICTION else
+                f"joints[{i}]: the symbolic method does not support {SYMBOLIC_LACKS[t]} yet "
                 f"(joint '{name}' is of type {t}); the numeric methods do ({choice})"
                 for i, name, t in self.joints]
 
@@ -128,7 +134,8 @@ def refuse_symbolic_unsupported(scene) -> None:
 
     The symbolic method (derived equations, their compiled and arbitrary-precision
     runs, and what builds on them: LaTeX, balancing conditions, design sweeps)
-    does not support cam contacts yet (issue 20); the numeric methods do.
+    does not support cam contacts yet (issue 20), nor joint friction (issue 29: a
+    joint's ``friction`` when ``effects.friction`` is true); the numeric methods do.
     Every such joint is named.
 
     Examples
@@ -142,5 +149,8 @@ def refuse_symbolic_unsupported(scene) -> None:
       joints[1]: the symbolic method does not support cam contacts yet (joint 'K' is of type cam); the numeric methods do (method 'dyad' or 'global')
     """
     joints = [(i, j.name, j.type) for i, j in enumerate(scene.joints) if j.type in SYMBOLIC_LACKS]
+    if scene.effects.friction:  # contract part two: the numeric force solvers only
+        joints += [(i, j.name, FRICTION) for i, j in enumerate(scene.joints)
+                   if j.friction is not None and j.friction.coefficient > 0]
     if joints:
         raise SymbolicUnsupportedError(joints)

@@ -8,6 +8,7 @@ from linkage_sym.model.scene import (
     Driver,
     Effects,
     Joint,
+    JointFriction,
     Link,
     Load,
     LoadTable,
@@ -15,5 +16,5 @@ from linkage_sym.model.scene import (
     TracedPoint,
 )
 
-__all__ = ["GROUND", "OUTPUTS", "STAGES", "CamSpec", "Driver", "Effects", "Joint", "Link", "Load", "LoadTable", "Scene",
+__all__ = ["GROUND", "OUTPUTS", "STAGES", "CamSpec", "Driver", "Effects", "Joint", "JointFriction", "Link", "Load", "LoadTable", "Scene",
            "TracedPoint"]

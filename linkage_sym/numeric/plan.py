@@ -35,7 +35,7 @@ from linkage_sym.numeric.kinematics.cams import CamSolver, cam_records
 from linkage_sym.numeric.kinematics.constraints import jacobian
 from linkage_sym.numeric.kinematics.joint_rows import scene_constraints
 from linkage_sym.numeric.kinematics.gears import GearSolver
-from linkage_sym.numeric.forces.kinetostatics import ForcePlan, check_method
+from linkage_sym.numeric.forces.kinetostatics import ForcePlan, check_method, mark_self_locking
 from linkage_sym.numeric.kinematics.loop_closure import LoopClosureSolver
 from linkage_sym.numeric.kinematics.newton import NewtonSolver
 from linkage_sym.numeric.results.result import Analysis
@@ -191,6 +191,7 @@ class Plan:
         forces = None
         if self.force_plan is not None:
             forces = self.force_plan.run(S, ok, method, q)
+            mark_self_locking(status, messages, ok, forces)  # friction (contract part two)
         res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
         if self.scene.cams:  # each contact's point and pressure angle, in its joint's record
             cam_records(self.solvers, S, res.joints, status)

@@ -191,6 +191,10 @@ def _dump_joint(joint: Joint) -> dict[str, Any]:
         out["pressure_angle_deg"] = _degrees(joint.pressure_angle)
     elif joint.type == "cam":  # a cam contact (an extension of the format)
         out.update(_dump_cam(joint.cam))
+    if joint.friction is not None:  # contract part two: written only when given
+        out["friction"] = {"coefficient": joint.friction.coefficient}
+        if joint.friction.radius is not None:
+            out["friction"]["radius"] = joint.friction.radius
     return out
 
 
@@ -258,6 +262,8 @@ def _dump_effects(effects: Effects) -> dict[str, Any]:
     if effects.gravity is not None:
         out["gravity"] = list(effects.gravity)
     out["loads"] = effects.loads
+    if effects.friction:  # contract part two: written only when true (its default is false)
+        out["friction"] = True
     return out
 
 

@@ -387,15 +387,18 @@ def needed_stages(scene: Scene) -> tuple[str, ...]:
     Kinematics output needs positions, velocities and accelerations (so does
     the ``instant_centres`` extension: velocities, and accelerations for the
     polygons); forces need velocities and accelerations only when inertia acts
-    on a link with mass.
+    on a link with mass or a joint's friction acts (its direction follows them).
     """
     outs = set(scene.outputs)
     forces = bool(outs & {"reactions", "driving", "frame"})
     inertia = scene.effects.inertia and any(
         link.mass > 0 or link.inertia > 0 for link in scene.links
     )
+    # joint friction's direction follows the joints' relative velocities and accelerations
+    friction = scene.effects.friction and any(
+        j.friction is not None and j.friction.coefficient > 0 for j in scene.joints)
     stages = ["position"]
-    if "kinematics" in outs or "instant_centres" in outs or (forces and inertia):
+    if "kinematics" in outs or "instant_centres" in outs or (forces and (inertia or friction)):
         stages += ["velocity", "acceleration"]
     if forces:
         stages.append("forces")

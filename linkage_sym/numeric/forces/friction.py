@@ -1,0 +1,295 @@
+"""Coulomb friction in the joints (contract, second part: ``joints[i].friction``).
+
+The friction of a joint is what its ``links[0]`` exerts on its ``links[1]``:
+
+* ``R`` joint: the couple ``mu = -rho |R| sign(w1 - w0)`` about the pin, ``rho = f r``
+  the friction circle's radius, ``R`` the joint's reaction;
+* ``P`` joint: the force ``mu = -f |N| sign(v)`` along the slide's axis, applied at
+  the joint's reference point, ``N`` the reaction's normal force and ``v`` the slip
+  velocity of ``links[1]`` relative to ``links[0]`` along the axis.
+
+The sign comes from the relative velocity; where it is zero (below
+:data:`ZERO_RATE` of the joint's largest over the sweep), from the relative
+acceleration (the impending motion); where both are zero the joint has no
+friction at that step, and a warning names the joint and the steps
+(:meth:`FrictionSet.notes`).
+
+Each group's equilibrium (solved by its linear routine: closed form, Dang and
+Zhang's superposition, or a dense solve) is linear in the applied wrenches.
+The friction magnitudes ``mu`` (one per joint of the group with friction) are
+then the unknowns of ``g(mu) = mu + rho s |R0 + C mu| = 0`` per step, where
+``R0`` are the frictionless reactions and ``C`` the reactions caused by a unit
+friction at each joint, both from the group's own linear routine (for a
+class-III group: the superposition, so the superposition is only ever applied to
+the linear problem, and the friction is an outer Newton around it).
+:func:`solve_group` solves it by Newton's method from ``mu = 0`` (the
+frictionless solution), vectorised over the steps, to rounding.
+
+Self-locking
+------------
+Write ``g_lam(mu) = mu + lam rho s |R0 + C mu|``, the friction scaled by ``lam``.
+At ``lam = 0`` the solution is ``mu = 0`` with Jacobian ``dg/dmu = I``.  The
+motion the driver imposes is the solution on the branch that continues it as
+``lam`` grows to 1, along which ``det dg/dmu > 0``.  Where that determinant
+reaches 0 the friction a unit increase of itself calls for (through the
+reactions) is a unit increase: friction and reactions grow together without
+bound, so no finite effort moves the mechanism -- the step is self-locking.
+(For one joint ``g`` is piecewise linear, ``det = 1 + rho s c sign(N)``, and the
+branch's effort is finite exactly while it is positive: the friction-angle
+criterion of the textbooks.)  A step is marked self-locking when Newton from
+``mu = 0`` at ``lam = 1`` meets ``det <= 0`` or does not converge, and again when
+followed in :data:`STAGES` steps of ``lam``; the joints named are those of the
+determinant's null direction (the smallest singular vector of ``dg/dmu``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from linkage_sym.model import Scene
+from linkage_sym.numeric.forces.loads import Wrench
+from linkage_sym.numeric.results.wording import steps_text
+
+__all__ = ["ZERO_RATE", "FrictionSet", "active_joints", "add_friction", "fold", "solve_group"]
+
+ZERO_RATE = 1e-12
+"""A relative velocity (or acceleration) at most this fraction of the joint's largest over the
+steps counts as zero."""
+MAX_NEWTON = 60
+"""Newton iterations per stage before a step is taken as having no solution on its branch."""
+STAGES = 8
+"""Stages of the friction scale ``lam`` in which a step that Newton at ``lam = 1`` fails is
+followed again before it is called self-locking."""
+
+
+def active_joints(scene: Scene) -> tuple:
+    """The joints whose friction acts: a positive coefficient, with ``effects.friction``."""
+    if not scene.effects.friction:
+        return ()
+    return tuple(j for j in scene.joints if j.friction is not None and j.friction.coefficient > 0)
+
+
+def _rel_rates(joint, S, geo):
+    """``(v, a, v_scale, a_scale)``: the relative velocity and acceleration of the joint
+    (angular for ``R``, along the axis for ``P``) and the sizes they are compared with."""
+    s0, s1 = S[joint.links[0]], S[joint.links[1]]
+    if joint.type == "R":
+        return (s1.w - s0.w, s1.al - s0.al, np.abs(s1.w) + np.abs(s0.w),
+                np.abs(s1.al) + np.abs(s0.al))
+    px, py = geo.point(joint.name)
+    _, _, tx, ty = geo.normal(joint.name)
+
+    def vel(st):
+        return st.vx - st.w * (py - st.dy), st.vy + st.w * (px - st.dx)
+
+    def acc(st):
+        rx, ry = px - st.dx, py - st.dy
+        w2 = st.w * st.w
+        return st.ax - st.al * ry - w2 * rx, st.ay + st.al * rx - w2 * ry
+
+    (v1x, v1y), (v0x, v0y) = vel(s1), vel(s0)
+    (a1x, a1y), (a0x, a0y) = acc(s1), acc(s0)
+    v = (v1x - v0x) * tx + (v1y - v0y) * ty
+    a = (a1x - a0x) * tx + (a1y - a0y) * ty
+    return v, a, np.hypot(v1x, v1y) + np.hypot(v0x, v0y), np.hypot(a1x, a1y) + np.hypot(a0x, a0y)
+
+
+class FrictionSet:
+    """The friction joints of a scene at the solved steps: arms, signs, relative speeds.
+
+    Parameters
+    ----------
+    scene : Scene
+    S : dict of LinkState
+        Link states at the ``K`` solved steps (velocities and accelerations).
+    geo : Geometry
+    K : int
+    """
+
+    def __init__(self, scene: Scene, S, geo, K: int):
+        self.scene = scene
+        self.K = K
+        self.arm, self.sign, self.rate, self.moving = {}, {}, {}, {}
+        for j in active_joints(scene):
+            v, a, vs, as_ = (np.broadcast_to(np.asarray(x, float), (K,)) for x in _rel_rates(j, S, geo))
+            moving = np.abs(v) > ZERO_RATE * (vs.max() if K else 0.0)
+            accel = ~moving & (np.abs(a) > ZERO_RATE * (as_.max() if K else 0.0))
+            self.sign[j.name] = np.where(moving, np.sign(v), np.where(accel, np.sign(a), 0.0))
+            self.arm[j.name] = j.friction.arm
+            self.rate[j.name] = v
+            self.moving[j.name] = moving
+
+    def notes(self, idx) -> list:
+        """Warnings naming each joint and the steps where it has no friction (neither its
+        relative velocity nor its acceleration is non-zero); ``idx``: the sweep's step of
+        each solved step (``None``: the same)."""
+        out = []
+        for name, s in self.sign.items():
+            bad = np.flatnonzero(s == 0)
+            if len(bad):
+                steps = bad if idx is None else np.asarray(idx)[bad]
+                out.append(f"joint {name}: neither its relative velocity nor its relative "
+                           f"acceleration is non-zero at {len(steps)} step(s) (steps "
+                           f"{steps_text(steps, len(steps))}): its friction, whose direction "
+                           "opposes them, is taken as zero there")
+        return out
+
+    def power(self, mu: dict):
+        """The power the friction dissipates (W, >= 0) at the solved steps."""
+        p = np.zeros(self.K)
+        for name, m in mu.items():
+            p = p + np.where(self.moving[name], -m * self.rate[name], 0.0)
+        return p
+
+
+def add_friction(W, joint, mu, geo, only=None) -> None:
+    """Add the friction ``mu`` of ``joint`` (on ``links[1]``; its opposite on ``links[0]``)
+    to the wrenches ``W`` of the links in ``only`` (default: every link in ``W``)."""
+    px, py = geo.point(joint.name)
+    for link, s in ((joint.links[1], 1.0), (joint.links[0], -1.0)):
+        if link not in W or (only is not None and link not in only):
+            continue
+        if joint.type == "R":
+            W[link].add_couple(s * mu)
+        else:
+            _, _, tx, ty = geo.normal(joint.name)
+            W[link].add_force(s * mu * tx, s * mu * ty, px, py)
+
+
+def fold(joint, reaction, mu, geo):
+    """A joint's reaction with its friction added: ``(fx, fy, m)`` of everything
+    ``links[0]`` exerts on ``links[1]`` at the joint (for pushing to other links)."""
+    fx, fy, m = reaction
+    if mu is None:
+        return reaction
+    if joint.type == "R":
+        return fx, fy, m + mu
+    _, _, tx, ty = geo.normal(joint.name)
+    return fx + mu * tx, fy + mu * ty, m
+
+
+def _vec(x, K):
+    return np.broadcast_to(np.asarray(x, float), (K,))
+
+
+def solve_group(solve, base, scene, names, W, geo, fset: FrictionSet, skip):
+    """A group's reactions and efforts with the friction of its joints (module docstring).
+
+    Parameters
+    ----------
+    solve : callable
+        ``solve(W) -> (reactions, efforts)``: the group's linear routine.
+    base : tuple
+        ``solve(W)``: the frictionless reactions and efforts under the applied wrenches.
+    names : sequence of str
+        The group's joints.
+    W : dict of Wrench
+        Applied wrenches (loads and the reactions of the groups solved before).
+    skip : ndarray of bool (K,)
+        Steps to leave out (locked by a group solved before): NaN there.
+
+    Returns
+    -------
+    reactions, efforts : dict
+    mu : dict
+        Joint -> friction (K,), of the group's friction joints.
+    locked : ndarray of bool (K,)
+        The steps at which this group self-locks.
+    lockers : dict
+        Step -> names of the joints whose friction locks it.
+    """
+    K = fset.K
+    fj = [n for n in names if n in fset.arm]
+    reactions, efforts = base
+    if not fj:
+        return reactions, efforts, {}, np.zeros(K, bool), {}
+    unit = []
+    for n in fj:
+        W0 = {k: Wrench(w.rx, w.ry) for k, w in W.items()}
+        add_friction(W0, scene.joint(n), 1.0, geo)
+        unit.append(solve(W0))
+    A = np.stack([np.stack([_vec(reactions[n][0], K), _vec(reactions[n][1], K)], -1) for n in fj], 1)
+    C = np.stack([np.stack([np.stack([_vec(u[0][n][0], K), _vec(u[0][n][1], K)], -1)
+                            for u in unit], 1) for n in fj], 1)  # (K, j, k, 2)
+    rs = np.stack([fset.arm[n] * fset.sign[n] for n in fj], 1)  # (K, m)
+    mu, locked, J = _friction_newton(A, C, rs, skip)
+    lockers = {}
+    for i in np.flatnonzero(locked):
+        _, _, vt = np.linalg.svd(J[i])
+        v = np.abs(vt[-1])
+        lockers[int(i)] = [n for n, x in zip(fj, v) if x >= 0.1 * v.max()]
+    mu[locked | skip] = np.nan
+    out_r, out_e = {}, {}
+    for n, (fx, fy, m) in reactions.items():
+        fx, fy, m = _vec(fx, K).copy(), _vec(fy, K).copy(), _vec(m, K).copy()
+        for k, u in enumerate(unit):
+            ux, uy, um = u[0][n]
+            fx += mu[:, k] * ux
+            fy += mu[:, k] * uy
+            m += mu[:, k] * um
+        out_r[n] = (fx, fy, m)
+    for n, e in efforts.items():
+        e = _vec(e, K).copy()
+        for k, u in enumerate(unit):
+            e += mu[:, k] * u[1][n]
+        out_e[n] = e
+    return out_r, out_e, {n: mu[:, k] for k, n in enumerate(fj)}, locked, lockers
+
+
+def _residual(A, C, rs, mu, lam):
+    """``g`` and ``dg/dmu`` at ``mu`` (K, m), friction scaled by ``lam``."""
+    R = A + np.einsum("kjmc,km->kjc", C, mu)
+    nR = np.hypot(R[..., 0], R[..., 1])
+    g = mu + lam * rs * nR
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.where(nR[..., None] > 0, R / nR[..., None], 0.0)
+    J = np.eye(mu.shape[1]) + lam * rs[..., None] * np.einsum("kjc,kjmc->kjm", u, C)
+    return g, J
+
+
+def _newton(A, C, rs, mu, lam):
+    """Newton on ``g_lam``; ``(mu, ok, J)``: ``ok`` where it converged with ``det J > 0`` at
+    every iterate (see the module docstring)."""
+    K = len(mu)
+    ok = np.ones(K, bool)
+    done = np.zeros(K, bool)
+    J = np.broadcast_to(np.eye(mu.shape[1]), (K,) + (mu.shape[1],) * 2).copy()
+    for _ in range(MAX_NEWTON):
+        live = ok & ~done
+        if not live.any():
+            break
+        g, Jl = _residual(A[live], C[live], rs[live], mu[live], lam)
+        J[live] = Jl
+        det = np.linalg.det(Jl)
+        good = det > 0
+        d = np.zeros_like(g)
+        d[good] = -np.linalg.solve(Jl[good], g[good][..., None])[..., 0]
+        li = np.flatnonzero(live)
+        ok[li[~good]] = False
+        mu[li] += d
+        size = np.abs(mu[li]).max(axis=1) + np.abs(lam * rs[live] * np.hypot(A[live][..., 0], A[live][..., 1])).max(axis=1)
+        done[li[good & (np.abs(d).max(axis=1) <= 1e-14 * size)]] = True
+    return mu, ok & done, J
+
+
+def _friction_newton(A, C, rs, skip):
+    """``(mu, locked, J)``: Newton from the frictionless solution at every step not skipped,
+    then the steps it fails followed in :data:`STAGES` stages of the friction's scale."""
+    K, m = rs.shape
+    live = ~skip
+    mu = np.zeros((K, m))
+    sub = np.flatnonzero(live)
+    mu_l, ok, J_l = _newton(A[sub], C[sub], rs[sub], mu[sub], 1.0)
+    J = np.broadcast_to(np.eye(m), (K, m, m)).copy()
+    mu[sub], J[sub] = mu_l, J_l
+    locked = np.zeros(K, bool)
+    again = sub[~ok]
+    if len(again):
+        mu_a = np.zeros((len(again), m))
+        fine = np.ones(len(again), bool)
+        for lam in np.arange(1, STAGES + 1) / STAGES:
+            mu_a, ok_a, J_a = _newton(A[again], C[again], rs[again], mu_a, lam)
+            fine &= ok_a
+        mu[again], J[again] = mu_a, J_a
+        locked[again[~fine]] = True
+    return mu, locked, J
