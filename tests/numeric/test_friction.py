@@ -275,3 +275,92 @@ def test_friction_not_acting_leaves_the_result_byte_identical():
     b = linkage_sym.analyze(linkage_sym.load_scene(bare)).to_json()
     assert a == b
     assert '"friction_' not in a and '"efficiency"' not in a
+
+
+def _with_friction(name):
+    """Shipped example ``name`` with friction in every R and P joint (coefficients 0.10,
+    0.11, ... in joint order; pins of radius 1 cm)."""
+    d = example_dict(name)
+    d["effects"]["friction"] = True
+    for k, j in enumerate(d["joints"]):
+        if j.get("type", "R") == "R":
+            j["friction"] = {"coefficient": 0.1 + 0.01 * k, "radius": 0.01}
+        elif j["type"] == "P":
+            j["friction"] = {"coefficient": 0.1 + 0.01 * k}
+    return d
+
+
+@pytest.mark.parametrize("name", ["sixbar_class3", "hydraulic_boom", "printing_mechanism",
+                                  "planetary_train", "gear_linkage", "guide_bar_quick_return"])
+def test_every_group_kind_with_friction_against_the_global_method(name):
+    """Class-III groups (the disconnection and superposition: the friction's Newton is
+    outside it, the superposition only ever solves the linear problem), a driven group
+    (the boom's actuator), dense gear groups and an RPR dyad: the group routines with
+    friction in every joint against the global method's own nonlinear solve, and both
+    against each link's equilibrium and the power balance (<= 1e-9)."""
+    from tests.support.force_checks import link_residuals
+
+    scene = linkage_sym.load_scene(_with_friction(name))
+    plan = compile_plan(scene)
+    a, g = plan.run(), plan.run(method="global")
+    assert a.ok.all() and g.ok.all()
+    scale = reaction_scale(scene, g.forces)
+    L = scene.characteristic_length()
+    for j in scene.joints:
+        assert max_rel(a.forces.reactions[j.name] - g.forces.reactions[j.name], scale) <= TOL
+        if j.friction is not None:
+            div = L if j.type == "R" else 1.0
+            assert max_rel((a.forces.friction[j.name] - g.forces.friction[j.name]) / div,
+                           scale) <= TOL
+            assert np.any(a.forces.friction[j.name] != 0)
+    for d in scene.drivers:
+        div = L if d.kind == "R" else 1.0
+        assert max_rel((a.forces.driving[d.joint] - g.forces.driving[d.joint]) / div, scale) <= TOL
+    for res in (a, g):
+        for link, (rf, rm, sf, sm) in link_residuals(scene, res).items():
+            assert max_rel(rf, sf) <= TOL and max_rel(rm, sm) <= TOL, link
+        r, s = power_residual(scene, res)
+        assert max_rel(r, s) <= TOL
+
+
+def test_mean_efficiency_in_the_summary_whole_and_in_chunks(tmp_path):
+    """Work out over work in: the driver's work with the friction left out over its work
+    with it (trapezoids over the driver's angle), the same from a sweep written in chunks;
+    the console summary says it."""
+    from linkage_sym import output
+    from linkage_sym.cli.analyze import summary
+
+    scene = linkage_sym.load_example(PRESS)
+    res = linkage_sym.analyze(scene)
+    d = example_dict(PRESS)
+    d["effects"]["friction"] = False
+    ideal = linkage_sym.analyze(linkage_sym.load_scene(d)).forces.driving["A"]
+    q = res.drivers["A"]["q"]
+    w_in = np.trapezoid(res.forces.driving["A"], q)
+    w_out = np.trapezoid(ideal, q)
+    assert 0.5 < w_out / w_in < 1.0
+    whole = output.SweepStats.of(res)
+    assert whole.work.work_in == pytest.approx(w_in, rel=1e-12)
+    assert whole.work.efficiency() == pytest.approx(w_out / w_in, rel=1e-12)
+    stats = output.write_sweep(output.plan_sweep(compile_plan(scene), "dyad"),
+                               tmp_path / "r.npz", "npz", chunk=37)
+    assert stats.work.efficiency() == pytest.approx(w_out / w_in, rel=1e-12)
+    assert stats.work.friction_peak.value == whole.work.friction_peak.value
+    text = "\n".join(summary(scene, res))
+    assert f"mean efficiency over the sweep: {w_out / w_in:.4g}" in text
+    assert "peak friction power" in text
+
+
+def test_a_joint_without_relative_motion_has_no_friction_and_is_named():
+    """At rest (driver speed and acceleration 0) no joint has a direction of friction: each
+    is named with its steps in a warning, and the forces are the frictionless ones."""
+    d = example_dict(PRESS)
+    d["drivers"][0].update(speed=0.0, acceleration=0.0, steps=5, stop_deg=40)
+    res = linkage_sym.analyze(linkage_sym.load_scene(d))
+    for j in d["joints"]:
+        (w,) = [w for w in res.warnings if w.startswith(f"joint {j['name']}:")]
+        assert "at 5 step(s) (steps 0, 1, 2, 3, 4)" in w
+        assert np.array_equal(res.forces.friction[j["name"]], np.zeros(5))
+    d["effects"]["friction"] = False
+    plain = linkage_sym.analyze(linkage_sym.load_scene(d))
+    assert np.array_equal(res.forces.driving["A"], plain.forces.driving["A"])

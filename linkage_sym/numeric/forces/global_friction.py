@@ -113,7 +113,7 @@ def _newton(M, r, x, fj, cols, ncols, nrows, arms, lam, sign0):
         li = np.flatnonzero(live)
         ok[li[~good]] = False
         x[li] += d
-        small = np.abs(d).max(axis=1) <= 1e-14 * np.abs(x[li]).max(axis=1)
+        small = np.abs(d).max(axis=1) <= 1e-12 * np.abs(x[li]).max(axis=1)
         done[li[good & small]] = True
     return x, ok & done, Jac
 
