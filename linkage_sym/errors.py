@@ -141,12 +141,21 @@ def refuse_symbolic_unsupported(scene) -> None:
     Examples
     --------
     >>> from types import SimpleNamespace as NS
-    >>> refuse_symbolic_unsupported(NS(joints=[NS(name="A", type="R"), NS(name="M", type="G")]))
-    >>> refuse_symbolic_unsupported(NS(joints=[NS(name="A", type="R"), NS(name="K", type="cam")]))
+    >>> still = NS(friction=False)  # the scene's effects: no joint friction
+    >>> refuse_symbolic_unsupported(NS(joints=[NS(name="A", type="R"), NS(name="M", type="G")],
+    ...                                effects=still))
+    >>> refuse_symbolic_unsupported(NS(joints=[NS(name="A", type="R"), NS(name="K", type="cam")],
+    ...                                effects=still))
     Traceback (most recent call last):
     ...
     linkage_sym.errors.SymbolicUnsupportedError: invalid scene (1 problem):
       joints[1]: the symbolic method does not support cam contacts yet (joint 'K' is of type cam); the numeric methods do (method 'dyad' or 'global')
+    >>> pin = NS(name="B", type="R", friction=NS(coefficient=0.1))
+    >>> refuse_symbolic_unsupported(NS(joints=[pin], effects=NS(friction=True)))
+    Traceback (most recent call last):
+    ...
+    linkage_sym.errors.SymbolicUnsupportedError: invalid scene (1 problem):
+      joints[0].friction: the symbolic method does not derive joint friction yet (joint 'B', with effects.friction true); the numeric methods do (method 'dyad' or 'global')
     """
     joints = [(i, j.name, j.type) for i, j in enumerate(scene.joints) if j.type in SYMBOLIC_LACKS]
     if scene.effects.friction:  # contract part two: the numeric force solvers only

@@ -55,7 +55,7 @@ def load_scene(source: str | os.PathLike[str] | Mapping[str, Any]) -> Scene:
     >>> scene.drivers[0]
     Driver(joint='S', kind='P', start=0.0, stop=0.1, steps=11, speed=0.5, acceleration=0.0, toward=None)
     >>> scene.effects, scene.outputs
-    (Effects(inertia=False, gravity=None, loads=True), ('kinematics', 'reactions', 'driving', 'frame'))
+    (Effects(inertia=False, gravity=None, loads=True, friction=False), ('kinematics', 'reactions', 'driving', 'frame'))
     >>> load_scene("no/such/scene.json")
     Traceback (most recent call last):
       ...
