@@ -267,7 +267,9 @@ def _newton(A, C, rs, mu, lam):
         li = np.flatnonzero(live)
         ok[li[~good]] = False
         mu[li] += d
-        size = np.abs(mu[li]).max(axis=1) + np.abs(lam * rs[live] * np.hypot(A[live][..., 0], A[live][..., 1])).max(axis=1)
+        Al = A[live]
+        size = (np.abs(mu[li]).max(axis=1)
+                + np.abs(lam * rs[live] * np.hypot(Al[..., 0], Al[..., 1])).max(axis=1))
         done[li[good & (np.abs(d).max(axis=1) <= 1e-12 * size)]] = True
     return mu, ok & done, J
 
