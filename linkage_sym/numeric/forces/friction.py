@@ -238,12 +238,14 @@ def solve_group(solve, base, scene, names, W, geo, fset: FrictionSet, skip):
 
 def _residual(A, C, rs, mu, lam):
     """``g`` and ``dg/dmu`` at ``mu`` (K, m), friction scaled by ``lam``."""
-    R = A + np.einsum("kjmc,km->kjc", C, mu)
-    nR = np.hypot(R[..., 0], R[..., 1])
+    Rx = A[..., 0] + (C[..., 0] * mu[:, None, :]).sum(-1)  # (K, j): sum over the frictions k
+    Ry = A[..., 1] + (C[..., 1] * mu[:, None, :]).sum(-1)
+    nR = np.hypot(Rx, Ry)
     g = mu + lam * rs * nR
     with np.errstate(divide="ignore", invalid="ignore"):
-        u = np.where(nR[..., None] > 0, R / nR[..., None], 0.0)
-    J = np.eye(mu.shape[1]) + lam * rs[..., None] * np.einsum("kjc,kjmc->kjm", u, C)
+        ux, uy = np.where(nR > 0, Rx / nR, 0.0), np.where(nR > 0, Ry / nR, 0.0)
+    dR = ux[..., None] * C[..., 0] + uy[..., None] * C[..., 1]  # d|R_j| / d mu_k
+    J = np.eye(mu.shape[1]) + (lam * rs)[..., None] * dR
     return g, J
 
 
