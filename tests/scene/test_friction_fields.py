@@ -92,3 +92,23 @@ def test_the_symbolic_layer_refuses_friction_naming_the_field():
     # friction that does not act is no obstacle
     off = parse_scene(_press(lambda d: d["effects"].update(friction=False)))
     assert linkage_sym.derive(off) is not None
+
+
+@pytest.mark.parametrize("edit", [
+    _set(1, {"coefficient": -0.1, "radius": 0.01}),
+    _set(1, {"coefficient": 0.1, "radius": 0.0}),
+    _set(1, {"coefficient": 0.1}),
+    _set(3, {"coefficient": 0.1, "radius": 0.01}),
+    _set(3, {"coefficient": 0.1, "mu": 0.2}),
+    lambda d: d["effects"].update(friction="yes"),
+])
+def test_the_schema_refuses_them_too(edit):
+    import json
+    from pathlib import Path
+
+    import jsonschema
+
+    schema = json.loads((Path(__file__).parents[2] / "docs" / "scene.schema.json").read_text())
+    v = jsonschema.Draft202012Validator(schema)
+    assert v.is_valid(example_dict(PRESS))
+    assert not v.is_valid(_press(edit))
