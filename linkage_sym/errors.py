@@ -128,15 +128,17 @@ class SymbolicUnsupportedError(SceneError):
                 for i, name, t in self.joints]
 
 
-def refuse_symbolic_unsupported(scene) -> None:
+def refuse_symbolic_unsupported(scene, friction_derived: bool = False) -> None:
     """Raise :class:`SymbolicUnsupportedError` if ``scene`` has joints the symbolic layer
     does not derive.
 
     The symbolic method (derived equations, their compiled and arbitrary-precision
     runs, and what builds on them: LaTeX, balancing conditions, design sweeps)
     does not support cam contacts yet (issue 20), nor joint friction (issue 29: a
-    joint's ``friction`` when ``effects.friction`` is true); the numeric methods do.
-    Every such joint is named.
+    joint's ``friction`` when ``effects.friction`` is true; :func:`linkage_sym.symbolic.derive`
+    writes its terms out, the compiled runtime does not solve them); the numeric methods do.
+    Every such joint is named.  ``friction_derived``: the caller writes the friction's
+    terms out (:func:`linkage_sym.symbolic.derive`), so friction is not refused.
 
     Examples
     --------
@@ -158,7 +160,7 @@ def refuse_symbolic_unsupported(scene) -> None:
       joints[0].friction: the symbolic method does not derive joint friction yet (joint 'B', with effects.friction true); the numeric methods do (method 'dyad' or 'global')
     """
     joints = [(i, j.name, j.type) for i, j in enumerate(scene.joints) if j.type in SYMBOLIC_LACKS]
-    if scene.effects.friction:  # contract part two: the numeric force solvers only
+    if scene.effects.friction and not friction_derived:  # contract part two: numeric solvers
         joints += [(i, j.name, FRICTION) for i, j in enumerate(scene.joints)
                    if j.friction is not None and j.friction.coefficient > 0]
     if joints:

@@ -132,8 +132,13 @@ class MechanismEquations(ClosedForms, ForceEquations):
         Each intermediate symbol of :attr:`position_steps` with its meaning.
     """
 
-    def __init__(self, scene: Scene, symbolic=True, forces=None, decomposition=None):
-        refuse_symbolic_unsupported(scene)  # cams not derived yet: refused by name, never wrong
+    def __init__(self, scene: Scene, symbolic=True, forces=None, decomposition=None,
+                 friction=False):
+        # cams not derived yet, and joint friction only where asked (derive(): its terms and
+        # laws written out; the compiled runtime does not solve them): refused by name
+        refuse_symbolic_unsupported(scene, friction_derived=friction)
+        self.with_friction = friction
+        self.friction_laws: list = []
         self.scene = scene
         self.decomposition: Decomposition = decomposition or decompose(scene)
         self.table = ParameterTable(scene)
@@ -423,5 +428,8 @@ def derive(scene: Scene, symbolic=True, forces=None) -> MechanismEquations:
         ``"inertia"``, ``"gravity"``, ``"load"``).
     forces : bool, optional
         Derive the force equations (default: when the scene asks for forces).
+
+    Where the scene's joint friction acts, the force equations carry it, and
+    ``friction_laws`` its laws (:mod:`linkage_sym.symbolic.friction`).
     """
-    return MechanismEquations(scene, symbolic, forces)
+    return MechanismEquations(scene, symbolic, forces, friction=True)

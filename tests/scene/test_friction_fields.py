@@ -81,17 +81,21 @@ def test_read_and_dumped_back():
     assert "friction" not in dump_scene(plain)["effects"]
 
 
-def test_the_symbolic_layer_refuses_friction_naming_the_field():
+def test_the_compiled_symbolic_runtime_refuses_friction_naming_the_field():
+    """derive() writes the friction out (tests/symbolic/test_symbolic_friction.py); the
+    compiled runtime, which does not solve it, refuses it by field."""
     scene = linkage_sym.load_example(PRESS)
     with pytest.raises(SymbolicUnsupportedError) as err:
-        linkage_sym.derive(scene)
+        linkage_sym.compile_mechanism(scene)
     fields = [p.split(":")[0] for p in err.value.problems]
     assert fields == ["joints[0].friction", "joints[1].friction", "joints[2].friction",
                       "joints[3].friction"]
     assert "method 'dyad' or 'global'" in err.value.problems[0]
+    with pytest.raises(SymbolicUnsupportedError):
+        linkage_sym.analyze(scene, method="symbolic")
     # friction that does not act is no obstacle
     off = parse_scene(_press(lambda d: d["effects"].update(friction=False)))
-    assert linkage_sym.derive(off) is not None
+    assert linkage_sym.compile_mechanism(off, use_cache=False) is not None
 
 
 @pytest.mark.parametrize("edit", [

@@ -27,8 +27,10 @@ def has_meshes(name: str) -> bool:
 
 def has_friction(name: str) -> bool:
     """Whether the shipped example ``name``'s joint friction acts (``effects.friction`` and a
-    joint's positive coefficient): the symbolic layer refuses it, naming ``joints[i].friction``
-    (issue 29), so checks that run the symbolic layer leave such an example out."""
+    joint's positive coefficient): the compiled symbolic runtime refuses it, naming
+    ``joints[i].friction`` (issue 29; ``derive`` writes the friction out, checked by
+    ``tests/symbolic/test_symbolic_friction.py``), so checks that compile the symbolic layer
+    leave such an example out."""
     d = example_dict(name)
     return bool(d.get("effects", {}).get("friction")) and any(
         j.get("friction", {}).get("coefficient", 0) > 0 for j in d["joints"])
