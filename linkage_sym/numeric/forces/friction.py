@@ -9,7 +9,7 @@ The friction of a joint is what its ``links[0]`` exerts on its ``links[1]``:
   velocity of ``links[1]`` relative to ``links[0]`` along the axis.
 
 The sign comes from the relative velocity; where it is zero (below
-:data:`ZERO_RATE` of the joint's largest over the sweep), from the relative
+:data:`ZERO_RATE` of the mechanism's largest at the step), from the relative
 acceleration (the impending motion); where both are zero the joint has no
 friction at that step, and a warning names the joint and the steps
 (:meth:`FrictionSet.notes`).
@@ -46,15 +46,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from linkage_sym.model import Scene
+from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.forces.loads import Wrench
 from linkage_sym.numeric.results.wording import steps_text
 
 __all__ = ["ZERO_RATE", "FrictionSet", "active_joints", "add_friction", "fold", "solve_group"]
 
 ZERO_RATE = 1e-12
-"""A relative velocity (or acceleration) at most this fraction of the joint's largest over the
-steps counts as zero."""
+"""A relative velocity (or acceleration) at most this fraction of the mechanism's largest at
+the step (see :func:`_rel_rates`) counts as zero: rounding, not a direction.  Each step on its
+own, so a sweep solved in chunks has the signs of the whole."""
 MAX_NEWTON = 60
 """Newton iterations per stage before a step is taken as having no solution on its branch."""
 STAGES = 8
@@ -69,29 +70,35 @@ def active_joints(scene: Scene) -> tuple:
     return tuple(j for j in scene.joints if j.friction is not None and j.friction.coefficient > 0)
 
 
+def _point_rates(st, px, py):
+    """Velocity and acceleration of the point of link state ``st`` at ``(px, py)``."""
+    rx, ry = px - st.dx, py - st.dy
+    w2 = st.w * st.w
+    return ((st.vx - st.w * ry, st.vy + st.w * rx),
+            (st.ax - st.al * ry - w2 * rx, st.ay + st.al * rx - w2 * ry))
+
+
 def _rel_rates(joint, S, geo):
     """``(v, a, v_scale, a_scale)``: the relative velocity and acceleration of the joint
-    (angular for ``R``, along the axis for ``P``) and the sizes they are compared with."""
+    (angular for ``R``, along the axis for ``P``) and, at each step, the sizes they are
+    compared with: the mechanism's largest of the same kind at that step (the links' angular
+    rates; the velocities and accelerations of every link's point at the joint)."""
     s0, s1 = S[joint.links[0]], S[joint.links[1]]
+    moving = [st for n, st in S.items() if n != GROUND]
     if joint.type == "R":
-        return (s1.w - s0.w, s1.al - s0.al, np.abs(s1.w) + np.abs(s0.w),
-                np.abs(s1.al) + np.abs(s0.al))
+        ws = [np.abs(st.w) for st in moving]
+        als = [np.abs(st.al) + st.w * st.w for st in moving]
+        return s1.w - s0.w, s1.al - s0.al, np.maximum.reduce(ws), np.maximum.reduce(als)
     px, py = geo.point(joint.name)
     _, _, tx, ty = geo.normal(joint.name)
-
-    def vel(st):
-        return st.vx - st.w * (py - st.dy), st.vy + st.w * (px - st.dx)
-
-    def acc(st):
-        rx, ry = px - st.dx, py - st.dy
-        w2 = st.w * st.w
-        return st.ax - st.al * ry - w2 * rx, st.ay + st.al * rx - w2 * ry
-
-    (v1x, v1y), (v0x, v0y) = vel(s1), vel(s0)
-    (a1x, a1y), (a0x, a0y) = acc(s1), acc(s0)
+    (v1x, v1y), (a1x, a1y) = _point_rates(s1, px, py)
+    (v0x, v0y), (a0x, a0y) = _point_rates(s0, px, py)
     v = (v1x - v0x) * tx + (v1y - v0y) * ty
     a = (a1x - a0x) * tx + (a1y - a0y) * ty
-    return v, a, np.hypot(v1x, v1y) + np.hypot(v0x, v0y), np.hypot(a1x, a1y) + np.hypot(a0x, a0y)
+    rates = [_point_rates(st, px, py) for st in moving]
+    vs = np.maximum.reduce([np.hypot(*va[0]) for va in rates])
+    as_ = np.maximum.reduce([np.hypot(*va[1]) for va in rates])
+    return v, a, vs, as_
 
 
 class FrictionSet:
@@ -112,8 +119,8 @@ class FrictionSet:
         self.arm, self.sign, self.rate, self.moving = {}, {}, {}, {}
         for j in active_joints(scene):
             v, a, vs, as_ = (np.broadcast_to(np.asarray(x, float), (K,)) for x in _rel_rates(j, S, geo))
-            moving = np.abs(v) > ZERO_RATE * (vs.max() if K else 0.0)
-            accel = ~moving & (np.abs(a) > ZERO_RATE * (as_.max() if K else 0.0))
+            moving = np.abs(v) > ZERO_RATE * vs
+            accel = ~moving & (np.abs(a) > ZERO_RATE * as_)
             self.sign[j.name] = np.where(moving, np.sign(v), np.where(accel, np.sign(a), 0.0))
             self.arm[j.name] = j.friction.arm
             self.rate[j.name] = v
