@@ -364,3 +364,39 @@ def test_a_joint_without_relative_motion_has_no_friction_and_is_named():
     d["effects"]["friction"] = False
     plain = linkage_sym.analyze(linkage_sym.load_scene(d))
     assert np.array_equal(res.forces.driving["A"], plain.forces.driving["A"])
+
+
+@pytest.mark.parametrize("types, flip, driver, seed", __import__(
+    "tests.numeric.test_kinetostatics", fromlist=["loop_cases"]).loop_cases())
+def test_every_dyad_type_and_orientation_with_friction(types, flip, driver, seed):
+    """The kinetostatics contract (tests/numeric/test_kinetostatics.py: dyad routines against
+    the global method, every link's equilibrium, the power balance, each <= 1e-9) with
+    friction in every joint, the driven one (an R or a P driver) too, for every dyad type
+    with its joints' links in either order; and the friction law of every joint."""
+    from tests.numeric.test_kinetostatics import check_contract, loop_scene, run_both, well_conditioned
+
+    def make(s):
+        d = loop_scene(types, flip=flip, seed=s, driver=driver)
+        d["effects"]["friction"] = True
+        for j in d["joints"]:
+            j["friction"] = ({"coefficient": 0.15, "radius": 0.02} if j["type"] == "R"
+                             else {"coefficient": 0.12})
+        return d
+
+    scene, plan, a, g = run_both(well_conditioned(make, seed))
+    check_contract(scene, a, g)
+    for j in scene.joints:
+        R = a.forces.reactions[j.name]
+        mu = a.forces.friction[j.name]
+        v = _relative_rate(scene, a, j)
+        # (with a P driver a PRP, RPP or PPR loop only translates: its pins never turn, have
+        # no friction, and a warning names them)
+        moving = np.abs(v) > 1e-9 * max(np.abs(v).max(), 1e-300)
+        assert np.allclose(np.abs(mu[moving]), j.friction.arm * np.hypot(R[moving, 0], R[moving, 1]),
+                           rtol=1e-12, atol=0), j.name
+        assert np.all(np.sign(mu[moving]) == -np.sign(v[moving])), j.name
+        if not moving.any() and not np.any(mu):
+            assert any(w.startswith(f"joint {j.name}: neither") for w in a.warnings), j.name
+        assert max_rel(a.forces.friction[j.name] - g.forces.friction[j.name],
+                       reaction_scale(scene, g.forces) * (scene.characteristic_length()
+                                                          if j.type == "R" else 1.0)) <= TOL
