@@ -90,6 +90,9 @@ def finite_number(field: str, value, error: type) -> float:
 
 SYMBOLIC_LACKS = {"cam": "cam contacts"}
 """Joint types the symbolic layer does not derive yet, with their plural names."""
+FRICTION = "friction"
+"""What :class:`SymbolicUnsupportedError` names for a joint whose friction acts (``joints[i].friction``
+with ``effects.friction``): the symbolic layer does not derive friction yet."""
 
 
 class SymbolicUnsupportedError(SceneError):
@@ -118,7 +121,10 @@ class SymbolicUnsupportedError(SceneError):
 
     def problems_naming(self, choice: str) -> list[str]:
         """The problems, ``choice`` saying how to pick a numeric method."""
-        return [f"joints[{i}]: the symbolic method does not support {SYMBOLIC_LACKS[t]} yet "
+        return [f"joints[{i}].friction: the symbolic method does not derive joint friction yet "
+                f"(joint '{name}', with effects.friction true); the numeric methods do ({choice})"
+                if t == FRICTION else
+                f"joints[{i}]: the symbolic method does not support {SYMBOLIC_LACKS[t]} yet "
                 f"(joint '{name}' is of type {t}); the numeric methods do ({choice})"
                 for i, name, t in self.joints] + [
                 f"springs[{i}]: the symbolic method does not derive springs and dampers in its "
@@ -126,28 +132,44 @@ class SymbolicUnsupportedError(SceneError):
                 for i, name in self.springs]
 
 
-def refuse_symbolic_unsupported(scene, forces: bool = False) -> None:
+def refuse_symbolic_unsupported(scene, forces: bool = False, friction_derived: bool = False) -> None:
     """Raise :class:`SymbolicUnsupportedError` if ``scene`` has joints the symbolic layer
     does not derive, or (``forces``: its force equations are wanted) springs that act.
 
     The symbolic method (derived equations, their compiled and arbitrary-precision
     runs, and what builds on them: LaTeX, balancing conditions, design sweeps)
-    does not support cam contacts yet (issue 20); the numeric methods do.
+    does not support cam contacts yet (issue 20), nor joint friction (issue 29: a
+    joint's ``friction`` when ``effects.friction`` is true; :func:`linkage_sym.symbolic.derive`
+    writes its terms out, the compiled runtime does not solve them); the numeric methods do.
     Nor does it derive springs and dampers in its force equations yet: with
     ``forces`` true, a scene whose springs act (``effects.springs``) is refused
     too (its kinematics alone are derived).  Every such joint and spring is named.
+    ``friction_derived``: the caller writes the friction's terms out
+    (:func:`linkage_sym.symbolic.derive`), so friction is not refused.
 
     Examples
     --------
     >>> from types import SimpleNamespace as NS
-    >>> refuse_symbolic_unsupported(NS(joints=[NS(name="A", type="R"), NS(name="M", type="G")]))
-    >>> refuse_symbolic_unsupported(NS(joints=[NS(name="A", type="R"), NS(name="K", type="cam")]))
+    >>> still = NS(friction=False)  # the scene's effects: no joint friction
+    >>> refuse_symbolic_unsupported(NS(joints=[NS(name="A", type="R"), NS(name="M", type="G")],
+    ...                                effects=still))
+    >>> refuse_symbolic_unsupported(NS(joints=[NS(name="A", type="R"), NS(name="K", type="cam")],
+    ...                                effects=still))
     Traceback (most recent call last):
     ...
     linkage_sym.errors.SymbolicUnsupportedError: invalid scene (1 problem):
       joints[1]: the symbolic method does not support cam contacts yet (joint 'K' is of type cam); the numeric methods do (method 'dyad' or 'global')
+    >>> pin = NS(name="B", type="R", friction=NS(coefficient=0.1))
+    >>> refuse_symbolic_unsupported(NS(joints=[pin], effects=NS(friction=True)))
+    Traceback (most recent call last):
+    ...
+    linkage_sym.errors.SymbolicUnsupportedError: invalid scene (1 problem):
+      joints[0].friction: the symbolic method does not derive joint friction yet (joint 'B', with effects.friction true); the numeric methods do (method 'dyad' or 'global')
     """
     joints = [(i, j.name, j.type) for i, j in enumerate(scene.joints) if j.type in SYMBOLIC_LACKS]
+    if scene.effects.friction and not friction_derived:  # contract part two: numeric solvers
+        joints += [(i, j.name, FRICTION) for i, j in enumerate(scene.joints)
+                   if j.friction is not None and j.friction.coefficient > 0]
     springs = []
     if forces and scene.active_springs:  # the contract's springs, acting
         springs = [(i, k.name) for i, k in enumerate(scene.springs)]

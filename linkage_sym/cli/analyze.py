@@ -78,8 +78,26 @@ def summary(scene, analysis) -> list[str]:
                                       (f"{word} moment", stats.frame_moment, "N·m")):
                 if peak:
                     lines.append(f"peak {label}: {peak.value:.4g} {unit} at {_at(scene, peak)}")
+    if stats.work is not None:  # joint friction (contract part two)
+        lines += _friction_lines(scene, stats.work)
     lines += [f"warning: {w}" for w in stats.warnings]
     return lines
+
+
+def _friction_lines(scene, work) -> list[str]:
+    """The summary's friction lines: the sweep's mean efficiency, the peak friction power."""
+    eta = work.efficiency()
+    if eta is None:
+        line = (f"mean efficiency: none (the driver's work over the sweep's ok steps is "
+                f"{work.work_in:.4g} J, not positive)")
+    else:
+        line = (f"mean efficiency over the sweep: {eta:.4g} (the driver's work with the friction "
+                f"left out, {work.work_out:.4g} J, over its work with it, {work.work_in:.4g} J)")
+    out = [line]
+    if work.friction_peak:
+        out.append(f"peak friction power: {work.friction_peak.value:.4g} W at "
+                   f"{_at(scene, work.friction_peak)}")
+    return out
 
 
 def cmd_analyze(args) -> int:

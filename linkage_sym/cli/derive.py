@@ -33,6 +33,10 @@ def _plain_text(eqs) -> str:
             out += [f"group {g.index + 1}: F_g = {g.forces}", f"  A_g = {A}", f"  b_g = {b}"]
             if later:
                 out += [f"  C_g = {C}", f"  F_later = {later}"]
+        if eqs.friction_laws:  # contract part two: the laws that close the force equations
+            out += ["", "## joint friction (rho_J = f r: the friction circle's radius; mu_J: the "
+                    "coefficient; nu_J: the sign of the joint's relative motion)"]
+            out += [f"{law.friction} = {law.law}" for law in eqs.friction_laws]
         out += ["", "## frame force x, y and moment about the origin"] + [str(e) for e in eqs.frame]
     if eqs.parameters:
         out += ["", "## parameters"]

@@ -8,6 +8,7 @@ from linkage_sym.model.scene import (
     Driver,
     Effects,
     Joint,
+    JointFriction,
     Link,
     Load,
     LoadTable,
@@ -16,5 +17,5 @@ from linkage_sym.model.scene import (
     TracedPoint,
 )
 
-__all__ = ["GROUND", "OUTPUTS", "STAGES", "CamSpec", "Driver", "Effects", "Joint", "Link", "Load", "LoadTable", "Scene",
-           "Spring", "TracedPoint"]
+__all__ = ["GROUND", "OUTPUTS", "STAGES", "CamSpec", "Driver", "Effects", "Joint", "JointFriction", "Link", "Load",
+           "LoadTable", "Scene", "Spring", "TracedPoint"]

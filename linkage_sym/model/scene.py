@@ -72,6 +72,24 @@ class CamSpec:
 
 
 @dataclass(frozen=True)
+class JointFriction:
+    """Coulomb friction of an ``R`` or ``P`` joint (``joints[i].friction``, contract part two).
+
+    ``coefficient`` is the friction coefficient f (>= 0); ``radius`` the pin's
+    radius (m) of an ``R`` joint, whose friction circle has radius
+    ``f * radius``, and ``None`` for a ``P`` joint.
+    """
+
+    coefficient: float
+    radius: float | None = None
+
+    @property
+    def arm(self) -> float:
+        """The friction circle's radius (``R``, m) or the coefficient itself (``P``)."""
+        return self.coefficient * (1.0 if self.radius is None else self.radius)
+
+
+@dataclass(frozen=True)
 class Joint:
     """A lower pair between ``links[0]`` and ``links[1]``, or a gear mesh.
 
@@ -96,6 +114,10 @@ class Joint:
     of the cam ``links[0]`` (``cam``, a :class:`CamSpec`); ``at`` is the
     follower's element point in the assembly configuration (roller centre,
     knife point, or a point of a flat face), fixed on the follower.
+
+    ``friction`` (a :class:`JointFriction`, ``R`` and ``P`` joints only) is
+    the joint's Coulomb friction, which acts when the scene's
+    ``effects.friction`` is true.
     """
 
     name: str
@@ -109,6 +131,7 @@ class Joint:
     pressure_angle: float | None = None
     pivots: tuple[str, str] | None = None
     cam: CamSpec | None = None
+    friction: JointFriction | None = None
 
     @property
     def moves_with(self) -> str:
@@ -236,12 +259,14 @@ class Effects:
 
     ``springs``: the scene's springs act (default false here; the scene reader
     makes it true when a scene gives ``springs`` without saying otherwise).
+    ``friction``: the joints' Coulomb friction (default false).
     """
 
     inertia: bool = False
     gravity: Point | None = None
     loads: bool = True
     springs: bool = False
+    friction: bool = False
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,8 @@ import contract):
 ``forces``
     ``loads``, ``statics`` (input and dyad routines), ``superposition`` (Dang
     and Zhang's disconnection and superposition), ``global_statics`` (every
-    link at once: the check), ``kinetostatics`` (the force plan).
+    link at once: the check), ``friction`` and ``global_friction`` (joint friction in
+    both methods), ``kinetostatics`` (the force plan).
 ``engine``
     The one sweep engine both runtimes call: ``run`` (a run's bookkeeping: the
     scene's sweep, stages, solving path and unwrapping, step statuses, the singularity

@@ -194,7 +194,10 @@ class Plan:
         block = self._solve_rates(S, q, qd, qdd, N)
         forces = None
         if self.force_plan is not None:
+            from linkage_sym.numeric.forces.kinetostatics import mark_self_locking
+
             forces = self.force_plan.run(S, ok, method, q)
+            mark_self_locking(status, messages, ok, forces)  # friction (contract part two)
         res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
         if self.scene.cams:  # each contact's point and pressure angle, in its joint's record
             from linkage_sym.numeric.kinematics.cams import cam_records

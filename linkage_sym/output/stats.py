@@ -189,6 +189,36 @@ class Peak:
         return self.step >= 0
 
 
+@dataclass
+class DriverWork:
+    """The work of a sole driver over the ``ok`` steps of a sweep's chunks, with its joints'
+    friction (``work_in``) and with it left out (``work_out``): the trapezoidal rule on each
+    pair of consecutive ``ok`` steps (contract part two: the mean efficiency is
+    ``work_out / work_in``).  ``friction_peak``: the largest power the friction dissipates."""
+
+    work_in: float = 0.0
+    work_out: float = 0.0
+    friction_peak: Peak = field(default_factory=Peak)
+
+    def add(self, res: Analysis, offset: int, skip: int) -> None:
+        """Add the pairs of steps of ``res`` not added before (from step ``skip - 1`` on)."""
+        f = res.forces
+        (name,) = f.driving
+        a = max(skip - 1, 0)
+        q = np.asarray(res.drivers[name]["q"], float)[a:]
+        ok = (res.status == OK)[a:]
+        pair = ok[1:] & ok[:-1]
+        dq = np.diff(q)[pair]
+        for key, e in (("work_in", f.driving[name][a:]), ("work_out", f.driving_ideal[name][a:])):
+            mid = 0.5 * (e[1:] + e[:-1])
+            setattr(self, key, getattr(self, key) + float(np.sum(mid[pair] * dq)))
+        self.friction_peak.add(f.friction_power[skip:], offset, res, skip)
+
+    def efficiency(self) -> float | None:
+        """``work_out / work_in`` when the driver's work (with the friction) is positive."""
+        return self.work_out / self.work_in if self.work_in > 0 else None
+
+
 _NOTE_STEP = re.compile(r"; at step (\d+)( \(reached from (?:step (\d+)|the assembly configuration)\))?"
                         r" it continues")
 
@@ -223,6 +253,9 @@ class SweepStats:
         self._choices = [None if g.used is None else [0] * len(g.choices) for g in groups]
         self.left_out = LeftOut()
         self.unassemblable = StepRuns()  # the unassemblable steps' runs, with driver values
+        forces = template.forces
+        self.work = (DriverWork() if forces is not None and forces.driving_ideal is not None
+                     and len(forces.driving) == 1 else None)  # friction: the mean efficiency
         self.analysis: Analysis | None = None  # the whole run, when it was kept
 
     @classmethod
@@ -274,6 +307,8 @@ class SweepStats:
                     with np.errstate(invalid="ignore"):
                         bad = np.flatnonzero(ok & (g.amplification[skip:] > AMPLIFICATION_LIMIT))
                     self._amplified[k].add(bad + offset, g.amplification[skip:][bad])
+        if self.work is not None:
+            self.work.add(res, offset, skip)
         with np.errstate(invalid="ignore"):
             ill = np.flatnonzero(ok & (res.condition[skip:] > WARN_COND))
         self._ill.add(ill + offset, res.condition[skip:][ill])

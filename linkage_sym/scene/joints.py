@@ -21,12 +21,13 @@ from typing import Any, NamedTuple
 from linkage_sym.model.scene import GROUND, Joint, Point
 from linkage_sym.scene.cams import CAM_KEYS, read_cam_fields
 from linkage_sym.scene.fields import ANGLE, REQUIRED, FieldReader, radians_or_none, show_value, did_you_mean
+from linkage_sym.scene.friction import read_friction
 from linkage_sym.scene.gears import GEAR_KEYS, MeshFields, place_meshes, read_mesh_fields
 
 __all__ = ["JOINT_KEYS", "JOINT_TYPES", "JOINT_TYPE_NAMES", "JOINT_TYPE_SYNONYMS", "JointInfo",
            "JointSection", "joint_type_problem"]
 
-JOINT_KEYS = ("name", "type", "links", "at", "axis_deg", *GEAR_KEYS, *CAM_KEYS)
+JOINT_KEYS = ("name", "type", "links", "at", "axis_deg", *GEAR_KEYS, *CAM_KEYS, "friction")
 JOINT_TYPES = ("R", "P", "G", "cam")
 JOINT_TYPE_NAMES = {"R": "revolute", "P": "prismatic", "G": "gear mesh", "cam": "cam contact"}
 """What each joint type is (the format's ``R`` and ``P``, the extensions' ``G`` and ``cam``)."""
@@ -99,6 +100,7 @@ class JointSection(FieldReader):
                 axis = radians_or_none(self.number(entry, "axis_deg", path, why=why, **ANGLE))
             elif jtype == "R" and "axis_deg" in entry:
                 self.add(f"{path}.axis_deg", "not allowed on an R joint (only a P joint has an axis)")
+            friction = read_friction(self, entry, path, jtype)  # contract part two
             if name is not None and name not in self.joints:
                 self.joints[name] = JointInfo(i, jtype, pair, at)
             structure_ok = structure_ok and None not in (name, jtype, pair)
@@ -111,7 +113,7 @@ class JointSection(FieldReader):
             elif len(self.problems) == before and cam is not None:
                 joints.append(Joint(name, jtype, pair, at, cam=cam))
             elif len(self.problems) == before:
-                joints.append(Joint(name, jtype, pair, at, axis))
+                joints.append(Joint(name, jtype, pair, at, axis, friction=friction))
         if meshes:
             placed = place_meshes(self, meshes, [j for j in joints if j is not None])
             for k, m in enumerate(meshes):

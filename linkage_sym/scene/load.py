@@ -55,7 +55,7 @@ def load_scene(source: str | os.PathLike[str] | Mapping[str, Any]) -> Scene:
     >>> scene.drivers[0]
     Driver(joint='S', kind='P', start=0.0, stop=0.1, steps=11, speed=0.5, acceleration=0.0, toward=None)
     >>> scene.effects, scene.outputs
-    (Effects(inertia=False, gravity=None, loads=True, springs=False), ('kinematics', 'reactions', 'driving', 'frame'))
+    (Effects(inertia=False, gravity=None, loads=True, springs=False, friction=False), ('kinematics', 'reactions', 'driving', 'frame'))
     >>> load_scene("no/such/scene.json")
     Traceback (most recent call last):
       ...
@@ -208,6 +208,10 @@ def _dump_joint(joint: Joint) -> dict[str, Any]:
         out["pressure_angle_deg"] = _degrees(joint.pressure_angle)
     elif joint.type == "cam":  # a cam contact (an extension of the format)
         out.update(_dump_cam(joint.cam))
+    if joint.friction is not None:  # contract part two: written only when given
+        out["friction"] = {"coefficient": joint.friction.coefficient}
+        if joint.friction.radius is not None:
+            out["friction"]["radius"] = joint.friction.radius
     return out
 
 
@@ -277,6 +281,8 @@ def _dump_effects(effects: Effects) -> dict[str, Any]:
     out["loads"] = effects.loads
     if effects.springs:  # the contract's second part: written only when they act
         out["springs"] = True
+    if effects.friction:  # contract part two: written only when true (its default is false)
+        out["friction"] = True
     return out
 
 

@@ -75,7 +75,7 @@ TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs",
 LINK_KEYS = ("name", "mass", "com", "inertia")
 LOAD_KEYS = ("link", "force", "at", "torque")
 POINT_KEYS = ("name", "link", "at")
-EFFECTS_KEYS = ("inertia", "gravity", "loads", "springs")
+EFFECTS_KEYS = ("inertia", "gravity", "loads", "springs", "friction")
 
 MASS_RULE = {"minimum": 0.0}
 """The rule of a link's ``mass`` and ``inertia`` (besides every number's magnitude)."""
@@ -309,12 +309,14 @@ class _SceneReader(JointSection, DriverSection, SceneChecks):
         self.keys(effects, "effects", EFFECTS_KEYS)
         inertia = self.boolean(effects, "inertia", "effects", default=False)
         loads = self.boolean(effects, "loads", "effects", default=True)
+        friction = self.boolean(effects, "friction", "effects", default=False)
         gravity = effects.get("gravity")
         if gravity is None or gravity is False:
             gravity = None
         else:
             gravity = self.point(effects, "gravity", "effects", expected=f"false, null or {POINT_EXPECTED}")
-        return Effects(inertia, gravity, loads, springs=springs_effect(self, effects, data))
+        return Effects(inertia, gravity, loads, springs=springs_effect(self, effects, data),
+                       friction=bool(friction))
 
     def read_outputs(self, data: Mapping[str, Any]) -> tuple[str, ...] | None:
         if "outputs" not in data:

@@ -30,6 +30,7 @@ import sympy as sp
 
 from linkage_sym.model import GROUND
 from linkage_sym.structure.parameters import ident
+from linkage_sym.symbolic.friction import friction_laws, friction_loads, on_frame
 from linkage_sym.symbolic.vectors import Vec
 
 __all__ = ["ForceEquations"]
@@ -54,7 +55,8 @@ class ForceEquations:
     A mixin: it reads the geometry (``off``, ``pos``, ``origin``, ``frame_vec``,
     ``slide_unit``, ``pitch_point``, ``line_of_action``, ``sym``), the points'
     accelerations (``com_kin``) and the groups of the class that inherits it, and
-    sets ``F``, ``E``, ``force_intermediates``, ``link_equations``,
+    sets ``F``, ``E``, ``force_intermediates``, ``friction_laws`` (joint friction, where
+    ``with_friction``: :mod:`linkage_sym.symbolic.friction`), ``link_equations``,
     ``force_blocks``, ``readable_force_blocks``, ``all_forces`` and ``frame``.
     """
 
@@ -63,6 +65,10 @@ class ForceEquations:
         acc = {n: [sp.Integer(0)] * 3 for n in self.scene.link_names}
         self.force_intermediates = []
         self._joint_loads(acc)
+        # joint friction (contract part two), where derive() asks for it: see symbolic.friction
+        self.friction_laws = friction_laws(self) if self.with_friction else []
+        friction_loads(self, self.friction_laws,
+                       lambda link, f=None, lever=None, couple=0: _add(acc, link, f, lever, couple))
         self._driver_loads(acc)
         self._body_loads(acc)
         named = {sym: e for sym, e, _ in self.force_intermediates}
@@ -220,6 +226,10 @@ class ForceEquations:
                 N, M = self.F[j.name]
                 ux, uy = self.slide_unit(j.name)
                 F, c = (-uy * N, ux * N), M
+            law = next((x for x in self.friction_laws if x.joint == j.name), None)
+            if law is not None:  # the joint's friction, as its reaction, on links[1]
+                gx, gy, gc = on_frame(law, self.slide_unit(j.name) if j.type == "P" else None)
+                F, c = (F[0] + gx, F[1] + gy), c + gc
             if j.name in self.E:
                 e = self.E[j.name]
                 if j.type == "R":

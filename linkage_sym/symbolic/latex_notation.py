@@ -141,6 +141,12 @@ class Namer:
             for e in eqs.E.values():
                 pre, n = e.name.split("_", 1)
                 names[e] = (r"\tau" if pre == "tau" else "f") + f"_{{{_sub(n)}}}"
+        for law in getattr(eqs, "friction_laws", ()):  # joint friction (contract part two)
+            n = _sub(law.friction.name[3:])
+            names[law.friction] = rf"M^{{f}}_{{{n}}}" if law.kind == "R" else rf"F^{{f}}_{{{n}}}"
+            names[law.sign] = rf"\nu_{{{n}}}"
+            if isinstance(law.arm, sp.Symbol):
+                names[law.arm] = (r"\rho" if law.kind == "R" else r"\mu") + f"_{{{n}}}"
         for s in eqs.parameters:
             names.setdefault(s, self.param(s.name))
         for s, _, _ in getattr(eqs, "force_intermediates", ()):

@@ -10,6 +10,8 @@ notation of :mod:`linkage_sym.symbolic.latex_notation`.
 
 from __future__ import annotations
 
+import sympy as sp
+
 from linkage_sym.symbolic.latex_notation import (
     MAX_EQUATION,
     MAX_MATRIX,
@@ -92,6 +94,15 @@ def nomenclature(doc, nm, eqs) -> None:
         for d in eqs.scene.drivers:
             rows.append((nm(eqs.E[d.joint]), f"driving effort at joint {escape_text(d.joint)}",
                          r"N\,m" if d.kind == "R" else "N"))
+        for law in eqs.friction_laws:
+            jn = escape_text(law.joint)
+            r = law.kind == "R"
+            rows.append((nm(law.friction), f"friction {'couple' if r else 'force'} of joint {jn}'s "
+                         "first link on its second", r"N\,m" if r else "N"))
+            rows.append((nm(law.sign), f"sign of joint {jn}'s relative motion", "1"))
+            if isinstance(law.arm, sp.Symbol):
+                rows.append((nm(law.arm), f"friction circle's radius of joint {jn}" if r
+                             else f"friction coefficient of joint {jn}", "m" if r else "1"))
     doc.text(r"\begin{longtable}{lll}")
     doc.text(r"symbol & meaning & unit \\ \hline \endhead")
     for sym, meaning, unit in rows:
@@ -127,6 +138,12 @@ def symbol_list(doc, nm, eqs) -> None:
             r"revolute joint $J$; $N_{J}$, $M_{J}$: normal force and couple of prismatic joint "
             r"$J$; $\tau_{J}$, $f_{J}$: driving torque or force at joint $J$"
         )
+    if getattr(eqs, "friction_laws", None):
+        doc.text(
+            r"\item $M^{f}_{J}$, $F^{f}_{J}$: friction couple or force at joint $J$; $\rho_{J}$, "
+            r"$\mu_{J}$: its friction circle's radius or coefficient; $\nu_{J}$: the sign of its "
+            "relative motion"
+        )
     doc.text(r"\end{itemize}")
 
 
@@ -145,7 +162,30 @@ def equations(doc, nm, eqs) -> None:
     _accelerations(doc, nm, eqs)
     if eqs.has_forces:
         _forces(doc, nm, eqs)
+        if eqs.friction_laws:
+            _friction(doc, nm, eqs)
         _frame(doc, nm, eqs)
+
+
+def _friction(doc, nm, eqs) -> None:
+    """The joints' friction laws (contract part two), which close the force equations."""
+    doc.text(r"\paragraph{Joint friction.}")
+    doc.text(
+        "The frictions in the groups' right-hand sides are those of Coulomb's law: at a revolute "
+        r"joint the couple $M^{f}_{J}$ about the pin, $\rho_{J} = f_{J} r_{J}$ the radius of its "
+        r"friction circle; at a prismatic joint the force $F^{f}_{J}$ along the axis, $\mu_{J}$ "
+        "its coefficient; each what the joint's first link exerts on its second, against the "
+        r"sign $\nu_{J}$ of the second link's motion relative to the first (of its relative "
+        r"acceleration where the velocity is zero; $\nu_{J} = 0$ where both are). These laws make "
+        "the equations nonlinear in the reactions; the numeric methods solve them (Newton's "
+        "method on each group's frictions)."
+    )
+    rows, keys = [], []
+    for law in eqs.friction_laws:
+        r = nm.sum_rows(nm(law.friction), law.law)
+        rows += r
+        keys += [f"friction-{law.joint}"] + [None] * (len(r) - 1)
+    doc.align(rows, keys)
 
 
 def _loops(doc, nm, eqs) -> None:

@@ -132,11 +132,16 @@ class MechanismEquations(ClosedForms, ForceEquations):
         Each intermediate symbol of :attr:`position_steps` with its meaning.
     """
 
-    def __init__(self, scene: Scene, symbolic=True, forces=None, decomposition=None):
+    def __init__(self, scene: Scene, symbolic=True, forces=None, decomposition=None,
+                 friction=False):
         outs = set(scene.outputs)
         want = bool(outs & {"reactions", "driving", "frame"}) if forces is None else forces
-        # cams, and springs in the force equations, not derived yet: refused by name, never wrong
-        refuse_symbolic_unsupported(scene, forces=want)
+        # cams, and springs in the force equations, not derived yet; joint friction only where
+        # asked (derive(): its terms and laws written out; the compiled runtime does not solve
+        # them): refused by name, never wrong
+        refuse_symbolic_unsupported(scene, forces=want, friction_derived=friction)
+        self.with_friction = friction
+        self.friction_laws: list = []
         self.scene = scene
         self.decomposition: Decomposition = decomposition or decompose(scene)
         self.table = ParameterTable(scene)
@@ -424,5 +429,8 @@ def derive(scene: Scene, symbolic=True, forces=None) -> MechanismEquations:
         ``"inertia"``, ``"gravity"``, ``"load"``).
     forces : bool, optional
         Derive the force equations (default: when the scene asks for forces).
+
+    Where the scene's joint friction acts, the force equations carry it, and
+    ``friction_laws`` its laws (:mod:`linkage_sym.symbolic.friction`).
     """
-    return MechanismEquations(scene, symbolic, forces)
+    return MechanismEquations(scene, symbolic, forces, friction=True)

@@ -152,9 +152,12 @@ def _without_newer_keys(result: dict) -> dict:
     """A result without the keys extensions added after the frozen writer (if any)."""
     out = {k: v for k, v in result.items() if k in FROZEN_KEYS}
     out["steps"] = [{k: v for k, v in st.items() if k in FROZEN_STEP_KEYS} for st in result["steps"]]
-    for st in out["steps"]:  # a cam contact's pressure angle (an extension) in its joint record
+    # a cam contact's pressure angle (an extension) and a joint's friction (the contract's
+    # second part) in its joint record
+    newer = ("pressure_angle", "friction_moment", "friction_force")
+    for st in out["steps"]:
         if "joints" in st:
-            st["joints"] = {n: {k: v for k, v in rec.items() if k != "pressure_angle"}
+            st["joints"] = {n: {k: v for k, v in rec.items() if k not in newer}
                             for n, rec in st["joints"].items()}
     return out
 

@@ -45,6 +45,7 @@ EXPECTED = [
     "shaper",
     "sixbar_class3",
     "slider_crank_offset",
+    "slider_crank_press_friction",
     "song_wang_sixbar",
     "stephenson_sixbar",
     "watt_sixbar",

@@ -163,7 +163,7 @@ INVALID = [
     ("unknown-joint-key", edit(put(["joints", 0, "angle"], 0)), "joints[0].angle"),
     ("unknown-driver-key", edit(put(["drivers", 0, "spead"], 1.0)), "drivers[0].spead"),
     ("unknown-load-key", edit(put(["loads", 1, "moment"], 1.0)), "loads[1].moment"),
-    ("unknown-effects-key", edit(put(["effects", "friction"], True)), "effects.friction"),
+    ("unknown-effects-key", edit(put(["effects", "magnetism"], True)), "effects.magnetism"),
     ("unknown-point-key", edit(put(["points", 0, "colour"], "red")), "points[0].colour"),
     # the driver forms: an R joint's driver in degrees, a P joint's in metres
     ("R-driver-with-start", edit(put(["drivers", 0, "start"], 0.0)), "drivers[0].start"),

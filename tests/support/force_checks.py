@@ -9,7 +9,8 @@ identity from the scene-format conventions alone:
   terms;
 * :func:`power_residual`: driver power against the rate of change of kinetic
   energy minus the power of gravity, loads and springs (the springs' forces
-  and power from :mod:`tests.support.spring_checks`);
+  and power from :mod:`tests.support.spring_checks`), plus the power the joints' friction
+  dissipates (contract part two);
 * :func:`momentum_frame`: ``-sum m a_G`` and ``-dH_O/dt`` (the shaking force
   and moment when inertia is the only effect);
 * :func:`mesh_residuals`: each gear mesh's force on the line of action: at the
@@ -106,7 +107,8 @@ def applied(scene, a, inertia=None, gravity=None, loads=None):
 
 
 def link_residuals(scene, a):
-    """Force and moment residual of every moving link, with their scales.
+    """Force and moment residual of every moving link, with their scales (the joints'
+    friction, where the result has it, among the joint forces).
 
     Returns ``{link: (res_force (N,2), res_moment (N,), scale_force (N,), scale_moment (N,))}``;
     moments about the global origin.
@@ -120,6 +122,12 @@ def link_residuals(scene, a):
         m = f.reaction_moments[j.name]
         on1 = [(R, p)]
         c1 = [m]
+        mu = None if f.friction is None else f.friction.get(j.name)
+        if mu is not None:  # contract part two: the friction links[0] exerts on links[1]
+            if j.type == "R":
+                c1.append(mu)
+            else:
+                on1.append((mu[:, None] * _axis(a, j, j.axis), p))
         if j.name in drivers:
             e = f.driving[j.name]
             if j.type == "R":
@@ -230,6 +238,9 @@ def power_residual(scene, a):
     springs, spring_scale = spring_power(scene, a)  # -dV/dt less the dampers' loss
     rhs = rhs - springs
     terms.append(spring_scale)
+    if a.forces.friction_power is not None:  # contract part two: what the friction dissipates
+        rhs = rhs + a.forces.friction_power
+        terms.append(np.abs(a.forces.friction_power))
     scale = np.zeros(a.n_steps)
     for t in terms:
         scale = scale + t

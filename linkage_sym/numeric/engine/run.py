@@ -387,8 +387,8 @@ def needed_stages(scene: Scene) -> tuple[str, ...]:
     Kinematics output needs positions, velocities and accelerations (so does
     the ``instant_centres`` extension: velocities, and accelerations for the
     polygons); forces need velocities and accelerations only when inertia acts
-    on a link with mass, or a spring with damping acts (its force follows its
-    rate of extension).
+    on a link with mass, a spring with damping acts (its force follows its
+    rate of extension), or a joint's friction acts (its direction follows them).
     """
     outs = set(scene.outputs)
     forces = bool(outs & {"reactions", "driving", "frame"})
@@ -396,8 +396,11 @@ def needed_stages(scene: Scene) -> tuple[str, ...]:
         link.mass > 0 or link.inertia > 0 for link in scene.links
     )
     damping = any(k.damping != 0.0 for k in scene.active_springs)
+    # joint friction's direction follows the joints' relative velocities and accelerations
+    friction = scene.effects.friction and any(
+        j.friction is not None and j.friction.coefficient > 0 for j in scene.joints)
     stages = ["position"]
-    if "kinematics" in outs or "instant_centres" in outs or (forces and (inertia or damping)):
+    if "kinematics" in outs or "instant_centres" in outs or (forces and (inertia or damping or friction)):
         stages += ["velocity", "acceleration"]
     if forces:
         stages.append("forces")

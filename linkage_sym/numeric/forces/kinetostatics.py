@@ -36,11 +36,13 @@ import numpy as np
 
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.kinematics.gears import GearForces, pulling_note
+from linkage_sym.numeric.forces import friction as fr
+from linkage_sym.numeric.forces.global_friction import solve_global_friction
 from linkage_sym.numeric.forces.global_statics import frame_wrench, solve_dense, solve_global
 from linkage_sym.numeric.forces.loads import applied_wrenches
 from linkage_sym.numeric.forces.springs import record_keys, spring_values
 from linkage_sym.numeric.forces.policy import check_method
-from linkage_sym.numeric.results.result import Forces, GroupForces
+from linkage_sym.numeric.results.result import SELF_LOCKING, Forces, GroupForces
 from linkage_sym.numeric.results.wording import steps_text
 from linkage_sym.numeric.forces.statics import DyadForces, Geometry, InputForces, push
 from linkage_sym.numeric.forces.superposition import SuperpositionForces
@@ -202,9 +204,11 @@ class ForcePlan:
         flank: dict = {}
         pulling: dict = {}  # mesh -> steps of the last solve whose tooth load pulls
         solves = 1 + 2 * len(scene.meshes)
+        friction = bool(fr.active_joints(scene)) and K > 0
         for _ in range(solves):
             geo = Geometry(scene, Sk, flank)
-            reactions, efforts, frame, groups = self._solve(Sk, geo, qk, method, K, idx, N)
+            fset = fr.FrictionSet(scene, Sk, geo, K) if friction else None
+            reactions, efforts, frame, groups, fric = self._solve(Sk, geo, qk, method, K, idx, N, fset)
             wrong, pulling = {}, {}
             for m in scene.meshes:  # the tooth load must press, not pull: else the other flank
                 ux, uy = geo.line_of_action(m.name)
@@ -228,7 +232,7 @@ class ForcePlan:
             fx, fy, m = reactions[j.name]
             out_r[j.name] = np.stack([_spread(fx, idx, N), _spread(fy, idx, N)], axis=-1)
             out_m[j.name] = _spread(m, idx, N)
-        return Forces(
+        out = Forces(
             method=method,
             reactions=out_r,
             reaction_moments=out_m,
@@ -239,12 +243,19 @@ class ForcePlan:
             notes=notes,
             springs=springs,
         )
+        if scene.effects.friction:  # contract part two: friction's results, self-locking steps
+            ideal = self._solve(Sk, geo, qk, method, K, idx, N, None)[1] if friction else efforts
+            _friction_results(out, scene, fset, fric, ideal, efforts, idx, N)
+        return out
 
-    def _solve(self, Sk, geo, qk, method, K, idx, N):
-        """Reactions, efforts, frame wrench and group records at the ``K`` solved steps."""
+    def _solve(self, Sk, geo, qk, method, K, idx, N, fset=None):
+        """Reactions, efforts, frame wrench and group records at the ``K`` solved steps, and
+        with friction (``fset``) ``(mu, locked, lockers)`` (see
+        :func:`~linkage_sym.numeric.forces.friction.solve_group`), else ``None``."""
         scene = self.scene
         W = applied_wrenches(scene, Sk, q=qk)
         groups = []
+        fric = None
         if K == 0:
             reactions = {j.name: (np.zeros(0),) * 3 for j in scene.joints}
             efforts = {d.joint: np.zeros(0) for d in scene.drivers}
@@ -259,17 +270,33 @@ class ForcePlan:
                     info.amplification = np.full(N, np.nan)
                 groups.append(info)
         elif method == "global":
-            reactions, efforts = solve_global(scene, geo, W, self.L, K)
-            frame = frame_wrench(scene, geo, reactions, efforts)
+            if fset is None:
+                reactions, efforts = solve_global(scene, geo, W, self.L, K)
+                frame = frame_wrench(scene, geo, reactions, efforts)
+            else:
+                reactions, efforts, mu, locked, lockers = solve_global_friction(
+                    scene, geo, W, self.L, K, fset)
+                folded = {n: fr.fold(scene.joint(n), r, mu.get(n), geo) for n, r in reactions.items()}
+                frame = frame_wrench(scene, geo, folded, efforts)
+                fric = (mu, locked, lockers)
             if scene.active_springs:  # a spring anchored on the ground pulls on the frame too
                 g = W[GROUND]
                 frame = (frame[0] + g.fx, frame[1] + g.fy, frame[2] + g.m)
             groups = [GroupForces(g.links, "global") for g in self.decomposition.groups]
         else:
             reactions, efforts = {}, {}
+            mu, locked, lockers = {}, np.zeros(K, bool), {}
             for g, routine in zip(reversed(self.decomposition.groups), reversed(self.routines)):
                 sol = routine.solve(W, geo, self.L, K)
                 res, eff = sol.reactions, sol.efforts
+                if fset is not None:
+                    res, eff, m_g, lk, who = fr.solve_group(
+                        _linear(routine, geo, self.L, K), (res, eff), scene,
+                        g.joints, W, geo, fset, locked)
+                    mu.update(m_g)
+                    locked = locked | lk
+                    for i, names in who.items():
+                        lockers.setdefault(i, []).extend(names)
                 info = GroupForces(g.links, routine.method)
                 if sol.used is not None:
                     info.choices = routine.choices
@@ -280,14 +307,75 @@ class ForcePlan:
                 efforts.update(eff)
                 inside = set(g.links)
                 for name in g.external:
-                    push(
-                        W, scene.joint(name), geo, res[name], eff.get(name),
-                        only=W.keys() - inside,
-                    )
+                    j = scene.joint(name)
+                    r = res[name] if fset is None else fr.fold(j, res[name], mu.get(name), geo)
+                    push(W, j, geo, r, eff.get(name), only=W.keys() - inside)
             groups.reverse()
             w = W[GROUND]
             frame = (w.fx, w.fy, w.m)
-        return reactions, efforts, frame, groups
+            if fset is not None:
+                fric = (mu, locked, lockers)
+        return reactions, efforts, frame, groups, fric
+
+
+def _linear(routine, geo, L, K):
+    """A group routine as ``W -> (reactions, efforts)``: the linear solve the friction's
+    Newton calls (:func:`~linkage_sym.numeric.forces.friction.solve_group`)."""
+    def solve(W):
+        sol = routine.solve(W, geo, L, K)
+        return sol.reactions, sol.efforts
+    return solve
+
+
+def _friction_results(out: Forces, scene, fset, fric, ideal, efforts, idx, N) -> None:
+    """Fill the friction's fields of ``out`` over the ``N`` steps (see :class:`Forces`), its
+    notes (joints without a direction of friction), and NaN at the self-locking steps."""
+    K = N if idx is None else len(idx)
+    mu, locked, lockers = fric if fric is not None else ({}, np.zeros(K, bool), {})
+    per_joint = {}
+    for j in scene.joints:
+        if j.friction is not None:
+            m = mu.get(j.name)
+            per_joint[j.name] = _spread(np.zeros(K) if m is None else m, idx, N)
+    power = fset.power(mu) if fset is not None else np.zeros(K)
+    locked_n = _spread(locked, idx, N, False, bool)
+    messages = {}
+    for i, names in lockers.items():
+        step = int(i if idx is None else idx[i])
+        messages[step] = (
+            f"{SELF_LOCKING}: no finite driving effort moves the mechanism as prescribed: the "
+            f"friction at joint(s) {', '.join(dict.fromkeys(names))} grows with the effort "
+            "faster than the effort can move it")
+    eff = None
+    if len(scene.drivers) == 1:
+        (d,) = scene.drivers
+        e, e0 = np.asarray(efforts[d.joint], float), np.asarray(ideal[d.joint], float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            eta = np.where((e != 0) & (e0 != 0) & (np.sign(e) == np.sign(e0)), e0 / e, np.nan)
+        eff = _spread(eta, idx, N)
+    out.friction, out.friction_power, out.efficiency = per_joint, _spread(power, idx, N), eff
+    out.driving_ideal = {k: _spread(v, idx, N) for k, v in ideal.items()}
+    out.locked, out.lock_messages = locked_n, messages
+    if fset is not None:
+        out.notes += fset.notes(idx)
+    if locked_n.any():  # nothing is reported at a self-locking step but its status
+        arrays = [*out.reactions.values(), *out.reaction_moments.values(), *out.driving.values(),
+                  out.frame_force, out.frame_moment, *per_joint.values(), out.friction_power,
+                  *out.driving_ideal.values(), *([eff] if eff is not None else [])]
+        for a in arrays:
+            a[locked_n] = np.nan
+
+
+def mark_self_locking(status, messages, ok, forces: Forces) -> None:
+    """Give the steps at which the friction locks the mechanism the status ``self-locking``
+    and their message, and leave them out of ``ok``."""
+    if forces is None or forces.locked is None:
+        return
+    for i, text in forces.lock_messages.items():
+        if ok[i]:
+            status[i] = SELF_LOCKING
+            messages[i] = text
+            ok[i] = False
 
 
 def _spread(values, idx, N, fill=np.nan, dtype=float):

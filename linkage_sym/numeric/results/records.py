@@ -19,6 +19,8 @@ Examples
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 __all__ = ["RecordBlock"]
@@ -87,6 +89,13 @@ class RecordBlock:
             self.frame_force, self.frame_moment = rows(forces.frame_force), rows(forces.frame_moment)
             self.springs = {name: {k: rows(v) for k, v in rec.items()}
                             for name, rec in forces.springs.items()}
+            self.friction = None  # contract part two: with effects.friction and reactions
+            if forces.friction is not None and "reactions" in res.outputs:
+                self.friction = {name: (rows(v), "friction_force" if name in p_joints
+                                        else "friction_moment")
+                                 for name, v in forces.friction.items()}
+                self.friction_power = rows(forces.friction_power)
+                self.efficiency = None if forces.efficiency is None else rows(forces.efficiency)
         # extension: each ok step's estimated relative accuracy (numeric.results.accuracy)
         self.accuracy = {k: rows(v) for k, v in res.accuracy.items()} if res.accuracy else None
         self.centres = res.instant_centres if "instant_centres" in res.outputs else None
@@ -134,3 +143,10 @@ class RecordBlock:
         if self.springs:  # the contract's second part: each spring's length and force
             step["springs"] = {name: {k: v[i] for k, v in rec.items()}
                                for name, rec in self.springs.items()}
+        if self.friction is not None:
+            for name, (v, key) in self.friction.items():
+                step["joints"].setdefault(name, {})[key] = v[i]
+            step["friction_power"] = self.friction_power[i]
+            eta = None if self.efficiency is None else self.efficiency[i]
+            if eta is not None and math.isfinite(eta):  # only where it is defined
+                step["efficiency"] = eta

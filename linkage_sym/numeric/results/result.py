@@ -27,6 +27,9 @@ from linkage_sym.numeric.results.strict_json import LEFT_OUT, LeftOut, finite_on
 OK = "ok"
 UNASSEMBLABLE = "unassemblable"
 SINGULAR = "singular"
+SELF_LOCKING = "self-locking"
+"""Contract part two: a step at which no finite driving effort moves the mechanism against
+its joints' friction (:mod:`linkage_sym.numeric.forces.friction`)."""
 
 
 @dataclass
@@ -173,6 +176,22 @@ class Forces:
     notes: list = field(default_factory=list)
     """What the force solve could not settle, worded for the run's warnings."""
     springs: dict = field(default_factory=dict)
+    friction: dict | None = None
+    """With ``effects.friction``: joint -> (N,) friction (contract part two) of every joint
+    with a ``friction`` field, what ``links[0]`` exerts on ``links[1]``: the couple about
+    an ``R`` joint's pin (N·m), the force along a ``P`` joint's axis (N)."""
+    friction_power: np.ndarray | None = None
+    """(N,) the power the friction dissipates (W, >= 0)."""
+    efficiency: np.ndarray | None = None
+    """(N,) with one driver: its effort without friction over its effort with it, where
+    both are non-zero and of one sign (NaN elsewhere)."""
+    driving_ideal: dict | None = None
+    """Driven joint -> (N,) its effort with the friction left out."""
+    locked: np.ndarray | None = None
+    """(N,) bool: the steps at which the friction locks the mechanism (status
+    ``self-locking``)."""
+    lock_messages: dict = field(default_factory=dict)
+    """Step -> the message of a self-locking step."""
 
 
 @dataclass
@@ -478,6 +497,9 @@ class Analysis:
                 out += vec(f"joints.{name}.reaction", forces.reactions[name])
                 if name in self.p_joints:
                     out.append((f"joints.{name}.reaction_moment", forces.reaction_moments[name], "ok"))
+                if forces.friction is not None and name in forces.friction:  # contract part two
+                    key = "friction_force" if name in self.p_joints else "friction_moment"
+                    out.append((f"joints.{name}.{key}", forces.friction[name], "ok"))
         if want_kin:
             for name, lk in self.links.items():
                 out += _link_columns(name, lk, has_vel, has_acc)
@@ -493,6 +515,10 @@ class Analysis:
                 out.append(("frame.moment", forces.frame_moment, "ok"))
             for name, rec in forces.springs.items():  # the contract's second part
                 out += [(f"springs.{name}.{k}", v, "ok") for k, v in rec.items()]
+            if reactions and forces.friction is not None:  # contract part two
+                out.append(("friction_power", forces.friction_power, "ok"))
+                if forces.efficiency is not None:
+                    out.append(("efficiency", forces.efficiency, "finite"))
         if self.accuracy:  # extension: each ok step's estimated relative accuracy
             out += [(f"accuracy.{k}", v, "ok") for k, v in self.accuracy.items()]
         centres = self.instant_centres if "instant_centres" in self.outputs else None
