@@ -28,12 +28,14 @@ Examples
 
 from __future__ import annotations
 
+import json
 from importlib import resources
 
+from linkage_sym.centres import kennedy_lines, velocity
 from linkage_sym.codegen.javascript import mechanism_script
 from linkage_sym.model import Scene
 
-__all__ = ["page_html"]
+__all__ = ["layer_constants", "page_html"]
 
 
 def _read(name: str) -> str:
@@ -44,6 +46,16 @@ def _escape(text: str) -> str:
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
+def layer_constants() -> str:
+    """``LAYER_CONST``: the constants of the instant centres' construction the page's
+    ``centres.js`` uses, each read from the Python module that defines it."""
+    consts = {"FAR": kennedy_lines.FAR, "DEGENERATE": kennedy_lines.DEGENERATE,
+              "ROUNDING": kennedy_lines.ROUNDING, "DISTINCT": kennedy_lines.DISTINCT,
+              "UNCERTAIN": kennedy_lines.UNCERTAIN, "REST": velocity.REST,
+              "VELOCITY_FAR": velocity.FAR}
+    return f"const LAYER_CONST = {json.dumps(consts)};"
+
+
 def page_html(scene: Scene) -> str:
     """The page of ``scene`` (one HTML document, everything inline).
 
@@ -52,7 +64,8 @@ def page_html(scene: Scene) -> str:
     SceneError
         A scene the symbolic layer does not derive (a cam contact), naming the joint.
     """
-    script = mechanism_script(scene) + "\n" + _read("page.js")
+    script = "\n".join([mechanism_script(scene), layer_constants(), _read("centres.js"),
+                        _read("layers.js"), _read("page.js")])
     if "</script" in script.lower():  # pragma: no cover - nothing generated writes it
         raise ValueError("the page's script may not contain '</script'")
     out = _read("page.html")
