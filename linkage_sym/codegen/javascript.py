@@ -4,7 +4,9 @@ The page of :mod:`linkage_sym.page` solves a mechanism with the functions the de
 prints (:func:`~linkage_sym.codegen.compile.build_artifact` with ``printer="javascript"``:
 the same stages, the same layout as the NumPy runtime's, printed by SymPy's
 ``JavascriptCodePrinter`` after ``cse``) and a walk over the artifact's steps written in
-JavaScript (``evaluator.js`` beside this module, package data): the closed steps with the
+JavaScript (``evaluator.js`` beside this module, package data, and ``evaluator_rates.js``:
+the rate problems, the points by level and the force blocks, the hooks of
+:class:`~linkage_sym.codegen.evaluator.Evaluator`): the closed steps with the
 assembly-mode signs the NumPy runtime chooses, the Newton steps by the continuation policy
 of :mod:`linkage_sym.numeric.continuation` (whose constants are this module's
 :data:`CONSTANTS`, read from the Python modules that define them), the statuses, and the
@@ -30,7 +32,7 @@ import math
 from importlib import resources
 
 from linkage_sym.codegen.artifact import Artifact
-from linkage_sym.codegen.compile import build_artifact
+from linkage_sym.codegen.compile import _Builder
 from linkage_sym.codegen.runtime import ASSEMBLY_MATCH, SCREEN
 from linkage_sym.errors import SYMBOLIC_LACKS, SceneError
 from linkage_sym.model import Scene
@@ -41,7 +43,7 @@ from linkage_sym.numeric.results.transmission import rrr_dyads
 from linkage_sym.scene.load import dump_scene
 from linkage_sym.structure.parameters import driver_q0, ident, link_frames
 
-__all__ = ["CONSTANTS", "FORCE_OUTPUTS", "PAGE_FUNCTIONS", "POSITION_RECIPES",
+__all__ = ["CONSTANTS", "FORCE_OUTPUTS", "PAGE_FUNCTIONS", "POSITION_POINTS", "POSITION_RECIPES",
            "evaluator_source", "mechanism_model", "mechanism_script", "page_artifact",
            "page_scene"]
 
@@ -57,7 +59,12 @@ CONSTANTS = {
 }
 """The evaluator's constants, each the Python runtime's own (``CONST`` in the script)."""
 
-PAGE_FUNCTIONS = ("positions_", "newton_", "rates", "accelerations", "points")
+POSITION_POINTS = "position_points"
+"""A function the page's artifact adds: the first rows of ``points`` (the joints' positions,
+then the link frames' origins, as its layout places them), all a step of the sweep needs:
+the whole ``points`` (velocities, accelerations, the force blocks) only for the layers."""
+
+PAGE_FUNCTIONS = ("positions_", "newton_", "rates", "accelerations", "points", POSITION_POINTS)
 """The generated functions a page calls (by name or prefix): the positions' steps, ``A``'s
 entries and ``B qd`` (the singularity screen, the velocities), the accelerations'
 right-hand side and the points (joints, frame origins, centres of mass by level, the force
@@ -118,7 +125,16 @@ def page_artifact(scene: Scene) -> Artifact:
         for i, j in enumerate(scene.joints) if j.type in SYMBOLIC_LACKS]
     if problems:
         raise SceneError(problems)
-    return build_artifact(page_scene(scene), printer="javascript")
+    # the derivation's own builder, to print one more function from its equations
+    builder = _Builder(page_scene(scene), "javascript")
+    art = builder.artifact(None, None)
+    eqs = builder.eqs
+    outs = [e for j in scene.joints for e in eqs.joint_kin[j.name][0]]
+    outs += [e for n in scene.link_names for e in eqs.origin_kin[n][0]]
+    builder.add(POSITION_POINTS, outs, "the joints' positions, then the frame origins' "
+                "(the first rows of points: its layout)", True)
+    art.functions[POSITION_POINTS] = builder.funcs[POSITION_POINTS]
+    return art
 
 
 def mechanism_model(scene: Scene, art: Artifact) -> dict:

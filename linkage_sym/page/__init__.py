@@ -8,7 +8,13 @@ image.  The page draws the links, joints and traced paths on a canvas; plays the
 be dragged or typed, or a length typed, and re-derives the parameters and re-solves the
 whole sweep at once, the assembly modes chosen from the new assembly configuration as the
 scene format says; shows each step's status; and downloads the edited scene as a scene
-file.  For tests and scripts it defines ``window.linkageSym``:
+file.  Its layers (``layers.js``, ``centres.js``), each behind a checkbox and off when the
+page opens, draw the joints' and traced points' velocities and accelerations, the joint
+reactions and driving efforts (arrows with one scale over the sweep, written on the page),
+the instant centres with the three-centre lines of Kennedy's construction, and the RRR
+dyads' transmission angles; a layer the scene has no values for (no mass, inertia or load:
+no forces; no RRR dyad) is disabled, its reason shown.  For tests and scripts it defines
+``window.linkageSym``:
 
 - ``solve(q)``: the mechanism at the driver values ``q`` (a number for one driver, a list
   in the drivers' order or ``{joint: value}``; rad for an ``R`` driver, m for a ``P`` one,
@@ -16,7 +22,13 @@ file.  For tests and scripts it defines ``window.linkageSym``:
   ``{status, message, joints: {name: [x, y]}, points: {name: [x, y]}}``;
 - ``moveJoint(name, x, y)``: what a drag does (every joint at the same point moves with
   it); returns ``{error, counts}`` (the sweep's statuses counted);
-- ``scene()``: the current scene in the format's JSON (what ``linkage-sym analyze`` reads).
+- ``scene()``: the current scene in the format's JSON (what ``linkage-sym analyze`` reads);
+- ``layers(q)``: the layers' values at ``q`` (the drivers at the scene's speeds and
+  accelerations): ``{status, velocities: {joints, points}, accelerations: {joints, points},
+  reactions: {joint: [fx, fy]}, reaction_moments, driving: {joint: effort}, centres:
+  {"a,b": record}, lines, transmission_deg: {inner joint: degrees}}`` (``reactions`` and
+  ``driving`` null without forces; a centre's record as the result file's
+  ``instant_centres``); ``setLayer(name, on)``, ``layersAvailable()``, ``layerScales()``.
 
 Examples
 --------

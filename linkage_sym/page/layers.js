@@ -22,9 +22,11 @@ const PageLayers = (function () {
   function pairs(obj) { return Object.entries(obj); }
 
   // -- values ---------------------------------------------------------------------------
-  function values(mech, model, step) {
+  function values(mech, model, step, centres = true, forces = true) {
     // one solved step's layers (window.linkageSym.layers): the rates at the drivers'
-    // speeds and accelerations of the scene; at a step that is not ok, only its status
+    // speeds and accelerations of the scene (the instant centres unless `centres` is
+    // false: a drag needs the other values at every step, for the scales, and the centres
+    // of the step drawn); at a step that is not ok, only its status
     const out = { status: step.status, message: step.message || null,
       velocities: { joints: {}, points: {} }, accelerations: { joints: {}, points: {} },
       reactions: null, reaction_moments: null, driving: null, centres: {}, lines: [],
@@ -37,7 +39,7 @@ const PageLayers = (function () {
       for (const [n, v] of pairs(kin.joints)) if (v[level]) out[key].joints[n] = v[level];
       for (const [n, v] of pairs(kin.points)) if (v[level]) out[key].points[n] = v[level];
     }
-    const r = mech.reactions(st);
+    const r = forces ? mech.reactions(st) : null;
     if (r !== null) {
       out.reactions = {}; out.reaction_moments = {};
       for (const [n, f] of pairs(r.reactions)) { out.reactions[n] = [f[0], f[1]]; out.reaction_moments[n] = f[2]; }
@@ -46,10 +48,13 @@ const PageLayers = (function () {
     const joints = {};
     for (const [n, v] of pairs(kin.joints)) joints[n] = v[0];
     const rotation = (link) => (link === "ground" ? 0.0 : step.X[mech.angleOf[link]] - mech.geometry.frames[link].theta0);
-    const ic = PageCentres.instantCentres(model, { joints: joints, rotation: rotation },
+    out.centresOf = () => PageCentres.instantCentres(model, { joints: joints, rotation: rotation },
       (link) => mech.frameMotion(link, st), mech.L);
-    out.centres = ic.centres;
-    out.lines = ic.lines;
+    if (centres) {
+      const ic = out.centresOf();
+      out.centres = ic.centres;
+      out.lines = ic.lines;
+    }
     for (const [inner, e1, e2] of model.dyads) {
       const J = joints[inner], u = [joints[e1][0] - J[0], joints[e1][1] - J[1]];
       const v = [joints[e2][0] - J[0], joints[e2][1] - J[1]];
@@ -91,7 +96,7 @@ const PageLayers = (function () {
     function stepValues(k) {
       const mech = env.mechanism();
       if (cache === null) cache = new Array(env.cycle().length).fill(null);
-      if (cache[k] === null) cache[k] = values(mech, model, env.cycle()[k]);
+      if (cache[k] === null) cache[k] = values(mech, model, env.cycle()[k], false, Boolean(on.forces));
       return cache[k];
     }
 
@@ -150,6 +155,7 @@ const PageLayers = (function () {
       on[name] = Boolean(value);
       if (boxes[name]) boxes[name].checked = on[name];
       scales = null;
+      cache = null; // the forces are computed only while their layer is on
       if (!LAYERS.some(([n]) => on[n])) showScales();
       env.redraw();
     }
@@ -338,7 +344,10 @@ const PageLayers = (function () {
       if (!s || s.status !== "ok") return;
       if (scales === null) { scales = computeScales(); showScales(); }
       const v = stepValues(k);
-      if (on.centres) drawCentres(v);
+      if (on.centres) {
+        if (v.centresOf) { const ic = v.centresOf(); v.centres = ic.centres; v.lines = ic.lines; v.centresOf = null; }
+        drawCentres(v);
+      }
       if (on.transmission) drawTransmission(v);
       if (on.velocity) drawArrows(v, "velocity");
       if (on.acceleration) drawArrows(v, "acceleration");
@@ -353,7 +362,7 @@ const PageLayers = (function () {
       scales: () => { if (scales === null && env.mechanism() !== null) scales = computeScales(); return Object.assign({}, scales); },
       values: (step) => {
         const v = values(env.mechanism(), model, step);
-        delete v.rotation; delete v.points; delete v.joints;
+        delete v.rotation; delete v.points; delete v.joints; delete v.centresOf;
         return v;
       },
     };
