@@ -120,13 +120,15 @@ def main(argv=None) -> int:
                 "pivot by 1 % of the mechanism's size: the whole sweep solved again",
         "target_ms_dyad_mechanisms": TARGET_MS,
         "mechanisms": results,
+        "load_average_at_end": os.getloadavg()[0],
     }
     Path(args.out).write_text(json.dumps(report, indent=2) + "\n")
     for name, r in results.items():
-        cells = ", ".join(f"{k} {r[k]['median_ms']:.1f} ms" for k in
+        cells = ", ".join(f"{k} {r[k]['median_ms']:.1f} ms (min {r[k]['min_ms']:.1f})" for k in
                           ("solve", "solve_and_draw", "solve_and_draw_every_layer"))
         print(f"{name:14s} ({r['steps']} steps): {cells}")
-    print(f"written {args.out}")
+    print(f"load average {report['load_average_at_start']:.1f} at the start, "
+          f"{report['load_average_at_end']:.1f} at the end; written {args.out}")
     return 0
 
 
