@@ -91,7 +91,13 @@ const PageLayers = (function () {
     const why = availability(model, model.artifact);
     const boxes = {};
 
-    function reset() { cache = null; scales = null; }
+    function reset(keepScales = false) {
+      // a new sweep: its values are computed again when drawn; the scales too, unless a
+      // drag is going on (the arrows keep their scales until it ends, and only the step
+      // drawn is computed while it lasts)
+      cache = null;
+      if (!keepScales) scales = null;
+    }
 
     function stepValues(k) {
       const mech = env.mechanism();

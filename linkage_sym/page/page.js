@@ -47,7 +47,7 @@
       cycle = [];
     }
     view = null;
-    layerView.reset();
+    layerView.reset(!tables); // while a drag goes on, the arrows keep their scales
     if (tables) refreshTables(); // a drag refreshes them once, when it ends
     showStatus();
   }
@@ -493,7 +493,7 @@
       view = keep; // the view stays put while dragging
     });
     canvas.addEventListener("pointerup", () => {
-      if (dragging !== null) refreshTables();
+      if (dragging !== null) { refreshTables(); layerView.reset(); }
       dragging = null; view = null;
     });
     rebuild();
