@@ -5,7 +5,9 @@
     linkage-sym view SCENE.json -o PAGE.html
 
 The page (:mod:`linkage_sym.page`) needs no network: its script, the functions the symbolic
-layer prints in JavaScript and the evaluator that walks them are inline.  A scene the
+layer prints in JavaScript and the evaluator that walks them are inline.  Its layers
+(velocities, accelerations, reactions and driving efforts, instant centres, transmission
+angles) are checkboxes on the page, off until ticked.  A scene the
 symbolic layer does not derive (a cam contact) is refused with the joint named; nothing is
 written.
 """
@@ -36,7 +38,8 @@ def register(sub) -> None:
     """Add the ``view`` command to the ``linkage-sym`` subparsers ``sub``."""
     v = sub.add_parser(
         "view", help="write one self-contained HTML page that solves the mechanism live "
-                     "(drag joints, type lengths, play the sweep)")
+                     "(drag joints, type lengths, play the sweep; velocity, acceleration, force, "
+                     "instant-centre and transmission-angle layers)")
     v.add_argument("scene", help="scene JSON file")
     v.add_argument("-o", "--output", required=True,
                    help="the page to write (.html; - for standard output)")

@@ -407,23 +407,31 @@ const LinkageEvaluator = (function () {
     }
 
     // -- statuses and points ----------------------------------------------------------------
-    status(X, Q) {
+    status(X, Q, CX, SX) {
       // ok or singular (the runtime's screen: a group block's Hadamard ratio below SCREEN,
       // then the dimensionless A's condition number against SINGULAR_COND)
       const art = this.art, m = this.m;
-      const CX = X.map(Math.cos), SX = X.map(Math.sin);
+      if (!CX) { CX = X.map(Math.cos); SX = X.map(Math.sin); }
       const out = this.f.rates(X, null, null, Q, this.qzeros, null, null, this.P, CX, SX);
-      const A = [];
-      for (let i = 0; i < m; i++) A.push(new Array(m).fill(0.0));
-      art.pattern.forEach(([i, j], k) => { A[i][j] = out[k]; });
+      if (this.screenBlocks === undefined) {
+        // each group block of more than one row: its entries of A as (row, column, index)
+        this.screenBlocks = [];
+        for (const g of art.groups) {
+          const r0 = g.rows[0], r1 = g.rows[1], c0 = g.cols[0], c1 = g.cols[g.cols.length - 1] + 1;
+          if (r1 - r0 === 1) continue;
+          const entries = [];
+          art.pattern.forEach(([i, j], k) => {
+            if (i >= r0 && i < r1 && j >= c0 && j < c1) entries.push([i - r0, j - c0, k]);
+          });
+          this.screenBlocks.push({ n: r1 - r0, entries: entries });
+        }
+      }
       let screened = false;
-      for (const g of art.groups) {
-        const r0 = g.rows[0], r1 = g.rows[1], c0 = g.cols[0], c1 = g.cols[g.cols.length - 1] + 1;
-        const n = r1 - r0;
-        if (n === 1) continue;
-        const B = [];
-        for (let i = r0; i < r1; i++) B.push(A[i].slice(c0, c1));
-        const d = Math.abs(det(B));
+      for (const blk of this.screenBlocks) {
+        const n = blk.n, B = [];
+        for (let i = 0; i < n; i++) B.push(new Array(n).fill(0.0));
+        for (const [i, j, k] of blk.entries) B[i][j] = out[k];
+        const d = Math.abs(n === 2 ? B[0][0] * B[1][1] - B[0][1] * B[1][0] : det(B));
         let rows = 1.0, cols = 1.0;
         for (let i = 0; i < n; i++) {
           let sr = 0, sc = 0;
@@ -434,6 +442,9 @@ const LinkageEvaluator = (function () {
         if (!(ratio >= CONST.SCREEN)) screened = true;
       }
       if (!screened) return { status: "ok", condition: null };
+      const A = [];
+      for (let i = 0; i < m; i++) A.push(new Array(m).fill(0.0));
+      art.pattern.forEach(([i, j], k) => { A[i][j] = out[k]; });
       const As = A.map((row, i) => row.map((v, j) =>
         v * (art.rows_length[i] ? 1.0 / this.L : 1.0) * (art.cols_length[j] ? this.L : 1.0)));
       let cond = Infinity;
@@ -444,11 +455,12 @@ const LinkageEvaluator = (function () {
       return { status: cond <= CONST.SINGULAR_COND ? "ok" : "singular", condition: cond };
     }
 
-    points(X, Q) {
-      // {joints: {name: [x, y]}, points: {name: [x, y]}} from the points function (level 0)
+    points(X, Q, CX, SX) {
+      // {joints: {name: [x, y]}, points: {name: [x, y]}} from the points function (level 0;
+      // position_points, its first rows, where the artifact has it)
       const art = this.art, model = this.model;
-      const CX = X.map(Math.cos), SX = X.map(Math.sin);
-      const out = this.call("points", X, Q, null, CX, SX);
+      if (!CX) { CX = X.map(Math.cos); SX = X.map(Math.sin); }
+      const out = this.call(this.f.position_points ? "position_points" : "points", X, Q, null, CX, SX);
       const rows = (key) => out.slice(art.layout[key][0], art.layout[key][1]);
       const joints = {};
       for (const n of model.order) joints[n] = rows("joint:" + n + ":0");
@@ -501,8 +513,9 @@ const LinkageEvaluator = (function () {
           return { status: "unassemblable", message: g.label + " (" + g.links.join(", ") + ") cannot be assembled" + why,
             joints: {}, points: {}, X: s.X, Q: s.Q };
         }
-        const st = this.status(s.X, s.Q);
-        const pts = this.points(s.X, s.Q);
+        const CX = s.X.map(Math.cos), SX = s.X.map(Math.sin);
+        const st = this.status(s.X, s.Q, CX, SX);
+        const pts = this.points(s.X, s.Q, CX, SX);
         return { status: st.status, message: st.status === "singular" ?
           "singular position: condition number " + st.condition.toPrecision(3) : null,
           joints: pts.joints, points: pts.points, X: s.X, Q: s.Q };

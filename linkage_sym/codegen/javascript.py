@@ -4,7 +4,9 @@ The page of :mod:`linkage_sym.page` solves a mechanism with the functions the de
 prints (:func:`~linkage_sym.codegen.compile.build_artifact` with ``printer="javascript"``:
 the same stages, the same layout as the NumPy runtime's, printed by SymPy's
 ``JavascriptCodePrinter`` after ``cse``) and a walk over the artifact's steps written in
-JavaScript (``evaluator.js`` beside this module, package data): the closed steps with the
+JavaScript (``evaluator.js`` beside this module, package data, and ``evaluator_rates.js``:
+the rate problems, the points by level and the force blocks, the hooks of
+:class:`~linkage_sym.codegen.evaluator.Evaluator`): the closed steps with the
 assembly-mode signs the NumPy runtime chooses, the Newton steps by the continuation policy
 of :mod:`linkage_sym.numeric.continuation` (whose constants are this module's
 :data:`CONSTANTS`, read from the Python modules that define them), the statuses, and the
@@ -24,23 +26,26 @@ True
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from importlib import resources
 
 from linkage_sym.codegen.artifact import Artifact
-from linkage_sym.codegen.compile import build_artifact
+from linkage_sym.codegen.compile import _Builder
 from linkage_sym.codegen.runtime import ASSEMBLY_MATCH, SCREEN
 from linkage_sym.errors import SYMBOLIC_LACKS, SceneError
 from linkage_sym.model import Scene
 from linkage_sym.numeric.continuation import roots
 from linkage_sym.numeric.engine.run import MAX_ANGLE_STEP, MAX_SLIDE_STEP, SINGULAR_COND
 from linkage_sym.numeric.kinematics.loci import TANGENT_ULPS
+from linkage_sym.numeric.results.transmission import rrr_dyads
 from linkage_sym.scene.load import dump_scene
 from linkage_sym.structure.parameters import driver_q0, ident, link_frames
 
-__all__ = ["CONSTANTS", "PAGE_FUNCTIONS", "POSITION_RECIPES", "evaluator_source",
-           "mechanism_model", "mechanism_script", "page_artifact"]
+__all__ = ["CONSTANTS", "FORCE_OUTPUTS", "PAGE_FUNCTIONS", "POSITION_POINTS", "POSITION_RECIPES",
+           "evaluator_source", "mechanism_model", "mechanism_script", "page_artifact",
+           "page_scene"]
 
 CONSTANTS = {
     "TOL": roots.TOL, "MAX_ITER": roots.MAX_ITER, "STALL_ITER": roots.STALL_ITER,
@@ -54,9 +59,20 @@ CONSTANTS = {
 }
 """The evaluator's constants, each the Python runtime's own (``CONST`` in the script)."""
 
-PAGE_FUNCTIONS = ("positions_", "newton_", "rates", "points")
+POSITION_POINTS = "position_points"
+"""A function the page's artifact adds: the first rows of ``points`` (the joints' positions,
+then the link frames' origins, as its layout places them), all a step of the sweep needs:
+the whole ``points`` (velocities, accelerations, the force blocks) only for the layers."""
+
+PAGE_FUNCTIONS = ("positions_", "newton_", "rates", "accelerations", "points", POSITION_POINTS)
 """The generated functions a page calls (by name or prefix): the positions' steps, ``A``'s
-entries (the singularity screen) and the points (joints, frame origins)."""
+entries and ``B qd`` (the singularity screen, the velocities), the accelerations'
+right-hand side and the points (joints, frame origins, centres of mass by level, the force
+blocks' entries)."""
+
+FORCE_OUTPUTS = ("reactions", "driving")
+"""The outputs a page's artifact adds for a scene with masses, inertias or loads (the
+layer of reactions and driving efforts)."""
 
 POSITION_RECIPES = ("l", "beta", "x", "y", "theta0", "gamma", "delta", "p", "q", "epsilon",
                     "xi", "eta")
@@ -65,12 +81,37 @@ a drag (``RECIPES`` of ``evaluator.js``); the others are the scene's numbers."""
 
 
 def evaluator_source() -> str:
-    """The text of ``evaluator.js`` (the walk, Newton's continuation, the recipes)."""
-    return resources.files("linkage_sym.codegen").joinpath("evaluator.js").read_text("utf-8")
+    """The text of ``evaluator.js`` (the walk, Newton's continuation, the recipes), then
+    ``evaluator_rates.js`` (the rate problems, the points by level, the forces)."""
+    folder = resources.files("linkage_sym.codegen")
+    return "\n".join(folder.joinpath(name).read_text("utf-8")
+                     for name in ("evaluator.js", "evaluator_rates.js"))
+
+
+def page_scene(scene: Scene) -> Scene:
+    """``scene`` with the outputs its page's layers need: ``kinematics`` (velocities and
+    accelerations), and the reactions and driving efforts where the scene has something
+    they act on (a link's mass or inertia, a load); the same scene where it lists them.
+
+    Examples
+    --------
+    >>> from linkage_sym.examples import load_example
+    >>> s = load_example("crank_rocker")
+    >>> page_scene(s) is s
+    True
+    """
+    want = ["kinematics"]
+    if scene.loads or any(lk.mass > 0 or lk.inertia > 0 for lk in scene.links):
+        want += FORCE_OUTPUTS
+    missing = [o for o in want if o not in scene.outputs]
+    if not missing:
+        return scene
+    return dataclasses.replace(scene, outputs=tuple(scene.outputs) + tuple(missing))
 
 
 def page_artifact(scene: Scene) -> Artifact:
-    """``scene``'s artifact with JavaScript sources (derived here: the cache holds NumPy's).
+    """``scene``'s artifact with JavaScript sources (derived here: the cache holds NumPy's),
+    derived with the outputs the page's layers need (:func:`page_scene`).
 
     Raises
     ------
@@ -84,7 +125,16 @@ def page_artifact(scene: Scene) -> Artifact:
         for i, j in enumerate(scene.joints) if j.type in SYMBOLIC_LACKS]
     if problems:
         raise SceneError(problems)
-    return build_artifact(scene, printer="javascript")
+    # the derivation's own builder, to print one more function from its equations
+    builder = _Builder(page_scene(scene), "javascript")
+    art = builder.artifact(None, None)
+    eqs = builder.eqs
+    outs = [e for j in scene.joints for e in eqs.joint_kin[j.name][0]]
+    outs += [e for n in scene.link_names for e in eqs.origin_kin[n][0]]
+    builder.add(POSITION_POINTS, outs, "the joints' positions, then the frame origins' "
+                "(the first rows of points: its layout)", True)
+    art.functions[POSITION_POINTS] = builder.funcs[POSITION_POINTS]
+    return art
 
 
 def mechanism_model(scene: Scene, art: Artifact) -> dict:
@@ -92,7 +142,8 @@ def mechanism_model(scene: Scene, art: Artifact) -> dict:
 
     The joints (type, links, assembly position, a ``P`` joint's axis, a mesh's carrier and
     pivots), the drivers (values in rad or m), the links' centres of mass, the loads'
-    points, the traced points, the link frames' joints, the parameters (recipe and the
+    points and factors over the cycle, the RRR dyads (inner joint, external joints: the
+    transmission angles), the traced points, the link frames' joints, the parameters (recipe and the
     scene's value), the artifact's records and the scene in the file layout
     (:func:`~linkage_sym.scene.load.dump_scene`).
     """
@@ -107,17 +158,19 @@ def mechanism_model(scene: Scene, art: Artifact) -> dict:
             rec["pivots"] = [p.name for p in scene.gear_pivots(j)]
         joints[j.name] = rec
     drivers = [{"joint": d.joint, "kind": d.kind, "toward": d.toward, "start": d.start,
-                "stop": d.stop, "steps": d.steps} for d in scene.drivers]
+                "stop": d.stop, "steps": d.steps, "speed": float(d.speed),
+                "acceleration": float(d.acceleration)} for d in scene.drivers]
     return {
         "name": scene.name,
         "order": [j.name for j in scene.joints],
+        "link_names": list(scene.link_names),
         "joints": joints,
         "drivers": drivers,
         "q0": [driver_q0(scene)[d.joint] for d in scene.drivers],
         "links": {lk.name: {"com": None if lk.com is None else list(lk.com)} for lk in scene.links},
-        "ident": {n: ident(n) for n in scene.link_names},
-        "loads": [{"link": ld.link, "at": None if ld.at is None else list(ld.at)}
-                  for ld in scene.loads],
+        "ident": {n: ident(n) for n in (*scene.link_names, *(j.name for j in scene.joints))},
+        "loads": [_load(ld) for ld in scene.loads],
+        "dyads": [list(d) for d in rrr_dyads(scene)],
         "points": [{"name": p.name, "link": p.link, "at": list(p.at)} for p in scene.points],
         "frames": {n: [f.u, f.v] for n, f in frames.items()},
         "params": [{"name": p.name, "recipe": list(p.recipe.key),
@@ -134,8 +187,21 @@ def mechanism_model(scene: Scene, art: Artifact) -> dict:
             "pattern": [list(p) for p in art.pattern],
             "layout": {k: list(v) for k, v in art.layout.items()},
             "force_names": list(art.force_names),
+            "stages": list(art.stages),
+            "forces": [f.to_dict() for f in art.forces],
+            "flanks": list(art.flanks),
+            "load_entries": {str(k): v for k, v in art.load_entries().items()},
         },
     }
+
+
+def _load(ld) -> dict:
+    """A load as the page reads it: its link and point, and how it varies over the cycle
+    (:func:`~linkage_sym.numeric.forces.loads.load_factor`)."""
+    return {"link": ld.link, "at": None if ld.at is None else list(ld.at),
+            "driver": ld.driver, "period": ld.period,
+            "table": None if ld.table is None else [list(ld.table.q), list(ld.table.scale)],
+            "active": None if ld.active is None else list(ld.active)}
 
 
 def _json(value) -> str:

@@ -8,7 +8,13 @@ image.  The page draws the links, joints and traced paths on a canvas; plays the
 be dragged or typed, or a length typed, and re-derives the parameters and re-solves the
 whole sweep at once, the assembly modes chosen from the new assembly configuration as the
 scene format says; shows each step's status; and downloads the edited scene as a scene
-file.  For tests and scripts it defines ``window.linkageSym``:
+file.  Its layers (``layers.js``, ``centres.js``), each behind a checkbox and off when the
+page opens, draw the joints' and traced points' velocities and accelerations, the joint
+reactions and driving efforts (arrows with one scale over the sweep, written on the page),
+the instant centres with the three-centre lines of Kennedy's construction, and the RRR
+dyads' transmission angles; a layer the scene has no values for (no mass, inertia or load:
+no forces; no RRR dyad) is disabled, its reason shown.  For tests and scripts it defines
+``window.linkageSym``:
 
 - ``solve(q)``: the mechanism at the driver values ``q`` (a number for one driver, a list
   in the drivers' order or ``{joint: value}``; rad for an ``R`` driver, m for a ``P`` one,
@@ -16,7 +22,13 @@ file.  For tests and scripts it defines ``window.linkageSym``:
   ``{status, message, joints: {name: [x, y]}, points: {name: [x, y]}}``;
 - ``moveJoint(name, x, y)``: what a drag does (every joint at the same point moves with
   it); returns ``{error, counts}`` (the sweep's statuses counted);
-- ``scene()``: the current scene in the format's JSON (what ``linkage-sym analyze`` reads).
+- ``scene()``: the current scene in the format's JSON (what ``linkage-sym analyze`` reads);
+- ``layers(q)``: the layers' values at ``q`` (the drivers at the scene's speeds and
+  accelerations): ``{status, velocities: {joints, points}, accelerations: {joints, points},
+  reactions: {joint: [fx, fy]}, reaction_moments, driving: {joint: effort}, centres:
+  {"a,b": record}, lines, transmission_deg: {inner joint: degrees}}`` (``reactions`` and
+  ``driving`` null without forces; a centre's record as the result file's
+  ``instant_centres``); ``setLayer(name, on)``, ``layersAvailable()``, ``layerScales()``.
 
 A mechanism with cam contacts, which the symbolic layer does not derive, is solved instead by
 ``cams.js`` (inlined after the evaluator): a port of the numeric layer's input-link, RRR
@@ -35,16 +47,18 @@ Examples
 
 from __future__ import annotations
 
+import json
 from importlib import resources
 
 import json
 import math
 
+from linkage_sym.centres import kennedy_lines, velocity
 from linkage_sym.codegen.javascript import CONSTANTS, evaluator_source, mechanism_script
 from linkage_sym.model import Scene
 from linkage_sym.page.cam_model import cam_page_model
 
-__all__ = ["cam_script", "page_html"]
+__all__ = ["cam_script", "layer_constants", "page_html"]
 
 
 def _read(name: str) -> str:
@@ -69,6 +83,16 @@ def cam_script(scene: Scene) -> str:
                       "const GENERATED = {};", f"const MODEL = {_json(cam_page_model(scene))};"])
 
 
+def layer_constants() -> str:
+    """``LAYER_CONST``: the constants of the instant centres' construction the page's
+    ``centres.js`` uses, each read from the Python module that defines it."""
+    consts = {"FAR": kennedy_lines.FAR, "DEGENERATE": kennedy_lines.DEGENERATE,
+              "ROUNDING": kennedy_lines.ROUNDING, "DISTINCT": kennedy_lines.DISTINCT,
+              "UNCERTAIN": kennedy_lines.UNCERTAIN, "REST": velocity.REST,
+              "VELOCITY_FAR": velocity.FAR}
+    return f"const LAYER_CONST = {json.dumps(consts)};"
+
+
 def page_html(scene: Scene) -> str:
     """The page of ``scene`` (one HTML document, everything inline).
 
@@ -78,10 +102,11 @@ def page_html(scene: Scene) -> str:
         A mechanism with cam contacts and a group the page's port of the solvers does not
         solve (a dyad other than RRR, a gear, a Newton group), naming it.
     """
+    layers = [layer_constants(), _read("centres.js"), _read("layers.js")]
     if scene.cams:  # the symbolic layer derives no cam contact: cams.js ports the solvers
-        script = "\n".join([cam_script(scene), _read("cams.js"), _read("page.js")])
+        script = "\n".join([cam_script(scene), _read("cams.js"), *layers, _read("page.js")])
     else:
-        script = mechanism_script(scene) + "\n" + _read("page.js")
+        script = "\n".join([mechanism_script(scene), *layers, _read("page.js")])
     if "</script" in script.lower():  # pragma: no cover - nothing generated writes it
         raise ValueError("the page's script may not contain '</script'")
     out = _read("page.html")

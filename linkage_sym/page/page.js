@@ -30,6 +30,9 @@
   const $ = (id) => document.getElementById(id);
   const canvas = $("view");
   const ctx = canvas.getContext("2d");
+  // the layers (layers.js): off until a box is ticked
+  const layerView = PageLayers.create({ model: model, ctx: ctx, canvas: canvas,
+    toCanvas: (p) => toCanvas(p), mechanism: () => mech, cycle: () => cycle, redraw: () => draw() });
 
   // -- solving --------------------------------------------------------------------------
   function rebuild(tables = true) {
@@ -45,6 +48,7 @@
       cycle = [];
     }
     view = null;
+    layerView.reset(!tables); // while a drag goes on, the arrows keep their scales
     if (tables) refreshTables(); // a drag refreshes them once, when it ends
     showStatus();
   }
@@ -59,6 +63,13 @@
     if (mech === null) return { status: "error", message: problem, joints: {}, points: {} };
     const got = mech.solveSteps([driverArray(q)])[0];
     return { status: got.status, message: got.message, joints: got.joints, points: got.points };
+  }
+
+  function layers(q) {
+    // the layers' values at the driver values q (as solve reads them), the drivers at the
+    // scene's speeds and accelerations
+    if (mech === null) throw new Error(problem);
+    return layerView.values(mech.solveSteps([driverArray(q)])[0]);
   }
 
   function sceneJSON() {
@@ -299,6 +310,7 @@
       ctx.font = "12px sans-serif"; ctx.lineWidth = 4; ctx.strokeStyle = "#fbfbf8";
       ctx.strokeText(n, px + lw, py + lw); ctx.fillText(n, px + lw, py + lw);
     }
+    if (!editing) layerView.draw(index);
   }
 
   function drawGrid() {
@@ -508,7 +520,7 @@
       view = keep; // the view stays put while dragging
     });
     canvas.addEventListener("pointerup", () => {
-      if (dragging !== null) refreshTables();
+      if (dragging !== null) { refreshTables(); layerView.reset(); }
       dragging = null; view = null;
     });
     rebuild();
@@ -520,6 +532,10 @@
     moveJoint: (name, x, y) => moveJoint(name, x, y),
     scene: sceneJSON,
     summary: summary,
+    layers: layers,
+    setLayer: (name, on) => layerView.setLayer(name, on),
+    layerScales: () => layerView.scales(),
+    layersAvailable: () => layerView.available(),
     step: (k) => { index = k; playing = false; showStatus(); draw(); },
     canvasPoint: (name) => { if (view === null) fit(); return toCanvas(model.joints[name].at); },
   };
