@@ -45,7 +45,7 @@ from linkage_sym.structure.parameters import driver_q0, ident, link_frames
 
 __all__ = ["CONSTANTS", "FORCE_OUTPUTS", "PAGE_FUNCTIONS", "POSITION_POINTS", "POSITION_RECIPES",
            "evaluator_source", "mechanism_model", "mechanism_script", "page_artifact",
-           "page_scene"]
+           "page_scene", "forces_left_out"]
 
 CONSTANTS = {
     "TOL": roots.TOL, "MAX_ITER": roots.MAX_ITER, "STALL_ITER": roots.STALL_ITER,
@@ -100,6 +100,11 @@ def page_scene(scene: Scene) -> Scene:
     >>> page_scene(s) is s
     True
     """
+    if forces_left_out(scene) is not None:  # the page derives the kinematics alone
+        outputs = tuple(o for o in scene.outputs if o not in (*FORCE_OUTPUTS, "frame"))
+        outputs += () if "kinematics" in outputs else ("kinematics",)
+        effects = dataclasses.replace(scene.effects, springs=False, friction=False)
+        return dataclasses.replace(scene, outputs=outputs, effects=effects)
     want = ["kinematics"]
     if scene.loads or any(lk.mass > 0 or lk.inertia > 0 for lk in scene.links):
         want += FORCE_OUTPUTS
@@ -107,6 +112,28 @@ def page_scene(scene: Scene) -> Scene:
     if not missing:
         return scene
     return dataclasses.replace(scene, outputs=tuple(scene.outputs) + tuple(missing))
+
+
+def forces_left_out(scene: Scene) -> str | None:
+    """Why a page of ``scene`` leaves its forces out, or None: the symbolic layer does not
+    derive acting springs or joint friction (the contract's second part) in its force
+    equations yet, so such a page solves and draws the kinematics, and its force layer
+    says why it is off.
+
+    Examples
+    --------
+    >>> from linkage_sym.examples import load_example
+    >>> forces_left_out(load_example("crank_rocker")) is None
+    True
+    >>> forces_left_out(load_example("slider_crank_press_friction"))
+    "the page's equations leave the joints' friction out (the numeric methods solve it)"
+    """
+    if scene.effects.friction and any(
+            j.friction is not None and j.friction.coefficient > 0 for j in scene.joints):
+        return "the page's equations leave the joints' friction out (the numeric methods solve it)"
+    if scene.active_springs:
+        return "the page's equations leave the springs out (the numeric methods solve them)"
+    return None
 
 
 def page_artifact(scene: Scene) -> Artifact:
@@ -177,6 +204,7 @@ def mechanism_model(scene: Scene, art: Artifact) -> dict:
                     "value": float(p.recipe.value(scene, frames))} for p in art.params],
         "sigmas": art.sigmas,
         "flanks": len(art.flanks),
+        "forces_left_out": forces_left_out(scene),
         "scene": dump_scene(scene),
         "artifact": {
             "x": list(art.x), "q": list(art.q), "sigmas": art.sigmas,

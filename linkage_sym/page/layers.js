@@ -69,13 +69,19 @@ const PageLayers = (function () {
 
   function availability(model, art) {
     // {layer: null (available) or why not}
+    if (model.cams) { // cams.js ports the position solvers only
+      const camWhy = "a cam mechanism's page solves its positions only (the numeric solvers " +
+        "ported, no derived rates)";
+      return { velocity: camWhy, acceleration: camWhy, forces: camWhy, centres: camWhy,
+        transmission: camWhy };
+    }
     const stages = art.stages;
     const noRates = "the scene's equations were derived without velocities";
     return {
       velocity: stages.includes("velocity") ? null : noRates,
       acceleration: stages.includes("acceleration") ? null : noRates,
-      forces: stages.includes("forces") ? null : "the scene gives no masses, inertias or " +
-        "loads: no force acts on its links",
+      forces: model.forces_left_out ? model.forces_left_out : stages.includes("forces") ? null :
+        "the scene gives no masses, inertias or loads: no force acts on its links",
       centres: stages.includes("velocity") ? null : noRates,
       transmission: model.dyads.length ? null : "the mechanism has no RRR dyad",
     };

@@ -156,3 +156,20 @@ console.log(JSON.stringify(got.map((g) => ({{status: g.status, joints: g.joints}
             for j in scene.joints:
                 err = np.max(np.abs(np.array(g["joints"][j.name]) - res.joints[j.name].position[k]))
                 assert err <= POSITION_TOL * L, (case, k, j.name)
+
+
+@pytest.mark.parametrize("name, word", [("crank_rocker_spring", "springs"),
+                                        ("slider_crank_press_friction", "friction")])
+def test_a_page_of_springs_or_friction_derives_kinematics_and_says_why_forces_are_off(name, word):
+    """The symbolic layer does not derive springs or joint friction in its force equations:
+    the page derives the kinematics alone (no force stage), its model says why its force
+    layer is off, and the downloadable scene keeps the springs and friction."""
+    from linkage_sym.codegen.javascript import mechanism_model, page_artifact
+    from linkage_sym.examples import load_example
+    scene = load_example(name)
+    art = page_artifact(scene)
+    assert "forces" not in art.stages and "velocity" in art.stages
+    model = mechanism_model(scene, art)
+    assert word in model["forces_left_out"]
+    dumped = model["scene"]
+    assert dumped.get("springs") or any("friction" in j for j in dumped["joints"])
