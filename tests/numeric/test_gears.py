@@ -329,12 +329,12 @@ def test_a_flank_that_never_settles_is_a_warning(monkeypatch):
     solve = kinetostatics.ForcePlan._solve
 
     def pulling(self, Sk, geo, *args):
-        reactions, efforts, frame, groups = solve(self, Sk, geo, *args)
+        reactions, efforts, frame, groups, fric = solve(self, Sk, geo, *args)
         ux, uy = geo.line_of_action(mesh)
         fx, fy, m = reactions[mesh]
         along = fx * ux + fy * uy
         reactions[mesh] = (fx - 2 * np.abs(along) * ux, fy - 2 * np.abs(along) * uy, m)  # pulls
-        return reactions, efforts, frame, groups
+        return reactions, efforts, frame, groups, fric
 
     monkeypatch.setattr(kinetostatics.ForcePlan, "_solve", pulling)
     res = plan.run()
