@@ -232,8 +232,11 @@ class _Builder:
             for s, e in eqs.closed_forms:
                 if s in segment:
                     nested[s] = e.xreplace(nested)
-            self.add(name, [nested[s] for s in segment], "[" + ", ".join(_names(segment)) + "]")
-            steps.append({"kind": "closed", "function": name, "x": [xi[s] for s in segment]})
+            exprs = [nested[s] for s in segment]
+            self.add(name, exprs, "[" + ", ".join(_names(segment)) + "]")
+            step = {"kind": "closed", "function": name, "x": [xi[s] for s in segment]}
+            step.update(self.directions(f"directions_{len(steps)}", segment, exprs))
+            steps.append(step)
             segment.clear()
 
         for ge in eqs.groups:
@@ -255,6 +258,33 @@ class _Builder:
             })
         flush()
         return steps, groups
+
+    def directions(self, name, segment, exprs) -> dict:
+        """A closed step's coordinates without the angles' arctangents (what a design
+        sweep reads when it needs only the angles' cosines and sines): a slide's value;
+        an angle ``atan2(Y, X) + r`` (``Y``, ``X`` depending on the drivers) as ``Y, X,
+        cos r, sin r``; any other angle as its cosine and sine.  The step record's
+        ``directions`` and ``forms`` (:class:`~linkage_sym.codegen.artifact.ClosedStep`)."""
+        outs, forms = [], []
+        drivers = set(self.eqs.q)
+        for s, e in zip(segment, exprs):
+            if s not in self.angles:
+                outs.append(e)
+                forms.append("value")
+                continue
+            terms = sp.Add.make_args(e)
+            head = next((t for t in terms if isinstance(t, sp.atan2) and t.free_symbols & drivers),
+                        None)
+            if head is None:
+                outs += [sp.cos(e), sp.sin(e)]
+                forms.append("unit")
+            else:
+                r = e - head
+                outs += [head.args[0], head.args[1], sp.cos(r), sp.sin(r)]
+                forms.append("atan2")
+        self.add(name, outs, "for each coordinate: a slide's value; an angle's cosine and sine; "
+                             "or Y, X, cos r, sin r of an angle atan2(Y, X) + r")
+        return {"directions": name, "forms": forms}
 
     def rates(self):
         """``A``'s non-zero entries and ``B qd``; the accelerations' right-hand side."""

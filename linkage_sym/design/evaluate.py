@@ -53,7 +53,7 @@ import math
 import numpy as np
 
 from linkage_sym.codegen.blocks import BlockSystem, full
-from linkage_sym.codegen.evaluator import NumpyEvaluator
+from linkage_sym.codegen.evaluator import NumpyEvaluator, unit_direction
 from linkage_sym.design.solution import Solution
 from linkage_sym.model import OUTPUTS
 from linkage_sym.numeric.engine.run import (
@@ -81,6 +81,10 @@ def compiled(scene):
 
         cm = compile_mechanism(scene)
     return cm
+
+
+_AT_SPEEDS = frozenset({"velocity", "acceleration", "points", "forces"})
+"""What :meth:`Model.solve` computes at the scene's speeds (from the angles at the steps)."""
 
 
 class _Designs:
@@ -142,6 +146,10 @@ class Model(NumpyEvaluator):
         self.simple_path = (self.path.shape[1] == self.N + 1
                             and np.array_equal(self.out, np.arange(1, self.N + 1)))
         self._tiles = {}
+        # the closed steps' functions without arctangents, when the rates read no angle
+        steps = art.steps
+        self.directions = (steps[0] if len(steps) == 1 and getattr(steps[0], "directions", None)
+                           and "] = X\n" not in art.functions["rates"] else None)
 
     # -- parameters -------------------------------------------------------------------------
     def value(self, P, recipe, default):
@@ -318,12 +326,13 @@ class Model(NumpyEvaluator):
         return X, valid, raw, every
 
     def _trig(self, X, raw, valid, every):
-        """Cosines and sines (m, n, N) of the coordinates, NaN where no position: of a
+        """Cosines and sines (m, n, N) of the coordinates ``X``, NaN where no position: of a
         design-independent one (the crank's angle) by ``cos`` and ``sin`` at the N steps
         only; of the others from the tangent of the half angle ``t = tan(x/2)``,
         ``cos x = (1 - t^2)/(1 + t^2)``, ``sin x = 2t/(1 + t^2)`` (one vectorised ``tan``
         instead of ``cos`` and ``sin``, several times faster; within a few 1e-16 of them:
-        tested against the numeric solver's results to 1e-12)."""
+        tested against the numeric solver's results to 1e-12).  For a scene without
+        :attr:`directions`."""
         m, n, N = X.shape
         C = np.empty_like(X)
         S = np.empty_like(X)
@@ -349,6 +358,56 @@ class Model(NumpyEvaluator):
                 np.divide(S[c], u, out=S[c])
         return C, S
 
+    def _directions_at_steps(self, P, n, assembled, valid=None):
+        """The coordinates at the steps by :attr:`directions` (no arctangent:
+        :func:`~linkage_sym.codegen.evaluator.unit_direction`): cosines and sines (m, n, N)
+        of the angles, NaN where an entry has no position; the other coordinates' values
+        (a list, None for an angle); which entries have positions (n, N); and the
+        cosines, sines and values as the rate functions read them (lists: a value that
+        does not depend on the design keeps its shape, (N,) or a number; NaN only where
+        the closed forms gave it).  ``valid``: the entries with positions when known (the
+        positions'), else the ``assembled`` (n,) designs' entries whose values are
+        numbers."""
+        N, m = self.N, self.m
+        step = self.directions
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            out = iter(self.call(step.directions, P, X=[None] * m, Q=list(self.Q)))
+        C, S = np.empty((m, n, N)), np.empty((m, n, N))
+        V, raw = [None] * m, ([None] * m, [None] * m, [None] * m)
+        finite = {}  # coordinate -> where its value is a number (its own shape)
+        for c, form in zip(step.x, step.forms):
+            if form == "value":
+                C[c] = S[c] = np.nan  # never read: the functions read the angles' only
+                V[c] = np.broadcast_to(next(out), (n, N)).copy()
+                raw[2][c] = V[c]
+                finite[c] = np.isfinite(V[c])
+                continue
+            if form == "unit":
+                raw[0][c], raw[1][c] = next(out), next(out)
+                C[c], S[c] = raw[0][c], raw[1][c]
+            else:
+                Y, X, cr, sr = (next(out) for _ in range(4))
+                unit_direction(Y, X, cr, sr, out=(C[c], S[c]))
+                raw[0][c], raw[1][c] = C[c], S[c]
+            finite[c] = np.isfinite(raw[0][c])
+        for c in range(m):
+            if V[c] is None and c not in finite:
+                C[c] = S[c] = np.nan  # a coordinate of no closed step (none in a batched run)
+        if valid is None:
+            valid = np.repeat(assembled[:, None], N, axis=1)
+            for f in finite.values():
+                valid &= f
+        if not valid.all():
+            # a coordinate that has a number at an entry without positions (an earlier
+            # dyad's, the crank's, a design not assembled) is NaN there as the others
+            mask = ~valid
+            for c in range(m):
+                if c in finite and not (finite[c] & mask).any():
+                    continue
+                for a in ((C[c], S[c]) if V[c] is None else (V[c],)):
+                    np.copyto(a, np.nan, where=mask)
+        return C, S, V, valid, raw
+
     def solve(self, P, n, need, unwrap=()) -> Solution:
         """Solve ``n`` designs (parameters ``P``, from :meth:`design_params`) at the sweep's
         steps.
@@ -373,13 +432,23 @@ class Model(NumpyEvaluator):
         N, m, E = self.N, self.m, n * self.N
         shape = (n, N)
         Pb = [v[:, None] if np.ndim(v) else v for v in P]
-        X, pos_ok, raw, every = self.positions_at_steps(Pb, X0, assembled, n, unwrap)
+        if unwrap or self.directions is None or (_AT_SPEEDS & need):
+            X, pos_ok, raw, every = self.positions_at_steps(Pb, X0, assembled, n, unwrap)
+            if self.directions is None:
+                C, S = self._trig(X, raw, pos_ok, every)
+            else:
+                C, S, _, _, _ = self._directions_at_steps(Pb, n, assembled, pos_ok)
+            Xl, CS = list(X), (list(C), list(S))
+        else:  # only the angles' cosines and sines: no arctangent, no angle
+            X = None
+            C, S, _, pos_ok, (Cr, Sr, Xl) = self._directions_at_steps(Pb, n, assembled)
+            every = bool(pos_ok.all())
+            CS = (Cr, Sr)  # a crank's (N,): a design-independent entry of A stays (N,)
         sol = Solution(n, N, P, assembled, X0, joints0, L, X, pos_ok, pos_ok, model=self)
-        C, S = self._trig(X, raw, pos_ok, every)
         sol.C, sol.S = C, S
         with np.errstate(invalid="ignore", over="ignore"):
-            A, Bqt = self.rate_system(list(X), list(self.Q), [float(s) for s in self.slope],
-                                      (list(C), list(S)), Pb, shape)
+            A, Bqt = self.rate_system(Xl, list(self.Q), [float(s) for s in self.slope], CS, Pb,
+                                      shape)
         sing = self.screen(A, L[:, None], None if every else pos_ok)
         ok = pos_ok if sing is None else pos_ok & ~sing
         sol.ok = ok
@@ -389,7 +458,7 @@ class Model(NumpyEvaluator):
             if not all_ok:
                 rt[:, ~ok] = np.nan
             sol.rate_t = rt
-        if not ({"velocity", "acceleration", "points", "forces"} & need):
+        if not (_AT_SPEEDS & need):
             return sol
         # the scene's speeds, points and forces: entry by entry (the ok ones)
         tiles = self._steps(n)

@@ -223,8 +223,9 @@ class MetricPlan:
         return output
 
     def unwrap(self, model) -> list:
-        """The coordinates whose angles must be continuous along the sweep (the output's)."""
-        return [model.angle_of[self.output]] if "rate_t" in self.need else []
+        """The coordinates whose angles must be continuous along the sweep: the output's,
+        for ``swing`` (``K`` reads only the output's rate)."""
+        return [model.angle_of[self.output]] if "swing" in self.metrics else []
 
     def columns(self, N: int) -> list[str]:
         """The metric columns of the table, in order."""
@@ -347,11 +348,27 @@ class MetricPlan:
                     out[f"path_{p}_{name}_{i}"] = v[:, i]
         return out
 
+    def _swing(self, sol, col, d, i, t):
+        """The output's swing (degrees): its largest minus smallest rotation over the ``ok``
+        steps and the limit positions ``t`` of designs ``d`` (between steps ``i``)."""
+        rot = sol.X[col] - sol.X0[col][:, None]
+        # values at the roots, continuous with the sample before
+        raw = sol.rate_at(d, t, col)[2] if len(d) else np.zeros(0)
+        v = raw - sol.X0[col][d]
+        v = v + 2 * math.pi * np.round((rot[d, i] - v) / (2 * math.pi))
+        # the positions are NaN where a step has none: only singular steps need masking
+        rot_ok = rot if sol.ok is sol.pos_ok else np.where(sol.ok, rot, np.nan)
+        hi = _fmax(rot_ok)
+        lo = _fmin(rot_ok)
+        good = np.isfinite(v)
+        np.fmax.at(hi, d[good], v[good])
+        np.fmin.at(lo, d[good], v[good])
+        return np.degrees(hi - lo)
+
     def _limits(self, model, sol):
         """``K`` and the swing (degrees) of the output link (see the module docstring)."""
         n, N = sol.n, sol.N
         col = model.angle_of[self.output]
-        rot = sol.X[col] - sol.X0[col][:, None]
         r = sol.rate_t[col]
         ok = sol.ok
         both = ok[:, :-1] & ok[:, 1:]
@@ -360,18 +377,8 @@ class MetricPlan:
             change = both & ((ra == 0) | (rb == 0) | ((ra < 0) != (rb < 0)))
         d, i = np.nonzero(change)
         t, kind = _roots(sol, d, i.astype(float), ra[d, i], rb[d, i], col)
-        # values at the roots, continuous with the sample before
-        raw = sol.rate_at(d, t, col)[2] if len(d) else np.zeros(0)
-        v = raw - sol.X0[col][d]
-        v = v + 2 * math.pi * np.round((rot[d, i] - v) / (2 * math.pi))
-        # the positions are NaN where a step has none: only singular steps need masking
-        rot_ok = rot if ok is sol.pos_ok else np.where(ok, rot, np.nan)
-        hi = _fmax(rot_ok)
-        lo = _fmin(rot_ok)
-        good = np.isfinite(v)
-        np.fmax.at(hi, d[good], v[good])
-        np.fmin.at(lo, d[good], v[good])
-        swing = np.degrees(hi - lo)
+        good = np.isfinite(t)
+        swing = self._swing(sol, col, d, i, t) if "swing" in self.metrics else None
         K = np.full(n, np.nan)
         note = np.full(n, K_NOTES["no ok step"], dtype=object)
         note[~sol.assembled] = K_NOTES["assembly"]

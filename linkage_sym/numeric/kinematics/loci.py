@@ -32,17 +32,20 @@ def clamp_tangent(prod, factors, scale):
     """``prod`` (a product of ``factors``) with rounding-level misses set to 0, real misses to NaN.
 
     ``scale()`` gives the size of the coordinates the factors were computed
-    from (called only when needed); a factor above
-    ``-TANGENT_ULPS * eps * scale`` counts as zero.  Only the (rare) negative
-    entries are examined.
+    from (called only when needed; a :class:`Size` is evaluated at the negative
+    entries only); a factor above ``-TANGENT_ULPS * eps * scale`` counts as zero.
+    Only the (rare) negative entries are examined.
     """
     prod = np.asarray(prod, dtype=float)
     neg = prod < 0.0
     if not neg.any():
         return prod
     prod = prod.copy()
-    scale = scale()
-    tol = TANGENT_ULPS * _EPS * np.broadcast_to(scale, prod.shape)[neg]
+    if isinstance(scale, Size):
+        size = scale.at(neg)
+    else:
+        size = np.broadcast_to(scale(), prod.shape)[neg]
+    tol = TANGENT_ULPS * _EPS * size
     worst = np.min([np.broadcast_to(f, prod.shape)[neg] for f in factors], axis=0)
     prod[neg] = np.where(worst >= -tol, 0.0, np.nan)
     return prod
@@ -54,6 +57,24 @@ def coordinate_size(*values):
     for v in values:
         out = np.maximum(out, np.abs(v))
     return out
+
+
+class Size:
+    """:func:`coordinate_size` of ``values``, computed when asked: in whole
+    (``size()``) or at the entries of a boolean mask only (``size.at(mask)``,
+    the values broadcast to the mask's shape; the same numbers)."""
+
+    __slots__ = ("values",)
+
+    def __init__(self, values):
+        self.values = values
+
+    def __call__(self):
+        return coordinate_size(*self.values)
+
+    def at(self, mask):
+        """The size at the entries ``mask`` (a boolean array) selects."""
+        return coordinate_size(*(np.broadcast_to(v, mask.shape)[mask] for v in self.values))
 
 
 class Circle:
