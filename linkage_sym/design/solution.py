@@ -41,6 +41,8 @@ class Solution:
     S: np.ndarray | None = None
     model: object = None  # the Model that solved it
 
+    model_rates = True  # rate_at is the Model's (a subclass: another runtime's)
+
     # what the metrics read, (n, N) each; a subclass reads them from another runtime's result
     def reaction(self, joint) -> np.ndarray:
         """Magnitude of the reaction at ``joint`` (see :meth:`Model.reaction`)."""

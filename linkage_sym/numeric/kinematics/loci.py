@@ -41,13 +41,15 @@ def clamp_tangent(prod, factors, scale):
     if not neg.any():
         return prod
     prod = prod.copy()
+    # indices (row-major, as a mask selects): a gather then costs only the few entries
+    at = np.unravel_index(np.flatnonzero(neg), neg.shape) if prod.ndim else neg
     if isinstance(scale, Size):
-        size = scale.at(neg)
+        size = scale.at(at, prod.shape)
     else:
-        size = np.broadcast_to(scale(), prod.shape)[neg]
+        size = np.broadcast_to(scale(), prod.shape)[at]
     tol = TANGENT_ULPS * _EPS * size
-    worst = np.min([np.broadcast_to(f, prod.shape)[neg] for f in factors], axis=0)
-    prod[neg] = np.where(worst >= -tol, 0.0, np.nan)
+    worst = np.min([np.broadcast_to(f, prod.shape)[at] for f in factors], axis=0)
+    prod[at] = np.where(worst >= -tol, 0.0, np.nan)
     return prod
 
 
@@ -61,8 +63,8 @@ def coordinate_size(*values):
 
 class Size:
     """:func:`coordinate_size` of ``values``, computed when asked: in whole
-    (``size()``) or at the entries of a boolean mask only (``size.at(mask)``,
-    the values broadcast to the mask's shape; the same numbers)."""
+    (``size()``) or at some entries only (``size.at(at, shape)``, the values
+    broadcast to ``shape`` and indexed by ``at``; the same numbers)."""
 
     __slots__ = ("values",)
 
@@ -72,9 +74,9 @@ class Size:
     def __call__(self):
         return coordinate_size(*self.values)
 
-    def at(self, mask):
-        """The size at the entries ``mask`` (a boolean array) selects."""
-        return coordinate_size(*(np.broadcast_to(v, mask.shape)[mask] for v in self.values))
+    def at(self, at, shape):
+        """The size at the entries ``at`` (an index of arrays of ``shape``) selects."""
+        return coordinate_size(*(np.broadcast_to(v, shape)[at] for v in self.values))
 
 
 class Circle:
