@@ -137,24 +137,28 @@ class BlockSystem:
     def solve(self, rhs) -> np.ndarray:
         """``x`` (m, *shape) of ``A x = rhs``, ``rhs`` a sequence of ``m`` arrays over the
         entries (or broadcasting to them)."""
-        x = np.zeros((self.m,) + self.shape)
+        covered = sum(n for _, n, _, _ in self._solvers) == self.m
+        x = (np.empty if covered else np.zeros)((self.m,) + self.shape)
+        xs = list(x)  # each solved coordinate as computed: a driver's row keeps its shape
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             for (r0, r1, _, _), (c0, n, coupling, own) in zip(self.blocks, self._solvers):
                 b = [rhs[r0 + i] for i in range(r1 - r0)]
                 for i, j, v in coupling:
-                    b[i] = b[i] - v * x[j]
+                    b[i] = b[i] - v * xs[j]
                 if n == 1:  # over the right-hand side's own shape (a driver's row: the steps')
-                    x[c0] = np.divide(b[0], own[0])
+                    got = (np.divide(b[0], own[0]),)
                 elif n == 2:
                     a, bb, c, d, det = own
-                    x[c0] = (b[0] * d - b[1] * bb) / det
-                    x[c0 + 1] = (a * b[1] - c * b[0]) / det
+                    got = ((b[0] * d - b[1] * bb) / det, (a * b[1] - c * b[0]) / det)
                 elif n == 3:  # Cramer: x = adj(M) b / det
                     ((a, bb, c), (d, e, f), (g, h, k)), co, det = own
-                    x[c0] = (co[0] * b[0] + (c * h - bb * k) * b[1] + (bb * f - c * e) * b[2]) / det
-                    x[c0 + 1] = (co[1] * b[0] + (a * k - c * g) * b[1] + (c * d - a * f) * b[2]) / det
-                    x[c0 + 2] = (co[2] * b[0] + (bb * g - a * h) * b[1] + (a * e - bb * d) * b[2]) / det
+                    got = ((co[0] * b[0] + (c * h - bb * k) * b[1] + (bb * f - c * e) * b[2]) / det,
+                           (co[1] * b[0] + (a * k - c * g) * b[1] + (c * d - a * f) * b[2]) / det,
+                           (co[2] * b[0] + (bb * g - a * h) * b[1] + (a * e - bb * d) * b[2]) / det)
                 else:
                     bb = np.stack([np.broadcast_to(v, self.shape) for v in b], axis=-1)
-                    x[c0:c0 + n] = np.moveaxis(np.linalg.solve(own[0], bb[..., None])[..., 0], -1, 0)
+                    got = np.moveaxis(np.linalg.solve(own[0], bb[..., None])[..., 0], -1, 0)
+                for k, v in enumerate(got):
+                    x[c0 + k] = v
+                    xs[c0 + k] = v
         return x

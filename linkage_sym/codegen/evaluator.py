@@ -298,10 +298,9 @@ def unit_direction(Y, X, cr, sr, out=None):
         lo, hi = np.fmin.reduce(h, axis=None), np.fmax.reduce(h, axis=None)
         odd = (h == 0) | (h == np.inf) if lo == 0 or hi == np.inf else None
         np.sqrt(h, out=h)
-        if sign < 0:
-            np.negative(h, out=h)
-        c = np.divide(X, h, out=None if out is None else out[0])
-        s = np.divide(Y, h, out=None if out is None else out[1])
+        np.divide(sign, h, out=h)  # the reciprocal length, signed
+        c = np.multiply(X, h, out=None if out is None else out[0])
+        s = np.multiply(Y, h, out=None if out is None else out[1])
         if odd is not None:  # a zero length (or one that overflows): arctan2's direction
             a = np.arctan2(Y, X)
             np.copyto(c, sign * np.cos(a), where=odd)

@@ -277,6 +277,14 @@ class Model(NumpyEvaluator):
                 L = np.fmax(L, np.hypot(*(xy[i] - xy[k])))
         return P, X0, assembled, joints0, L
 
+    @staticmethod
+    def assembly_of(assembly, a, b):
+        """The designs ``a`` to ``b`` of an :meth:`assemble` of many (every number of a
+        design's assembly is its own: the same as assembling them alone)."""
+        P, X0, assembled, joints0, L = assembly
+        return ([v[a:b] if np.ndim(v) else v for v in P], X0[:, a:b], assembled[a:b],
+                {k: v[:, a:b] for k, v in joints0.items()}, L[a:b])
+
     def _steps(self, n):
         """Driver values of ``n`` designs' steps, flattened design by design (cached)."""
         if self._tiles.get("n") != n:
@@ -408,9 +416,10 @@ class Model(NumpyEvaluator):
                     np.copyto(a, np.nan, where=mask)
         return C, S, V, valid, raw
 
-    def solve(self, P, n, need, unwrap=()) -> Solution:
+    def solve(self, P, n, need, unwrap=(), assembly=None) -> Solution:
         """Solve ``n`` designs (parameters ``P``, from :meth:`design_params`) at the sweep's
-        steps.
+        steps; ``assembly``: their :meth:`assemble` when made already (for many chunks at
+        once: :meth:`assembly_of`).
 
         ``need``: a set of ``"rate_t"`` (rates along the steps), ``"velocity"``,
         ``"acceleration"``, ``"points"``, ``"forces"``; ``unwrap``: the coordinates
@@ -428,7 +437,7 @@ class Model(NumpyEvaluator):
             from linkage_sym.design.newton_groups import solve_designs
 
             return solve_designs(self, P, n, need)
-        P, X0, assembled, joints0, L = self.assemble(P, n)
+        P, X0, assembled, joints0, L = self.assemble(P, n) if assembly is None else assembly
         N, m, E = self.N, self.m, n * self.N
         shape = (n, N)
         Pb = [v[:, None] if np.ndim(v) else v for v in P]
@@ -456,7 +465,7 @@ class Model(NumpyEvaluator):
         if "rate_t" in need:
             rt = A.solve(Bqt)
             if not all_ok:
-                rt[:, ~ok] = np.nan
+                np.copyto(rt, np.nan, where=~ok)
             sol.rate_t = rt
         if not (_AT_SPEEDS & need):
             return sol

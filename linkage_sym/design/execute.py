@@ -138,9 +138,18 @@ def evaluate_chunks(spec: Spec, parts: list) -> list[dict]:
     together (:meth:`~linkage_sym.design.metrics.MetricPlan.finish`: the same numbers)."""
     model, plan = compiled_state(spec)
     begun = []
+    every = None  # the run's designs assembled at once (a design's assembly is its own)
+    if not model.one_at_a_time and len(parts) > 1:
+        values = np.concatenate(parts)
+        every = model.assemble(model.design_params(spec.names, values), len(values))
+    a = 0
     for values in parts:
+        n = len(values)
         P = model.design_params(spec.names, values)
-        begun.append(plan.begin(model, model.solve(P, len(values), plan.need, plan.unwrap(model))))
+        asm = None if every is None else model.assembly_of(every, a, a + n)
+        sol = model.solve(P, n, plan.need, plan.unwrap(model), asm)
+        begun.append(plan.begin(model, sol))
+        a += n
     return plan.finish(model, begun)
 
 

@@ -63,14 +63,17 @@ class Limits:
     def __init__(self, model, sol, col, swing):
         n, N = sol.n, sol.N
         self.n, self.col, self.assembled = n, col, sol.assembled
-        r = sol.rate_t[col]
+        r = np.ascontiguousarray(sol.rate_t[col])
         ok = sol.ok
-        both = ok[:, :-1] & ok[:, 1:]
-        ra, rb = r[:, :-1], r[:, 1:]
+        # a bracket: two ok steps between which the rate changes sign (or is 0 at one)
         with np.errstate(invalid="ignore"):
-            change = both & ((ra == 0) | (rb == 0) | ((ra < 0) != (rb < 0)))
-        d, i = np.nonzero(change)
-        self.d, self.i, self.fa, self.fb = d, i, ra[d, i], rb[d, i]
+            neg, zero = r < 0, r == 0
+        change = (neg[:, :-1] != neg[:, 1:]) | zero[:, :-1] | zero[:, 1:]
+        change &= ok[:, :-1]
+        change &= ok[:, 1:]
+        d, i = np.divmod(np.flatnonzero(change), N - 1)  # row-major, as np.nonzero
+        at = d * N + i
+        self.d, self.i, self.fa, self.fb = d, i, r.ravel()[at], r.ravel()[at + 1]
         self.ok_any = ok.any(axis=1)
         step = abs(model.slope[0]) if N > 1 else 0.0
         self.step = step

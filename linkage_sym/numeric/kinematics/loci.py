@@ -41,16 +41,44 @@ def clamp_tangent(prod, factors, scale):
     if not neg.any():
         return prod
     prod = prod.copy()
-    # indices (row-major, as a mask selects): a gather then costs only the few entries
-    at = np.unravel_index(np.flatnonzero(neg), neg.shape) if prod.ndim else neg
-    if isinstance(scale, Size):
-        size = scale.at(at, prod.shape)
-    else:
-        size = np.broadcast_to(scale(), prod.shape)[at]
+    # the negative entries' indices (row-major, as a mask selects them): gathering them
+    # from each array costs only the few entries
+    at = Entries(neg)
+    size = scale.at(at) if isinstance(scale, Size) else at.take(scale())
     tol = TANGENT_ULPS * _EPS * size
-    worst = np.min([np.broadcast_to(f, prod.shape)[at] for f in factors], axis=0)
-    prod[at] = np.where(worst >= -tol, 0.0, np.nan)
+    worst = at.take(factors[0])
+    for f in factors[1:]:
+        worst = np.minimum(worst, at.take(f))
+    at.put(prod, np.where(worst >= -tol, 0.0, np.nan))
     return prod
+
+
+class Entries:
+    """The entries where ``mask`` (a boolean array) is true, in row-major order (the order
+    ``array[mask]`` gives): :meth:`take` gathers them from an array broadcasting to the
+    mask's shape, reading only those entries (a (n, 1) or (N,) array by its own index);
+    :meth:`put` writes them into an array of the mask's shape."""
+
+    def __init__(self, mask):
+        self.shape = mask.shape
+        self.flat = np.flatnonzero(mask)
+        self.index = np.unravel_index(self.flat, mask.shape) if mask.ndim else None
+
+    def take(self, v) -> np.ndarray:
+        """``np.broadcast_to(v, shape)[mask]``, the same numbers."""
+        v = np.asarray(v, dtype=float)
+        k = len(self.flat)
+        if v.shape == self.shape and v.flags.c_contiguous:
+            return v.ravel().take(self.flat)
+        if v.ndim == 0 or self.index is None:
+            return np.broadcast_to(v, self.shape).reshape(-1)[self.flat] if v.ndim else np.full(k, v)
+        lead = len(self.shape) - v.ndim  # v broadcasts along its missing and length-1 axes
+        idx = tuple(0 if n == 1 else i for n, i in zip(v.shape, self.index[lead:]))
+        return np.broadcast_to(v[idx], (k,))
+
+    def put(self, a, values) -> None:
+        """``a[mask] = values`` (``a`` of the mask's shape, C-contiguous)."""
+        a.reshape(-1)[self.flat] = values
 
 
 def coordinate_size(*values):
@@ -63,8 +91,8 @@ def coordinate_size(*values):
 
 class Size:
     """:func:`coordinate_size` of ``values``, computed when asked: in whole
-    (``size()``) or at some entries only (``size.at(at, shape)``, the values
-    broadcast to ``shape`` and indexed by ``at``; the same numbers)."""
+    (``size()``) or at some entries only (``size.at(entries)``, :class:`Entries`;
+    the same numbers)."""
 
     __slots__ = ("values",)
 
@@ -74,9 +102,9 @@ class Size:
     def __call__(self):
         return coordinate_size(*self.values)
 
-    def at(self, at, shape):
-        """The size at the entries ``at`` (an index of arrays of ``shape``) selects."""
-        return coordinate_size(*(np.broadcast_to(v, shape)[at] for v in self.values))
+    def at(self, entries):
+        """The size at ``entries`` (:class:`Entries`)."""
+        return coordinate_size(*(entries.take(v) for v in self.values))
 
 
 class Circle:
