@@ -126,6 +126,39 @@ class BlockSystem:
                                        det / np.prod(np.linalg.norm(M, axis=-2), axis=-1)))
         return out
 
+    def below(self, threshold) -> list:
+        """Whether each group block's Hadamard ratio (:meth:`ratios`) is below
+        ``threshold``, at every entry: ``det^2 < threshold^2 * norms^2``, without the
+        square root and the division (False where the ratio is not a number); ``None``
+        for a 1x1 block.  The same entries as ``ratio < threshold`` but within a few
+        rounding errors of the threshold."""
+        out, ratios = [], None
+        t2 = threshold * threshold
+        with np.errstate(invalid="ignore", over="ignore"):
+            for c0, n, _, own in self._solvers:
+                if n == 1:
+                    out.append(None)
+                    continue
+                if n == 2:
+                    a, b, c, d, det = own
+                    a2, b2, c2, d2 = a * a, b * b, c * c, d * d
+                    norms = np.fmax((a2 + b2) * (c2 + d2), (a2 + c2) * (b2 + d2))
+                elif n == 3:
+                    R, _, det = own
+                    sq = [[v * v for v in row] for row in R]
+                    rows = ((sq[0][0] + sq[0][1] + sq[0][2]) * (sq[1][0] + sq[1][1] + sq[1][2])
+                            * (sq[2][0] + sq[2][1] + sq[2][2]))
+                    cols = ((sq[0][0] + sq[1][0] + sq[2][0]) * (sq[0][1] + sq[1][1] + sq[2][1])
+                            * (sq[0][2] + sq[1][2] + sq[2][2]))
+                    norms = np.fmax(rows, cols)
+                else:
+                    if ratios is None:
+                        ratios = self.ratios()
+                    out.append(ratios[len(out)] < threshold)
+                    continue
+                out.append(det * det < t2 * norms)
+        return out
+
     def dense(self, sel) -> np.ndarray:
         """``A`` (k, m, m) at the entries ``sel`` (indices, or a boolean mask over ``shape``)."""
         k = len(np.empty(self.shape, bool)[sel])

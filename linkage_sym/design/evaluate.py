@@ -222,15 +222,14 @@ class Model(NumpyEvaluator):
 
     def screen(self, A, L, valid=None):
         """Singular entries (bool, ``A.shape``), or ``None`` when there is none: a block's
-        Hadamard ratio (:meth:`~linkage_sym.codegen.blocks.BlockSystem.ratios`) below
-        :data:`SCREEN`, then, at those entries only, the dimensionless condition number
-        (size ``L``, broadcasting to the entries) above :data:`SINGULAR_COND`.  ``valid``:
-        the entries with positions (default all)."""
+        Hadamard ratio below :data:`SCREEN`
+        (:meth:`~linkage_sym.codegen.blocks.BlockSystem.below`), then, at those entries
+        only, the dimensionless condition number (size ``L``, broadcasting to the entries)
+        above :data:`SINGULAR_COND`.  ``valid``: the entries with positions (default
+        all)."""
         flag = None
-        for ratio in A.ratios():
-            if ratio is not None:
-                with np.errstate(invalid="ignore"):
-                    low = ratio < SCREEN
+        for low in A.below(SCREEN):
+            if low is not None:
                 flag = low if flag is None else flag | low
         if flag is None:
             return None

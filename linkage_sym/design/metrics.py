@@ -318,7 +318,12 @@ class MetricPlan:
             cd = cb * ca + sb * sa  # cos, sin of X_b - X_a
             sd = sb * ca - cb * sa
             with np.errstate(divide="ignore", invalid="ignore"):
-                ratio = np.abs(sd * cc + cd * sc) / np.abs(cd * cc - sd * sc)
+                num = sd * cc
+                num += cd * sc
+                cd *= cc
+                sd *= sc
+                cd -= sd
+                ratio = np.abs(np.divide(num, cd, out=num), out=num)  # |a|/|b| = |a/b|
             best = np.fmin(best, _fmin(ratio))
         best[~np.isfinite(best) & ~(best == np.inf)] = np.nan
         out = np.degrees(np.arctan(best))
