@@ -180,9 +180,11 @@ class BlockSystem:
                     b[i] = b[i] - v * xs[j]
                 if n == 1:  # over the right-hand side's own shape (a driver's row: the steps')
                     got = (np.divide(b[0], own[0]),)
-                elif n == 2:
+                elif n == 2:  # into x's rows: no copy of a result
                     a, bb, c, d, det = own
-                    got = ((b[0] * d - b[1] * bb) / det, (a * b[1] - c * b[0]) / det)
+                    got = (np.divide(np.subtract(b[0] * d, b[1] * bb, out=x[c0]), det, out=x[c0]),
+                           np.divide(np.subtract(a * b[1], c * b[0], out=x[c0 + 1]), det,
+                                     out=x[c0 + 1]))
                 elif n == 3:  # Cramer: x = adj(M) b / det
                     ((a, bb, c), (d, e, f), (g, h, k)), co, det = own
                     got = ((co[0] * b[0] + (c * h - bb * k) * b[1] + (bb * f - c * e) * b[2]) / det,
@@ -192,6 +194,7 @@ class BlockSystem:
                     bb = np.stack([np.broadcast_to(v, self.shape) for v in b], axis=-1)
                     got = np.moveaxis(np.linalg.solve(own[0], bb[..., None])[..., 0], -1, 0)
                 for k, v in enumerate(got):
-                    x[c0 + k] = v
+                    if not (isinstance(v, np.ndarray) and v.base is x):  # not written in place
+                        x[c0 + k] = v
                     xs[c0 + k] = v
         return x

@@ -83,6 +83,12 @@ def compiled(scene):
     return cm
 
 
+def _per_design(v) -> bool:
+    """Whether a parameter of ``P`` is an array over the designs (else a number shared by
+    all: ``np.ndim`` at the cost of an attribute)."""
+    return isinstance(v, np.ndarray) and v.ndim > 0
+
+
 _AT_SPEEDS = frozenset({"velocity", "acceleration", "points", "forces"})
 """What :meth:`Model.solve` computes at the scene's speeds (from the angles at the steps)."""
 
@@ -281,7 +287,7 @@ class Model(NumpyEvaluator):
         """The designs ``a`` to ``b`` of an :meth:`assemble` of many (every number of a
         design's assembly is its own: the same as assembling them alone)."""
         P, X0, assembled, joints0, L = assembly
-        return ([v[a:b] if np.ndim(v) else v for v in P], X0[:, a:b], assembled[a:b],
+        return ([v[a:b] if _per_design(v) else v for v in P], X0[:, a:b], assembled[a:b],
                 {k: v[:, a:b] for k, v in joints0.items()}, L[a:b])
 
     def _steps(self, n):
@@ -439,7 +445,7 @@ class Model(NumpyEvaluator):
         P, X0, assembled, joints0, L = self.assemble(P, n) if assembly is None else assembly
         N, m, E = self.N, self.m, n * self.N
         shape = (n, N)
-        Pb = [v[:, None] if np.ndim(v) else v for v in P]
+        Pb = [v[:, None] if _per_design(v) else v for v in P]
         if unwrap or self.directions is None or (_AT_SPEEDS & need):
             X, pos_ok, raw, every = self.positions_at_steps(Pb, X0, assembled, n, unwrap)
             if self.directions is None:
@@ -563,7 +569,7 @@ class Model(NumpyEvaluator):
         not find)."""
         Q = self.drivers_at(t)
         B = len(t)
-        Pd = [v[d] if np.ndim(v) else v for v in P]
+        Pd = [v[d] if _per_design(v) else v for v in P]
         X = self.positions(_Designs(Pd, Q), B)
         CS = (list(np.cos(X)), list(np.sin(X)))
         QD = [np.full(B, s) for s in self.slope]

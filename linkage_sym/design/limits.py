@@ -36,6 +36,10 @@ XTOL = 1e-12
 MAX_ITER = 100
 
 
+def _per_design(v) -> bool:
+    return isinstance(v, np.ndarray) and v.ndim > 0
+
+
 def _fmax(a):
     return np.fmax.reduce(a, axis=1) if a.shape[1] else np.full(len(a), np.nan)
 
@@ -82,7 +86,7 @@ class Limits:
             self.T = 2 * math.pi / step  # steps of one turn
             self.full = ok[:, : min(N - 1, int(math.ceil(self.T))) + 1].all(axis=1)
         # the brackets' designs' parameters: the roots of a run's chunks are located at once
-        self.P = [v[d] if np.ndim(v) else v for v in sol.P]
+        self.P = [v[d] if _per_design(v) else v for v in sol.P]
         # the solution's own rate where it is not the compiled functions' (one at a time)
         self.own_rate = None if sol.model_rates else (lambda k, t: sol.rate_at(d[k], t, col))
         self.rot = None
@@ -143,7 +147,7 @@ def _joined(items):
     stays a number)."""
     P = []
     for vals in zip(*(it.P for it in items)):
-        if not any(np.ndim(v) for v in vals) and all(v == vals[0] for v in vals):
+        if not any(_per_design(v) for v in vals) and all(v == vals[0] for v in vals):
             P.append(vals[0])
         else:
             P.append(np.concatenate([np.broadcast_to(v, (len(it.d),))

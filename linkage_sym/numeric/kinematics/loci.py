@@ -103,8 +103,13 @@ class Size:
         return coordinate_size(*self.values)
 
     def at(self, entries):
-        """The size at ``entries`` (:class:`Entries`)."""
-        return coordinate_size(*(entries.take(v) for v in self.values))
+        """The size at ``entries`` (:class:`Entries`): the values of one shape reduced to
+        their largest magnitude before the gather (a maximum is exact in any order)."""
+        by_shape: dict = {}
+        for v in self.values:
+            v = np.asarray(v, dtype=float)
+            by_shape[v.shape] = np.maximum(by_shape.get(v.shape, 0.0), np.abs(v))
+        return coordinate_size(*(entries.take(v) for v in by_shape.values()))
 
 
 class Circle:
