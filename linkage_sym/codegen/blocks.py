@@ -167,14 +167,30 @@ class BlockSystem:
             A[:, i, j] = np.broadcast_to(v, self.shape)[sel]
         return A
 
-    def solve(self, rhs) -> np.ndarray:
+    def _needed(self, only):
+        """The columns to solve for ``only`` (None: all): those, and the earlier groups'
+        columns that the coupling of a group solved reads."""
+        if only is None:
+            return None
+        need = set(only)
+        for (c0, n, coupling, _) in reversed(self._solvers):
+            if need & set(range(c0, c0 + n)):
+                need |= {j for _, j, _ in coupling}
+        return need
+
+    def solve(self, rhs, only=None) -> np.ndarray:
         """``x`` (m, *shape) of ``A x = rhs``, ``rhs`` a sequence of ``m`` arrays over the
-        entries (or broadcasting to them)."""
+        entries (or broadcasting to them).  ``only``: the columns wanted (default all);
+        the others are NaN where nothing wanted needs them (a group after the last one
+        wanted is not solved, nor a 2x2 block's row not wanted)."""
+        need = self._needed(only)
         covered = sum(n for _, n, _, _ in self._solvers) == self.m
         x = (np.empty if covered else np.zeros)((self.m,) + self.shape)
         xs = list(x)  # each solved coordinate as computed: a driver's row keeps its shape
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             for (r0, r1, _, _), (c0, n, coupling, own) in zip(self.blocks, self._solvers):
+                if need is not None and not need & set(range(c0, c0 + n)):
+                    continue
                 b = [rhs[r0 + i] for i in range(r1 - r0)]
                 for i, j, v in coupling:
                     b[i] = b[i] - v * xs[j]
@@ -182,9 +198,10 @@ class BlockSystem:
                     got = (np.divide(b[0], own[0]),)
                 elif n == 2:  # into x's rows: no copy of a result
                     a, bb, c, d, det = own
-                    got = (np.divide(np.subtract(b[0] * d, b[1] * bb, out=x[c0]), det, out=x[c0]),
+                    got = (np.divide(np.subtract(b[0] * d, b[1] * bb, out=x[c0]), det, out=x[c0])
+                           if need is None or c0 in need else x[c0],
                            np.divide(np.subtract(a * b[1], c * b[0], out=x[c0 + 1]), det,
-                                     out=x[c0 + 1]))
+                                     out=x[c0 + 1]) if need is None or c0 + 1 in need else x[c0 + 1])
                 elif n == 3:  # Cramer: x = adj(M) b / det
                     ((a, bb, c), (d, e, f), (g, h, k)), co, det = own
                     got = ((co[0] * b[0] + (c * h - bb * k) * b[1] + (bb * f - c * e) * b[2]) / det,
@@ -197,4 +214,8 @@ class BlockSystem:
                     if not (isinstance(v, np.ndarray) and v.base is x):  # not written in place
                         x[c0 + k] = v
                     xs[c0 + k] = v
+        if need is not None:
+            for c in range(self.m):
+                if c not in need:
+                    x[c] = np.nan
         return x

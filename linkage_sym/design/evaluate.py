@@ -421,10 +421,11 @@ class Model(NumpyEvaluator):
                     np.copyto(a, np.nan, where=mask)
         return C, S, V, valid, raw
 
-    def solve(self, P, n, need, unwrap=(), assembly=None) -> Solution:
+    def solve(self, P, n, need, unwrap=(), assembly=None, rates=None) -> Solution:
         """Solve ``n`` designs (parameters ``P``, from :meth:`design_params`) at the sweep's
         steps; ``assembly``: their :meth:`assemble` when made already (for many chunks at
-        once: :meth:`assembly_of`).
+        once: :meth:`assembly_of`); ``rates``: the coordinates whose rates along the steps
+        are read (default all; the others' are NaN).
 
         ``need``: a set of ``"rate_t"`` (rates along the steps), ``"velocity"``,
         ``"acceleration"``, ``"points"``, ``"forces"``; ``unwrap``: the coordinates
@@ -468,9 +469,10 @@ class Model(NumpyEvaluator):
         sol.ok = ok
         all_ok = sing is None and every
         if "rate_t" in need:
-            rt = A.solve(Bqt)
+            rt = A.solve(Bqt, rates)
             if not all_ok:
-                np.copyto(rt, np.nan, where=~ok)
+                for c in range(m) if rates is None else rates:
+                    np.copyto(rt[c], np.nan, where=~ok)
             sol.rate_t = rt
         if not (_AT_SPEEDS & need):
             return sol

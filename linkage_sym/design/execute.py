@@ -121,7 +121,7 @@ def evaluate_chunk(spec: Spec, values: np.ndarray) -> dict:
     """The metric columns of the designs ``values`` (n, k) of one chunk."""
     model, plan = compiled_state(spec)
     P = model.design_params(spec.names, values)
-    sol = model.solve(P, len(values), plan.need, plan.unwrap(model))
+    sol = model.solve(P, len(values), plan.need, plan.unwrap(model), rates=plan.rates(model))
     return plan.compute(model, sol)
 
 
@@ -147,7 +147,7 @@ def evaluate_chunks(spec: Spec, parts: list) -> list[dict]:
         n = len(values)
         P = model.design_params(spec.names, values)
         asm = None if every is None else model.assembly_of(every, a, a + n)
-        sol = model.solve(P, n, plan.need, plan.unwrap(model), asm)
+        sol = model.solve(P, n, plan.need, plan.unwrap(model), asm, plan.rates(model))
         begun.append(plan.begin(model, sol))
         a += n
     return plan.finish(model, begun)

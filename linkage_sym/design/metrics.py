@@ -209,6 +209,10 @@ class MetricPlan:
         for ``swing`` (``K`` reads only the output's rate)."""
         return [model.angle_of[self.output]] if "swing" in self.metrics else []
 
+    def rates(self, model) -> list:
+        """The coordinates whose rates along the steps the metrics read (the output's)."""
+        return [model.angle_of[self.output]] if "rate_t" in self.need else []
+
     def columns(self, N: int) -> list[str]:
         """The metric columns of the table, in order."""
         out = []

@@ -110,3 +110,19 @@ def test_the_screen_without_square_roots_flags_as_the_ratios():
     nan = BlockSystem({(0, 0): np.nan, (0, 1): 1.0, (1, 0): 1.0, (1, 1): 1.0},
                       [(0, 2, 0, 2)], 2, 3)
     assert not np.any(nan.below(1e-3)[0])
+
+
+def test_only_the_wanted_columns_solve_as_all():
+    """``solve(rhs, only)`` gives the wanted columns exactly as the whole solve (the groups
+    they couple to solved as before), NaN for the columns nothing wanted reads."""
+    rng = np.random.default_rng(13)
+    n, N = 4, 5
+    A, _ = _mixed_system(rng, n, N)
+    rhs = [2.0, rng.normal(size=N)] + [rng.normal(size=(n, N)) for _ in range(4)]
+    every = A.solve(rhs)
+    for only, skipped in (([2], [3, 4, 5]), ([1], [2, 3, 4, 5]), ([4], []), ([0, 5], [])):
+        got = A.solve(rhs, only)
+        for c in only:
+            np.testing.assert_array_equal(got[c], every[c])
+        for c in skipped:
+            assert np.isnan(got[c]).all()
