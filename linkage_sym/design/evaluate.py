@@ -17,17 +17,22 @@ what ``CompiledMechanism.run`` does for one scene, with the same functions:
    joints) are then the design's own: set to that configuration's angles and
    the closed forms evaluated again.  A design whose closed forms have no real
    root at ``q0`` cannot be assembled (every metric NaN, ``assemblable`` 0);
-2. **positions** along the scene's solving path (:func:`~linkage_sym.numeric.engine.run.solving_path`:
-   from ``q0`` through the steps), angles unwrapped along it from the assembly
-   configuration, as the runtimes do;
-3. **the singularity screen**: each group block's Hadamard ratio
-   (:meth:`~linkage_sym.codegen.blocks.BlockSystem.ratios`) against
-   :data:`~linkage_sym.numeric.engine.run.SCREEN`, then the dimensionless
+2. **positions** at the steps: the angles' cosines and sines by the closed steps'
+   directions functions (the arctangents' arguments made a unit vector,
+   :func:`~linkage_sym.codegen.evaluator.unit_direction`: no arctangent, no
+   cosine), and the angles themselves only when a metric reads them (the swing,
+   anything at the scene's speeds), along the scene's solving path
+   (:func:`~linkage_sym.numeric.engine.run.solving_path`: from ``q0`` through the
+   steps), unwrapped along it from the assembly configuration, as the runtimes do;
+3. **the singularity screen**: each group block's Hadamard ratio against
+   :data:`~linkage_sym.numeric.engine.run.SCREEN`
+   (:meth:`~linkage_sym.codegen.blocks.BlockSystem.below`), then the dimensionless
    condition number (the design's own size) against
    :data:`~linkage_sym.numeric.engine.run.SINGULAR_COND`; a step is ``ok`` when it
    is assembled and not singular;
 4. only what the metrics need: the velocities (along the sweep for limit
-   positions, at the scene's speeds for forces), accelerations, the points
+   positions, of the coordinates the metrics read; at the scene's speeds for forces),
+   accelerations, the points
    function and the force blocks ``A_g F_g = b_g - C_g F_later`` from the last
    group back.
 
@@ -38,7 +43,7 @@ actuator groups) are continued from the scene's assembly configuration to each
 design's, and such designs are then solved one at a time by the numeric plan
 (:mod:`linkage_sym.design.newton_groups`).
 
-Size: about 530 lines, one class -- :class:`Model` holds a chunk's broadcast
+Size: about 580 lines, one class -- :class:`Model` holds a chunk's broadcast
 parameters, assembly signs and work arrays, which each of the four stages
 above reads; the solved chunk (:class:`~linkage_sym.design.solution.Solution`),
 the metrics (:mod:`~linkage_sym.design.metrics`) and the groups without a
