@@ -243,7 +243,9 @@ def _tangent_sqrt(scale, *factors):
     prod = factors[0]
     for f in factors[1:]:
         prod = prod * f
-    prod = clamp_tangent(prod, factors, scale if isinstance(scale, Size) else lambda: scale)
+    own = len(factors) > 1 and isinstance(prod, np.ndarray)  # a product made here
+    prod = clamp_tangent(prod, factors, scale if isinstance(scale, Size) else lambda: scale,
+                         inplace=own)
     with np.errstate(invalid="ignore"):
         return np.sqrt(prod)
 

@@ -411,16 +411,22 @@ class Model(NumpyEvaluator):
         for c in range(m):
             if V[c] is None and c not in finite:
                 C[c] = S[c] = np.nan  # a coordinate of no closed step (none in a batched run)
-        if valid is None:
+        known = valid is not None
+        if not known:
             valid = np.repeat(assembled[:, None], N, axis=1)
             for f in finite.values():
                 valid &= f
-        if not valid.all():
+        count = np.count_nonzero(valid)
+        if count < valid.size:
             # a coordinate that has a number at an entry without positions (an earlier
-            # dyad's, the crank's, a design not assembled) is NaN there as the others
+            # dyad's, the crank's, a design not assembled) is NaN there as the others; the
+            # entries made here lie where every coordinate has a number, so one has a number
+            # elsewhere exactly when it has more of them
             mask = ~valid
             for c in range(m):
-                if c in finite and not (finite[c] & mask).any():
+                f = finite.get(c)
+                if f is not None and not ((f & mask).any() if known else
+                                          np.count_nonzero(f) * (valid.size // f.size) > count):
                     continue
                 for a in ((C[c], S[c]) if V[c] is None else (V[c],)):
                     np.copyto(a, np.nan, where=mask)

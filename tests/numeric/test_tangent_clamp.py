@@ -56,3 +56,19 @@ def test_entries_take_and_put_as_a_mask():
     b = np.zeros((4, 5, 6))
     b[mask] = np.arange(mask.sum()) + 1
     np.testing.assert_array_equal(a, b)
+
+
+def test_clamp_in_place_gives_the_same_numbers():
+    """``inplace=True`` (the caller's own product) clamps the array itself, to the same
+    numbers; a product that is not C-contiguous is copied all the same."""
+    rng = np.random.default_rng(9)
+    f1 = rng.uniform(-1.0, 1.0, (5, 6))
+    f2 = rng.uniform(0.5, 1.0, (5, 6))
+    want = clamp_tangent(f1 * f2, (f1, f2), lambda: 1.0)
+    prod = f1 * f2
+    got = clamp_tangent(prod, (f1, f2), lambda: 1.0, inplace=True)
+    assert got is prod
+    np.testing.assert_array_equal(got, want)
+    tp = (f1 * f2).T  # F-ordered: clamped in a copy
+    got = clamp_tangent(tp, (f1.T, f2.T), lambda: 1.0, inplace=True)
+    np.testing.assert_array_equal(got, want.T)

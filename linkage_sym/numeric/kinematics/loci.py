@@ -28,19 +28,21 @@ being reported unassemblable.
 _EPS = float(np.finfo(float).eps)
 
 
-def clamp_tangent(prod, factors, scale):
+def clamp_tangent(prod, factors, scale, inplace=False):
     """``prod`` (a product of ``factors``) with rounding-level misses set to 0, real misses to NaN.
 
     ``scale()`` gives the size of the coordinates the factors were computed
     from (called only when needed; a :class:`Size` is evaluated at the negative
     entries only); a factor above ``-TANGENT_ULPS * eps * scale`` counts as zero.
-    Only the (rare) negative entries are examined.
+    Only the (rare) negative entries are examined.  ``inplace``: ``prod`` is the
+    caller's own temporary array, clamped where it is (else a copy is).
     """
     prod = np.asarray(prod, dtype=float)
     neg = prod < 0.0
     if not neg.any():
         return prod
-    prod = prod.copy()
+    if not (inplace and prod.flags.c_contiguous and prod.flags.writeable):
+        prod = prod.copy()
     # the negative entries' indices (row-major, as a mask selects them): gathering them
     # from each array costs only the few entries
     at = Entries(neg)
