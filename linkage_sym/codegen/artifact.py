@@ -70,12 +70,29 @@ class Step(ABC):
 
 @dataclass(frozen=True)
 class ClosedStep(Step):
-    """Nested closed forms (input links, dyads): one call gives every coordinate."""
+    """Nested closed forms (input links, dyads): one call gives every coordinate.
+
+    ``directions``: the generated function that gives the same
+    coordinates without the angles' arctangents, and ``forms`` what it returns for each
+    coordinate of ``x``, in order: ``"value"`` (a slide: its value), ``"unit"`` (an angle:
+    its cosine and sine) or ``"atan2"`` (an angle ``atan2(Y, X) + r``: ``Y``, ``X``,
+    ``cos r``, ``sin r``); see :func:`~linkage_sym.codegen.evaluator.unit_direction`.
+    """
+
+    directions: str | None = None
+    forms: tuple = ()
 
     kind: ClassVar[str] = "closed"
 
     def solve(self, evaluator, X, ctx):
         return evaluator.closed_step(self, X, ctx)
+
+    def to_dict(self) -> dict:
+        out = super().to_dict()
+        if self.directions is not None:
+            out["directions"] = self.directions
+            out["forms"] = list(self.forms)
+        return out
 
 
 @dataclass(frozen=True)
@@ -189,7 +206,8 @@ class Artifact:
         steps = []
         for st in d["steps"]:
             kind = STEP_KINDS[st["kind"]]
-            extra = {"group": st["group"]} if kind is NewtonStep else {}
+            extra = ({"group": st["group"]} if kind is NewtonStep
+                     else {"directions": st.get("directions"), "forms": tuple(st.get("forms", ()))})
             steps.append(kind(st["function"], tuple(st["x"]), **extra))
         return cls(
             scene=d["scene"], stages=tuple(d["stages"]), x=tuple(d["x"]), q=tuple(d["q"]),

@@ -126,6 +126,39 @@ class BlockSystem:
                                        det / np.prod(np.linalg.norm(M, axis=-2), axis=-1)))
         return out
 
+    def below(self, threshold) -> list:
+        """Whether each group block's Hadamard ratio (:meth:`ratios`) is below
+        ``threshold``, at every entry: ``det^2 < threshold^2 * norms^2``, without the
+        square root and the division (False where the ratio is not a number); ``None``
+        for a 1x1 block.  The same entries as ``ratio < threshold`` but within a few
+        rounding errors of the threshold."""
+        out, ratios = [], None
+        t2 = threshold * threshold
+        with np.errstate(invalid="ignore", over="ignore"):
+            for c0, n, _, own in self._solvers:
+                if n == 1:
+                    out.append(None)
+                    continue
+                if n == 2:
+                    a, b, c, d, det = own
+                    a2, b2, c2, d2 = a * a, b * b, c * c, d * d
+                    norms = np.fmax((a2 + b2) * (c2 + d2), (a2 + c2) * (b2 + d2))
+                elif n == 3:
+                    R, _, det = own
+                    sq = [[v * v for v in row] for row in R]
+                    rows = ((sq[0][0] + sq[0][1] + sq[0][2]) * (sq[1][0] + sq[1][1] + sq[1][2])
+                            * (sq[2][0] + sq[2][1] + sq[2][2]))
+                    cols = ((sq[0][0] + sq[1][0] + sq[2][0]) * (sq[0][1] + sq[1][1] + sq[2][1])
+                            * (sq[0][2] + sq[1][2] + sq[2][2]))
+                    norms = np.fmax(rows, cols)
+                else:
+                    if ratios is None:
+                        ratios = self.ratios()
+                    out.append(ratios[len(out)] < threshold)
+                    continue
+                out.append(det * det < t2 * norms)
+        return out
+
     def dense(self, sel) -> np.ndarray:
         """``A`` (k, m, m) at the entries ``sel`` (indices, or a boolean mask over ``shape``)."""
         k = len(np.empty(self.shape, bool)[sel])
@@ -134,27 +167,55 @@ class BlockSystem:
             A[:, i, j] = np.broadcast_to(v, self.shape)[sel]
         return A
 
-    def solve(self, rhs) -> np.ndarray:
+    def _needed(self, only):
+        """The columns to solve for ``only`` (None: all): those, and the earlier groups'
+        columns that the coupling of a group solved reads."""
+        if only is None:
+            return None
+        need = set(only)
+        for (c0, n, coupling, _) in reversed(self._solvers):
+            if need & set(range(c0, c0 + n)):
+                need |= {j for _, j, _ in coupling}
+        return need
+
+    def solve(self, rhs, only=None) -> np.ndarray:
         """``x`` (m, *shape) of ``A x = rhs``, ``rhs`` a sequence of ``m`` arrays over the
-        entries (or broadcasting to them)."""
-        x = np.zeros((self.m,) + self.shape)
+        entries (or broadcasting to them).  ``only``: the columns wanted (default all);
+        the others are NaN where nothing wanted needs them (a group after the last one
+        wanted is not solved, nor a 2x2 block's row not wanted)."""
+        need = self._needed(only)
+        covered = sum(n for _, n, _, _ in self._solvers) == self.m
+        x = (np.empty if covered else np.zeros)((self.m,) + self.shape)
+        xs = list(x)  # each solved coordinate as computed: a driver's row keeps its shape
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             for (r0, r1, _, _), (c0, n, coupling, own) in zip(self.blocks, self._solvers):
+                if need is not None and not need & set(range(c0, c0 + n)):
+                    continue
                 b = [rhs[r0 + i] for i in range(r1 - r0)]
                 for i, j, v in coupling:
-                    b[i] = b[i] - v * x[j]
+                    b[i] = b[i] - v * xs[j]
                 if n == 1:  # over the right-hand side's own shape (a driver's row: the steps')
-                    x[c0] = np.divide(b[0], own[0])
-                elif n == 2:
+                    got = (np.divide(b[0], own[0]),)
+                elif n == 2:  # into x's rows: no copy of a result
                     a, bb, c, d, det = own
-                    x[c0] = (b[0] * d - b[1] * bb) / det
-                    x[c0 + 1] = (a * b[1] - c * b[0]) / det
+                    got = (np.divide(np.subtract(b[0] * d, b[1] * bb, out=x[c0]), det, out=x[c0])
+                           if need is None or c0 in need else x[c0],
+                           np.divide(np.subtract(a * b[1], c * b[0], out=x[c0 + 1]), det,
+                                     out=x[c0 + 1]) if need is None or c0 + 1 in need else x[c0 + 1])
                 elif n == 3:  # Cramer: x = adj(M) b / det
                     ((a, bb, c), (d, e, f), (g, h, k)), co, det = own
-                    x[c0] = (co[0] * b[0] + (c * h - bb * k) * b[1] + (bb * f - c * e) * b[2]) / det
-                    x[c0 + 1] = (co[1] * b[0] + (a * k - c * g) * b[1] + (c * d - a * f) * b[2]) / det
-                    x[c0 + 2] = (co[2] * b[0] + (bb * g - a * h) * b[1] + (a * e - bb * d) * b[2]) / det
+                    got = ((co[0] * b[0] + (c * h - bb * k) * b[1] + (bb * f - c * e) * b[2]) / det,
+                           (co[1] * b[0] + (a * k - c * g) * b[1] + (c * d - a * f) * b[2]) / det,
+                           (co[2] * b[0] + (bb * g - a * h) * b[1] + (a * e - bb * d) * b[2]) / det)
                 else:
                     bb = np.stack([np.broadcast_to(v, self.shape) for v in b], axis=-1)
-                    x[c0:c0 + n] = np.moveaxis(np.linalg.solve(own[0], bb[..., None])[..., 0], -1, 0)
+                    got = np.moveaxis(np.linalg.solve(own[0], bb[..., None])[..., 0], -1, 0)
+                for k, v in enumerate(got):
+                    if not (isinstance(v, np.ndarray) and v.base is x):  # not written in place
+                        x[c0 + k] = v
+                    xs[c0 + k] = v
+        if need is not None:
+            for c in range(self.m):
+                if c not in need:
+                    x[c] = np.nan
         return x

@@ -77,7 +77,8 @@ def _printer(kind="numpy"):
     return NumPyPrinter(settings)
 
 
-def generate(name: str, args: list, outputs: list, doc: str, printer: str = "numpy") -> str:
+def generate(name: str, args: list, outputs: list, doc: str, printer: str = "numpy",
+             companion=None):
     """Source of one generated function: common subexpressions, then NumPy code.
 
     Printed with SymPy's ``cse`` and ``NumPyPrinter`` directly (no editing of
@@ -88,6 +89,11 @@ def generate(name: str, args: list, outputs: list, doc: str, printer: str = "num
     ``"mpmath"`` (rationals as quotients of ``mpf``, so no digit is lost to a float) or
     ``"javascript"`` (a JavaScript ``function`` of the same arguments and outputs, ``doc``
     its leading comment; SymPy's ``JavascriptCodePrinter``).
+
+    ``companion``: ``(name, doc, outputs_of)``, a second function printed from the same
+    common subexpressions, its outputs ``outputs_of(repl, reduced)`` (the ``cse``
+    assignments and the first function's reduced outputs); then the two sources are
+    returned.
     """
     js = printer == "javascript"
     printer = _printer(printer)
@@ -116,8 +122,18 @@ def generate(name: str, args: list, outputs: list, doc: str, printer: str = "num
     taken |= {str(s) for s in rename.values()}
     cse_names = (sp.Symbol(n) for n in (f"x{i}" for i in itertools.count()) if n not in taken)
     repl, reduced = sp.cse(outputs, symbols=cse_names)
+    src = _print_function(name, lines, repl, reduced, doc, printer, js)
+    if companion is None:
+        return src
+    name2, doc2, outputs_of = companion
+    return src, _print_function(name2, lines, repl, outputs_of(repl, reduced), doc2, printer, js)
+
+
+def _print_function(name, unpack, repl, reduced, doc, printer, js) -> str:
+    """One function's text: the unpacking lines, the ``cse`` assignments, the outputs."""
     if js:
-        return _javascript_function(name, lines, repl, reduced, doc, printer)
+        return _javascript_function(name, unpack, repl, reduced, doc, printer)
+    lines = list(unpack)
     for sym, e in repl:
         lines.append(f"    {sym} = {printer.doprint(e)}")
     lines.append(f"    return [{', '.join(printer.doprint(e) for e in reduced)}]")
@@ -161,6 +177,11 @@ def _describe(kind: str, eqs: MechanismEquations, p_syms, outputs_desc: str) -> 
             "Returns: " + outputs_desc,
         ]
     )
+
+
+DIRECTIONS = ("for each coordinate: a slide's value; an angle's cosine and sine; or Y, X, "
+              "cos r, sin r of an angle atan2(Y, X) + r")
+"""What a closed step's directions function returns (its docstring's last line)."""
 
 
 def _pattern(M) -> list:
@@ -232,8 +253,16 @@ class _Builder:
             for s, e in eqs.closed_forms:
                 if s in segment:
                     nested[s] = e.xreplace(nested)
-            self.add(name, [nested[s] for s in segment], "[" + ", ".join(_names(segment)) + "]")
-            steps.append({"kind": "closed", "function": name, "x": [xi[s] for s in segment]})
+            exprs = [nested[s] for s in segment]
+            dname, forms = f"directions_{len(steps)}", []
+            self.funcs[name], self.funcs[dname] = generate(
+                name, self.args, exprs, _describe(name, self.eqs, self.p_syms,
+                                                  "[" + ", ".join(_names(segment)) + "]"),
+                self.printer, (dname, _describe(dname, self.eqs, self.p_syms, DIRECTIONS),
+                               lambda repl, reduced: self.directions(segment, repl, reduced,
+                                                                     forms)))
+            steps.append({"kind": "closed", "function": name, "x": [xi[s] for s in segment],
+                          "directions": dname, "forms": forms})
             segment.clear()
 
         for ge in eqs.groups:
@@ -255,6 +284,44 @@ class _Builder:
             })
         flush()
         return steps, groups
+
+    def directions(self, segment, repl, reduced, forms) -> list:
+        """The outputs of a closed step's directions function (its coordinates without the
+        angles' arctangents, for a design sweep that needs only the angles' cosines and
+        sines), from the positions function's common subexpressions ``repl`` and reduced
+        outputs: a slide's value; an angle ``atan2(Y, X) + r`` (``Y``, ``X`` depending on
+        the drivers) as ``Y, X, cos r, sin r`` -- the very arguments the positions
+        function gives ``arctan2``; any other angle as its cosine and sine.  Appends each
+        coordinate's form to ``forms`` (:class:`~linkage_sym.codegen.artifact.ClosedStep`)."""
+        defs = dict(repl)
+        deps: dict = {}  # a cse symbol -> the arguments' symbols it depends on
+        for sym, e in repl:
+            deps[sym] = set().union(*(deps.get(f, {f}) for f in e.free_symbols))
+        drivers = set(self.eqs.q)
+
+        def on_drivers(e):
+            return any(deps.get(f, {f}) & drivers for f in e.free_symbols)
+
+        outs = []
+        for s, e in zip(segment, reduced):
+            if s not in self.angles:
+                outs.append(e)
+                forms.append("value")
+                continue
+            head = None
+            for t in sp.Add.make_args(e):
+                at = defs.get(t, t)  # an arctangent the cse named
+                if isinstance(at, sp.atan2) and on_drivers(at):
+                    head = (t, at)
+                    break
+            if head is None:
+                outs += [sp.cos(e), sp.sin(e)]
+                forms.append("unit")
+            else:
+                r = e - head[0]
+                outs += [head[1].args[0], head[1].args[1], sp.cos(r), sp.sin(r)]
+                forms.append("atan2")
+        return outs
 
     def rates(self):
         """``A``'s non-zero entries and ``B qd``; the accelerations' right-hand side."""

@@ -36,10 +36,10 @@ import numpy as np
 from linkage_sym.codegen.artifact import Artifact
 from linkage_sym.codegen.blocks import BlockSystem, full
 from linkage_sym.numeric.forces.loads import load_factor
-from linkage_sym.numeric.kinematics.loci import clamp_tangent, coordinate_size
+from linkage_sym.numeric.kinematics.loci import Size, clamp_tangent
 from linkage_sym.structure.parameters import ident
 
-__all__ = ["Evaluator", "NumpyEvaluator", "frame_motion", "rigid_point"]
+__all__ = ["Evaluator", "NumpyEvaluator", "frame_motion", "rigid_point", "unit_direction"]
 
 
 class Evaluator(ABC):
@@ -243,14 +243,17 @@ def _tangent_sqrt(scale, *factors):
     prod = factors[0]
     for f in factors[1:]:
         prod = prod * f
-    prod = clamp_tangent(prod, factors, lambda: scale)
+    own = len(factors) > 1 and isinstance(prod, np.ndarray)  # a product made here
+    prod = clamp_tangent(prod, factors, scale if isinstance(scale, Size) else lambda: scale,
+                         inplace=own)
     with np.errstate(invalid="ignore"):
         return np.sqrt(prod)
 
 
 def _coordinate_size(*values):
-    """The largest magnitude of ``values`` (arrays or numbers), elementwise."""
-    return coordinate_size(*values)
+    """The size of the coordinates ``values`` for :func:`_tangent_sqrt`, computed only where
+    a product is negative (:class:`~linkage_sym.numeric.kinematics.loci.Size`)."""
+    return Size(values)
 
 
 def numpy_namespace() -> dict:
@@ -275,6 +278,41 @@ def load_functions(artifact: Artifact, label: str, namespace: dict | None = None
         exec(compile(src, fname, "exec"), ns)
         out[name] = ns[name]
     return out
+
+
+def unit_direction(Y, X, cr, sr, out=None):
+    """Cosine and sine of ``atan2(Y, X) + r`` from ``Y``, ``X``, ``cos r`` and ``sin r``
+    without an arctangent: ``(X, Y)`` over its length, turned by ``r`` (a closed step's
+    ``"atan2"`` form, :class:`~linkage_sym.codegen.artifact.ClosedStep`); ``arctan2``'s
+    own where the length is 0 or overflows.  NaN where ``Y`` or ``X`` is.  ``out``: two
+    arrays of the broadcast shape to write into.
+
+    Examples
+    --------
+    >>> c, s = unit_direction(np.array([1.0, 0.0]), np.array([1.0, 0.0]), -1, 0)
+    >>> np.allclose(c, np.cos(np.arctan2([1.0, 0.0], [1.0, 0.0]) - np.pi), atol=1e-15)
+    True
+    """
+    half = isinstance(sr, (int, float)) and sr == 0 and isinstance(cr, (int, float)) and abs(cr) == 1
+    sign = cr if half else 1  # r a multiple of pi: the length's sign turns (X, Y)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        h = np.add(np.multiply(X, X), np.multiply(Y, Y))
+        lo, hi = np.fmin.reduce(h, axis=None), np.fmax.reduce(h, axis=None)
+        odd = (h == 0) | (h == np.inf) if lo == 0 or hi == np.inf else None
+        np.sqrt(h, out=h)
+        np.divide(sign, h, out=h)  # the reciprocal length, signed
+        c = np.multiply(X, h, out=None if out is None else out[0])
+        s = np.multiply(Y, h, out=None if out is None else out[1])
+        if odd is not None:  # a zero length (or one that overflows): arctan2's direction
+            a = np.arctan2(Y, X)
+            np.copyto(c, sign * np.cos(a), where=odd)
+            np.copyto(s, sign * np.sin(a), where=odd)
+        if not half:
+            c, s = c * cr - s * sr, s * cr + c * sr
+            if out is not None:
+                out[0][...], out[1][...] = c, s
+                c, s = out
+    return c, s
 
 
 class NumpyEvaluator(Evaluator):

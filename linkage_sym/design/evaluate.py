@@ -17,17 +17,22 @@ what ``CompiledMechanism.run`` does for one scene, with the same functions:
    joints) are then the design's own: set to that configuration's angles and
    the closed forms evaluated again.  A design whose closed forms have no real
    root at ``q0`` cannot be assembled (every metric NaN, ``assemblable`` 0);
-2. **positions** along the scene's solving path (:func:`~linkage_sym.numeric.engine.run.solving_path`:
-   from ``q0`` through the steps), angles unwrapped along it from the assembly
-   configuration, as the runtimes do;
-3. **the singularity screen**: each group block's Hadamard ratio
-   (:meth:`~linkage_sym.codegen.blocks.BlockSystem.ratios`) against
-   :data:`~linkage_sym.numeric.engine.run.SCREEN`, then the dimensionless
+2. **positions** at the steps: the angles' cosines and sines by the closed steps'
+   directions functions (the arctangents' arguments made a unit vector,
+   :func:`~linkage_sym.codegen.evaluator.unit_direction`: no arctangent, no
+   cosine), and the angles themselves only when a metric reads them (the swing,
+   anything at the scene's speeds), along the scene's solving path
+   (:func:`~linkage_sym.numeric.engine.run.solving_path`: from ``q0`` through the
+   steps), unwrapped along it from the assembly configuration, as the runtimes do;
+3. **the singularity screen**: each group block's Hadamard ratio against
+   :data:`~linkage_sym.numeric.engine.run.SCREEN`
+   (:meth:`~linkage_sym.codegen.blocks.BlockSystem.below`), then the dimensionless
    condition number (the design's own size) against
    :data:`~linkage_sym.numeric.engine.run.SINGULAR_COND`; a step is ``ok`` when it
    is assembled and not singular;
 4. only what the metrics need: the velocities (along the sweep for limit
-   positions, at the scene's speeds for forces), accelerations, the points
+   positions, of the coordinates the metrics read; at the scene's speeds for forces),
+   accelerations, the points
    function and the force blocks ``A_g F_g = b_g - C_g F_later`` from the last
    group back.
 
@@ -38,7 +43,7 @@ actuator groups) are continued from the scene's assembly configuration to each
 design's, and such designs are then solved one at a time by the numeric plan
 (:mod:`linkage_sym.design.newton_groups`).
 
-Size: about 530 lines, one class -- :class:`Model` holds a chunk's broadcast
+Size: about 580 lines, one class -- :class:`Model` holds a chunk's broadcast
 parameters, assembly signs and work arrays, which each of the four stages
 above reads; the solved chunk (:class:`~linkage_sym.design.solution.Solution`),
 the metrics (:mod:`~linkage_sym.design.metrics`) and the groups without a
@@ -48,13 +53,13 @@ closed form (:mod:`~linkage_sym.design.newton_groups`) are apart.
 from __future__ import annotations
 
 import dataclasses
-import math
 
 import numpy as np
 
 from linkage_sym.codegen.blocks import BlockSystem, full
-from linkage_sym.codegen.evaluator import NumpyEvaluator
+from linkage_sym.codegen.evaluator import NumpyEvaluator, unit_direction
 from linkage_sym.design.solution import Solution
+from linkage_sym.design.unwrap import unwrap_fast
 from linkage_sym.model import OUTPUTS
 from linkage_sym.numeric.engine.run import (
     SCREEN,
@@ -81,6 +86,16 @@ def compiled(scene):
 
         cm = compile_mechanism(scene)
     return cm
+
+
+def _per_design(v) -> bool:
+    """Whether a parameter of ``P`` is an array over the designs (else a number shared by
+    all: ``np.ndim`` at the cost of an attribute)."""
+    return isinstance(v, np.ndarray) and v.ndim > 0
+
+
+_AT_SPEEDS = frozenset({"velocity", "acceleration", "points", "forces"})
+"""What :meth:`Model.solve` computes at the scene's speeds (from the angles at the steps)."""
 
 
 class _Designs:
@@ -142,6 +157,10 @@ class Model(NumpyEvaluator):
         self.simple_path = (self.path.shape[1] == self.N + 1
                             and np.array_equal(self.out, np.arange(1, self.N + 1)))
         self._tiles = {}
+        # the closed steps' functions without arctangents, when the rates read no angle
+        steps = art.steps
+        self.directions = (steps[0] if len(steps) == 1 and getattr(steps[0], "directions", None)
+                           and "] = X\n" not in art.functions["rates"] else None)
 
     # -- parameters -------------------------------------------------------------------------
     def value(self, P, recipe, default):
@@ -214,15 +233,14 @@ class Model(NumpyEvaluator):
 
     def screen(self, A, L, valid=None):
         """Singular entries (bool, ``A.shape``), or ``None`` when there is none: a block's
-        Hadamard ratio (:meth:`~linkage_sym.codegen.blocks.BlockSystem.ratios`) below
-        :data:`SCREEN`, then, at those entries only, the dimensionless condition number
-        (size ``L``, broadcasting to the entries) above :data:`SINGULAR_COND`.  ``valid``:
-        the entries with positions (default all)."""
+        Hadamard ratio below :data:`SCREEN`
+        (:meth:`~linkage_sym.codegen.blocks.BlockSystem.below`), then, at those entries
+        only, the dimensionless condition number (size ``L``, broadcasting to the entries)
+        above :data:`SINGULAR_COND`.  ``valid``: the entries with positions (default
+        all)."""
         flag = None
-        for ratio in A.ratios():
-            if ratio is not None:
-                with np.errstate(invalid="ignore"):
-                    low = ratio < SCREEN
+        for low in A.below(SCREEN):
+            if low is not None:
                 flag = low if flag is None else flag | low
         if flag is None:
             return None
@@ -269,6 +287,14 @@ class Model(NumpyEvaluator):
                 L = np.fmax(L, np.hypot(*(xy[i] - xy[k])))
         return P, X0, assembled, joints0, L
 
+    @staticmethod
+    def assembly_of(assembly, a, b):
+        """The designs ``a`` to ``b`` of an :meth:`assemble` of many (every number of a
+        design's assembly is its own: the same as assembling them alone)."""
+        P, X0, assembled, joints0, L = assembly
+        return ([v[a:b] if _per_design(v) else v for v in P], X0[:, a:b], assembled[a:b],
+                {k: v[:, a:b] for k, v in joints0.items()}, L[a:b])
+
     def _steps(self, n):
         """Driver values of ``n`` designs' steps, flattened design by design (cached)."""
         if self._tiles.get("n") != n:
@@ -299,7 +325,7 @@ class Model(NumpyEvaluator):
         if not every:
             X[:, ~valid] = np.nan
         for c in unwrap:
-            X[c] = _unwrap_fast(X[c], valid, X0[c] if simple else None, every)
+            X[c] = unwrap_fast(X[c], valid, X0[c] if simple else None, every)
             raw[c] = None
         path_valid = valid
         out = slice(None) if simple else self.out
@@ -318,12 +344,13 @@ class Model(NumpyEvaluator):
         return X, valid, raw, every
 
     def _trig(self, X, raw, valid, every):
-        """Cosines and sines (m, n, N) of the coordinates, NaN where no position: of a
+        """Cosines and sines (m, n, N) of the coordinates ``X``, NaN where no position: of a
         design-independent one (the crank's angle) by ``cos`` and ``sin`` at the N steps
         only; of the others from the tangent of the half angle ``t = tan(x/2)``,
         ``cos x = (1 - t^2)/(1 + t^2)``, ``sin x = 2t/(1 + t^2)`` (one vectorised ``tan``
         instead of ``cos`` and ``sin``, several times faster; within a few 1e-16 of them:
-        tested against the numeric solver's results to 1e-12)."""
+        tested against the numeric solver's results to 1e-12).  For a scene without
+        :attr:`directions`."""
         m, n, N = X.shape
         C = np.empty_like(X)
         S = np.empty_like(X)
@@ -349,9 +376,67 @@ class Model(NumpyEvaluator):
                 np.divide(S[c], u, out=S[c])
         return C, S
 
-    def solve(self, P, n, need, unwrap=()) -> Solution:
+    def _directions_at_steps(self, P, n, assembled, valid=None):
+        """The coordinates at the steps by :attr:`directions` (no arctangent:
+        :func:`~linkage_sym.codegen.evaluator.unit_direction`): cosines and sines (m, n, N)
+        of the angles, NaN where an entry has no position; the other coordinates' values
+        (a list, None for an angle); which entries have positions (n, N); and the
+        cosines, sines and values as the rate functions read them (lists: a value that
+        does not depend on the design keeps its shape, (N,) or a number; NaN only where
+        the closed forms gave it).  ``valid``: the entries with positions when known (the
+        positions'), else the ``assembled`` (n,) designs' entries whose values are
+        numbers."""
+        N, m = self.N, self.m
+        step = self.directions
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            out = iter(self.call(step.directions, P, X=[None] * m, Q=list(self.Q)))
+        C, S = np.empty((m, n, N)), np.empty((m, n, N))
+        V, raw = [None] * m, ([None] * m, [None] * m, [None] * m)
+        finite = {}  # coordinate -> where its value is a number (its own shape)
+        for c, form in zip(step.x, step.forms):
+            if form == "value":
+                C[c] = S[c] = np.nan  # never read: the functions read the angles' only
+                V[c] = np.broadcast_to(next(out), (n, N)).copy()
+                raw[2][c] = V[c]
+                finite[c] = np.isfinite(V[c])
+                continue
+            if form == "unit":
+                raw[0][c], raw[1][c] = next(out), next(out)
+                C[c], S[c] = raw[0][c], raw[1][c]
+            else:
+                Y, X, cr, sr = (next(out) for _ in range(4))
+                unit_direction(Y, X, cr, sr, out=(C[c], S[c]))
+                raw[0][c], raw[1][c] = C[c], S[c]
+            finite[c] = np.isfinite(raw[0][c])
+        for c in range(m):
+            if V[c] is None and c not in finite:
+                C[c] = S[c] = np.nan  # a coordinate of no closed step (none in a batched run)
+        known = valid is not None
+        if not known:
+            valid = np.repeat(assembled[:, None], N, axis=1)
+            for f in finite.values():
+                valid &= f
+        count = np.count_nonzero(valid)
+        if count < valid.size:
+            # a coordinate that has a number at an entry without positions (an earlier
+            # dyad's, the crank's, a design not assembled) is NaN there as the others; the
+            # entries made here lie where every coordinate has a number, so one has a number
+            # elsewhere exactly when it has more of them
+            mask = ~valid
+            for c in range(m):
+                f = finite.get(c)
+                if f is not None and not ((f & mask).any() if known else
+                                          np.count_nonzero(f) * (valid.size // f.size) > count):
+                    continue
+                for a in ((C[c], S[c]) if V[c] is None else (V[c],)):
+                    np.copyto(a, np.nan, where=mask)
+        return C, S, V, valid, raw
+
+    def solve(self, P, n, need, unwrap=(), assembly=None, rates=None) -> Solution:
         """Solve ``n`` designs (parameters ``P``, from :meth:`design_params`) at the sweep's
-        steps.
+        steps; ``assembly``: their :meth:`assemble` when made already (for many chunks at
+        once: :meth:`assembly_of`); ``rates``: the coordinates whose rates along the steps
+        are read (default all; the others' are NaN).
 
         ``need``: a set of ``"rate_t"`` (rates along the steps), ``"velocity"``,
         ``"acceleration"``, ``"points"``, ``"forces"``; ``unwrap``: the coordinates
@@ -369,27 +454,38 @@ class Model(NumpyEvaluator):
             from linkage_sym.design.newton_groups import solve_designs
 
             return solve_designs(self, P, n, need)
-        P, X0, assembled, joints0, L = self.assemble(P, n)
+        P, X0, assembled, joints0, L = self.assemble(P, n) if assembly is None else assembly
         N, m, E = self.N, self.m, n * self.N
         shape = (n, N)
-        Pb = [v[:, None] if np.ndim(v) else v for v in P]
-        X, pos_ok, raw, every = self.positions_at_steps(Pb, X0, assembled, n, unwrap)
+        Pb = [v[:, None] if _per_design(v) else v for v in P]
+        if unwrap or self.directions is None or (_AT_SPEEDS & need):
+            X, pos_ok, raw, every = self.positions_at_steps(Pb, X0, assembled, n, unwrap)
+            if self.directions is None:
+                C, S = self._trig(X, raw, pos_ok, every)
+            else:
+                C, S, _, _, _ = self._directions_at_steps(Pb, n, assembled, pos_ok)
+            Xl, CS = list(X), (list(C), list(S))
+        else:  # only the angles' cosines and sines: no arctangent, no angle
+            X = None
+            C, S, _, pos_ok, (Cr, Sr, Xl) = self._directions_at_steps(Pb, n, assembled)
+            every = bool(pos_ok.all())
+            CS = (Cr, Sr)  # a crank's (N,): a design-independent entry of A stays (N,)
         sol = Solution(n, N, P, assembled, X0, joints0, L, X, pos_ok, pos_ok, model=self)
-        C, S = self._trig(X, raw, pos_ok, every)
         sol.C, sol.S = C, S
         with np.errstate(invalid="ignore", over="ignore"):
-            A, Bqt = self.rate_system(list(X), list(self.Q), [float(s) for s in self.slope],
-                                      (list(C), list(S)), Pb, shape)
+            A, Bqt = self.rate_system(Xl, list(self.Q), [float(s) for s in self.slope], CS, Pb,
+                                      shape)
         sing = self.screen(A, L[:, None], None if every else pos_ok)
         ok = pos_ok if sing is None else pos_ok & ~sing
         sol.ok = ok
         all_ok = sing is None and every
         if "rate_t" in need:
-            rt = A.solve(Bqt)
+            rt = A.solve(Bqt, rates)
             if not all_ok:
-                rt[:, ~ok] = np.nan
+                for c in range(m) if rates is None else rates:
+                    np.copyto(rt[c], np.nan, where=~ok)
             sol.rate_t = rt
-        if not ({"velocity", "acceleration", "points", "forces"} & need):
+        if not (_AT_SPEEDS & need):
             return sol
         # the scene's speeds, points and forces: entry by entry (the ok ones)
         tiles = self._steps(n)
@@ -486,7 +582,7 @@ class Model(NumpyEvaluator):
         not find)."""
         Q = self.drivers_at(t)
         B = len(t)
-        Pd = [v[d] if np.ndim(v) else v for v in P]
+        Pd = [v[d] if _per_design(v) else v for v in P]
         X = self.positions(_Designs(Pd, Q), B)
         CS = (list(np.cos(X)), list(np.sin(X)))
         QD = [np.full(B, s) for s in self.slope]
@@ -497,49 +593,3 @@ class Model(NumpyEvaluator):
                                                  CS, Pd, B))
         return XD[col], XDD[col], X[col]
 
-
-def _unwrap_fast(A, valid, start, every):
-    """:func:`_unwrap_rows` (the same numbers), skipping the rows with every entry valid
-    and no jump of more than half a turn from ``start`` and between steps (the usual case:
-    nothing to unwrap)."""
-    n, K = A.shape
-    rows = np.ones(n, bool) if not every else None
-    with np.errstate(invalid="ignore"):
-        jump = np.abs(np.diff(A, axis=1)) > math.pi
-        if start is not None:
-            first = np.abs(A[:, 0] - start) > math.pi
-        todo = jump.any(axis=1) | (first if start is not None else False)
-    if not every:
-        rows = todo | ~valid.all(axis=1)
-    else:
-        rows = todo
-    if not rows.any():
-        return A
-    out = A.copy()
-    out[rows] = _unwrap_rows(A[rows], valid[rows], None if start is None else start[rows])
-    return out
-
-
-def _unwrap_rows(A, valid, start):
-    """``np.unwrap`` of each row of ``A`` over its ``valid`` entries (the others NaN),
-    preceded by ``start`` (n,) when given (the assembly configuration)."""
-    n, K = A.shape
-    pos = np.where(valid, np.arange(K)[None, :], -1)
-    last = np.maximum.accumulate(pos, axis=1)
-    prev = np.empty_like(last)
-    prev[:, 0] = -1
-    prev[:, 1:] = last[:, :-1]
-    pv = np.take_along_axis(A, np.maximum(prev, 0), axis=1)
-    if start is not None:
-        pv = np.where(prev >= 0, pv, start[:, None])
-        has = valid
-    else:
-        has = valid & (prev >= 0)
-    dd = np.where(has, A - pv, 0.0)
-    ddmod = np.mod(dd + math.pi, 2 * math.pi) - math.pi
-    ddmod[(ddmod == -math.pi) & (dd > 0)] = math.pi
-    corr = ddmod - dd
-    corr[np.abs(dd) < math.pi] = 0.0
-    out = A + np.cumsum(corr, axis=1)
-    out[~valid] = np.nan
-    return out

@@ -35,7 +35,10 @@ __all__ = ["Execution", "Spec", "compiled_state", "evaluate_chunk", "run_chunks"
 TARGET_ENTRIES = 1 << 16
 """Designs x path points per chunk by default.  Measured on 10^5 four-bars x 361 steps (CPU
 time, one core): 16,000 entries 3.2 s, 32,000 2.5 s, 65,000 2.0 s, 130,000 2.2 s, 260,000
-2.3 s -- smaller chunks pay Python's overhead per call, larger ones leave the cache."""
+2.3 s -- smaller chunks pay Python's overhead per call, larger ones leave the cache.  Again
+with the limit positions located per run (:data:`RUN_DESIGNS`), the crank-rocker's ``K``
+and transmission angle over 40,000 designs x 361 steps: 46,000 entries 1.04 s, 65,000
+1.00 s, 92,000 0.98 s, 130,000 1.02 s, 520,000 3.2 s."""
 
 
 @dataclass(frozen=True)
@@ -121,7 +124,7 @@ def evaluate_chunk(spec: Spec, values: np.ndarray) -> dict:
     """The metric columns of the designs ``values`` (n, k) of one chunk."""
     model, plan = compiled_state(spec)
     P = model.design_params(spec.names, values)
-    sol = model.solve(P, len(values), plan.need, plan.unwrap(model))
+    sol = model.solve(P, len(values), plan.need, plan.unwrap(model), rates=plan.rates(model))
     return plan.compute(model, sol)
 
 
@@ -133,8 +136,45 @@ task per chunk).  The chunks, and so every design's numbers, stay the same."""
 
 
 def evaluate_chunks(spec: Spec, parts: list) -> list[dict]:
-    """:func:`evaluate_chunk` of each of ``parts``, in order (one parallel task)."""
-    return [evaluate_chunk(spec, p) for p in parts]
+    """:func:`evaluate_chunk` of each of ``parts``, in order (one parallel task, or a run of
+    :data:`RUN_DESIGNS` in this process): the limit positions of all of them located
+    together (:meth:`~linkage_sym.design.metrics.MetricPlan.finish`: the same numbers)."""
+    model, plan = compiled_state(spec)
+    begun = []
+    every = None  # the run's designs assembled at once (a design's assembly is its own)
+    if not model.one_at_a_time and len(parts) > 1:
+        values = np.concatenate(parts)
+        every = model.assemble(model.design_params(spec.names, values), len(values))
+    a = 0
+    for values in parts:
+        n = len(values)
+        P = model.design_params(spec.names, values)
+        asm = None if every is None else model.assembly_of(every, a, a + n)
+        sol = model.solve(P, n, plan.need, plan.unwrap(model), asm, plan.rates(model))
+        begun.append(plan.begin(model, sol))
+        a += n
+    return plan.finish(model, begun)
+
+
+RUN_DESIGNS = 8192
+"""Designs whose chunks run together in this process (:func:`evaluate_chunks`): their limit
+positions are located in one Newton iteration, each step one call of the generated
+functions instead of one per chunk (measured: the crank-rocker's ``K`` over 40,000 designs
+x 361 steps, chunks of 181 designs, spent a third of its time in those calls one chunk at
+a time)."""
+
+
+def _runs(parts: list) -> list[tuple[int, list]]:
+    """``parts`` in runs of consecutive chunks of about :data:`RUN_DESIGNS` designs."""
+    out, k = [], 0
+    while k < len(parts):
+        j, size = k, 0
+        while j < len(parts) and (j == k or size + len(parts[j]) <= RUN_DESIGNS):
+            size += len(parts[j])
+            j += 1
+        out.append((k, parts[k:j]))
+        k = j
+    return out
 
 
 def _tasks(parts: list, processes: int) -> list[tuple[int, list]]:
@@ -163,8 +203,9 @@ def run_chunks(spec: Spec, values: np.ndarray, size: int, workers=None, dask=Non
         elif workers is not None and workers > 1:
             _run_workers(spec, parts, workers, done)
         else:
-            for k, p in enumerate(parts):
-                done(k, evaluate_chunk(spec, p))
+            for k, run in _runs(parts):
+                for j, res in enumerate(evaluate_chunks(spec, run)):
+                    done(k + j, res)
     finally:
         if bar is not None:
             bar.close()

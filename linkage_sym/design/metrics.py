@@ -58,11 +58,10 @@ given.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from linkage_sym.design.errors import SweepError
+from linkage_sym.design.limits import K_NOTES, Limits, locate
 from linkage_sym.design.names import DEFAULT_METRICS, METRICS
 from linkage_sym.errors import POINTERS
 from linkage_sym.model import GROUND
@@ -71,29 +70,12 @@ from linkage_sym.numeric.results.transmission import rrr_dyads
 from linkage_sym.structure.grashof import classify, four_bar_loops
 from linkage_sym.structure.parameters import ParameterTable, evaluate
 
-__all__ = ["METRICS", "DEFAULT_METRICS", "MetricPlan", "check_choices"]
+__all__ = ["METRICS", "DEFAULT_METRICS", "K_NOTES", "MetricPlan", "check_choices"]
 
 
 _NEEDS = {"K": {"rate_t"}, "swing": {"rate_t"}, "peak_driving": {"forces"},
           "rms_driving": {"forces"}, "peak_reaction": {"forces"},
           "rms_shaking_force": {"points"}, "rms_shaking_moment": {"points"}, "path": {"points"}}
-
-K_NOTES = {
-    "assembly": "not assembled at the scene's driver values",
-    "no ok step": "no step is ok",
-    "partial": "the sweep does not turn the driver a full turn",
-    "steps": "a step of the driver's turn is not ok (unassemblable or singular)",
-    "not located": "a limit position was not located (Newton on the output's rate did not converge)",
-    "count": "the output has not exactly two limit positions in the driver's turn",
-    "kinds": "the two limit positions are both maxima or both minima",
-}
-"""Why ``K`` has no value: the ``K_note`` column holds one of these (empty where ``K`` has a
-value)."""
-
-XTOL = 1e-12
-"""Limit positions are located to this many steps (plus 4 ulp of the position)."""
-MAX_ITER = 100
-
 
 def _fmax(a):
     return np.fmax.reduce(a, axis=1) if a.shape[1] else np.full(len(a), np.nan)
@@ -230,7 +212,12 @@ class MetricPlan:
         return output
 
     def unwrap(self, model) -> list:
-        """The coordinates whose angles must be continuous along the sweep (the output's)."""
+        """The coordinates whose angles must be continuous along the sweep: the output's,
+        for ``swing`` (``K`` reads only the output's rate)."""
+        return [model.angle_of[self.output]] if "swing" in self.metrics else []
+
+    def rates(self, model) -> list:
+        """The coordinates whose rates along the steps the metrics read (the output's)."""
         return [model.angle_of[self.output]] if "rate_t" in self.need else []
 
     def columns(self, N: int) -> list[str]:
@@ -261,7 +248,27 @@ class MetricPlan:
     # -- computing -----------------------------------------------------------------------------
     def compute(self, model, sol) -> dict:
         """The metric columns (arrays of the chunk's designs) of a :class:`Solution`."""
+        return self.finish(model, [self.begin(model, sol)])[0]
+
+    def finish(self, model, begun) -> list:
+        """The metric columns of chunks :meth:`begin` started: their limit positions
+        located together (:func:`~linkage_sym.design.limits.locate`), the same numbers
+        as chunk by chunk."""
+        limits = [lim for _, lim, _ in begun if lim is not None]
+        located = iter(locate(model, limits) if limits else ())
+        out = []
+        for cols, lim, N in begun:
+            if lim is not None:
+                cols["K"], cols["swing_deg"], cols["K_note"] = next(located)
+            out.append({c: cols[c] for c in self.columns(N)})
+        return out
+
+    def begin(self, model, sol) -> tuple:
+        """A chunk's metric columns but its limit positions', and its
+        :class:`~linkage_sym.design.limits.Limits` (None when no metric reads them), and
+        its number of steps: what :meth:`finish` takes."""
         cols = {}
+        lim = None
         ok = sol.ok
         periodic = whole_period(self.scene)
         for m in self.metrics:
@@ -270,8 +277,8 @@ class MetricPlan:
             elif m == "grashof":
                 cols.update(self._grashof(model, sol))
             elif m in ("K", "swing"):
-                if "swing_deg" not in cols:
-                    cols["K"], cols["swing_deg"], cols["K_note"] = self._limits(model, sol)
+                if lim is None:
+                    lim = Limits(model, sol, model.angle_of[self.output], "swing" in self.metrics)
             elif m == "min_transmission_deg":
                 cols[m] = self._transmission(model, sol)
             elif m in ("peak_driving", "rms_driving"):
@@ -289,7 +296,7 @@ class MetricPlan:
                     cols["rms_shaking_moment"] = cycle_rms(mz, ok, periodic)
             elif m == "path":
                 cols.update(self._path(model, sol))
-        return {c: cols[c] for c in self.columns(sol.N)}
+        return cols, lim, sol.N
 
     def _grashof(self, model, sol) -> dict:
         """The class of each loop from the design's lengths (its parameters: a property of
@@ -322,7 +329,12 @@ class MetricPlan:
             cd = cb * ca + sb * sa  # cos, sin of X_b - X_a
             sd = sb * ca - cb * sa
             with np.errstate(divide="ignore", invalid="ignore"):
-                ratio = np.abs(sd * cc + cd * sc) / np.abs(cd * cc - sd * sc)
+                num = sd * cc
+                num += cd * sc
+                cd *= cc
+                sd *= sc
+                cd -= sd
+                ratio = np.abs(np.divide(num, cd, out=num), out=num)  # |a|/|b| = |a/b|
             best = np.fmin(best, _fmin(ratio))
         best[~np.isfinite(best) & ~(best == np.inf)] = np.nan
         out = np.degrees(np.arctan(best))
@@ -353,63 +365,6 @@ class MetricPlan:
                 for i in range(sol.N):
                     out[f"path_{p}_{name}_{i}"] = v[:, i]
         return out
-
-    def _limits(self, model, sol):
-        """``K`` and the swing (degrees) of the output link (see the module docstring)."""
-        n, N = sol.n, sol.N
-        col = model.angle_of[self.output]
-        rot = sol.X[col] - sol.X0[col][:, None]
-        r = sol.rate_t[col]
-        ok = sol.ok
-        both = ok[:, :-1] & ok[:, 1:]
-        ra, rb = r[:, :-1], r[:, 1:]
-        with np.errstate(invalid="ignore"):
-            change = both & ((ra == 0) | (rb == 0) | ((ra < 0) != (rb < 0)))
-        d, i = np.nonzero(change)
-        t, kind = _roots(sol, d, i.astype(float), ra[d, i], rb[d, i], col)
-        # values at the roots, continuous with the sample before
-        raw = sol.rate_at(d, t, col)[2] if len(d) else np.zeros(0)
-        v = raw - sol.X0[col][d]
-        v = v + 2 * math.pi * np.round((rot[d, i] - v) / (2 * math.pi))
-        # the positions are NaN where a step has none: only singular steps need masking
-        rot_ok = rot if ok is sol.pos_ok else np.where(ok, rot, np.nan)
-        hi = _fmax(rot_ok)
-        lo = _fmin(rot_ok)
-        good = np.isfinite(v)
-        np.fmax.at(hi, d[good], v[good])
-        np.fmin.at(lo, d[good], v[good])
-        swing = np.degrees(hi - lo)
-        K = np.full(n, np.nan)
-        note = np.full(n, K_NOTES["no ok step"], dtype=object)
-        note[~sol.assembled] = K_NOTES["assembly"]
-        step = abs(model.slope[0]) if N > 1 else 0.0
-        if not (step > 0 and step * (N - 1) >= 2 * math.pi * (1 - 1e-12)):
-            note[ok.any(axis=1)] = K_NOTES["partial"]
-            return K, swing, note.astype(str)
-        T = 2 * math.pi / step  # steps of one turn
-        last = min(N - 1, int(math.ceil(T)))
-        full = ok[:, : last + 1].all(axis=1)
-        note[ok.any(axis=1) & ~full] = K_NOTES["steps"]
-        in_turn = i < T
-        first = good & (t < T)
-        cnt = np.bincount(d[first], minlength=n)
-        lost = np.bincount(d[in_turn & ~good], minlength=n) > 0
-        note[full & lost] = K_NOTES["not located"]
-        note[full & ~lost & (cnt != 2)] = K_NOTES["count"]
-        # the roots come design by design (np.nonzero is row-major): a design's two are
-        # consecutive among those of the first turn
-        sel = np.flatnonzero(first)
-        start = np.concatenate([[0], np.cumsum(cnt)[:-1]])
-        ks = np.flatnonzero(full & ~lost & (cnt == 2))
-        j0, j1 = sel[start[ks]], sel[start[ks] + 1]
-        same = kind[j0] == kind[j1]
-        note[ks[same]] = K_NOTES["kinds"]
-        ks, j0, j1 = ks[~same], j0[~same], j1[~same]
-        a = np.abs(t[j1] - t[j0]) * step
-        b = 2 * math.pi - a
-        K[ks] = np.maximum(a, b) / np.minimum(a, b)
-        note[ks] = ""
-        return K, swing, note.astype(str)
 
 
 def _in_frame(model, P, link, joint):
@@ -447,38 +402,3 @@ def _common(scene, j1, j2):
     a = set(scene.joint(j1).links) & set(scene.joint(j2).links)
     return next(lk for lk in scene.joint(j1).links if lk in a and lk != GROUND)
 
-
-def _roots(sol, d, a, fa, fb, col):
-    """Roots of the output's rate between steps ``a`` and ``a + 1`` of designs ``d``, every
-    bracket at once: Newton on the rate (its derivative from the accelerations), kept in
-    the bracket by bisection.  Returns ``(t, kind)``, ``kind`` +1 at a maximum, -1 at a
-    minimum, ``t`` NaN where the rate is not defined or does not converge."""
-    b = a + 1.0
-    kind = np.where((fa > 0) | (fb < 0), 1, -1)
-    t = np.where(fa == 0, a, b)
-    act = np.flatnonzero(~((fa == 0) | (fb == 0)))
-    lo, hi = a.copy(), b.copy()
-    flo = fa.copy()
-    with np.errstate(divide="ignore", invalid="ignore"):
-        x = np.where(fb != fa, b - fb * (b - a) / (fb - fa), 0.5 * (a + b))  # secant start
-        for _ in range(MAX_ITER):
-            if not len(act):
-                break
-            X = x[act]
-            f, df, _ = sol.rate_at(d[act], X, col)
-            bad = ~np.isfinite(f)
-            t[act[bad]] = np.nan
-            same = (f < 0) == (flo[act] < 0)  # the root lies above X
-            lo[act] = np.where(same, X, lo[act])
-            flo[act] = np.where(same, f, flo[act])
-            hi[act] = np.where(same, hi[act], X)
-            step = f / df
-            xn = X - step
-            L, H = lo[act], hi[act]
-            conv = (f == 0) | (np.abs(step) <= XTOL + 4 * np.finfo(float).eps * np.abs(X))
-            t[act] = np.where(f == 0, X, xn)
-            xn = np.where((xn > L) & (xn < H), xn, 0.5 * (L + H))
-            x[act] = xn
-            act = act[~(conv | bad)]
-    t[act] = np.nan  # no convergence
-    return t, kind

@@ -104,6 +104,8 @@ class PlanSolution(Solution):
     :class:`~linkage_sym.design.solution.Solution` (angles only in ``X``, ``rate_t`` and
     ``XDD``; slides are not read by any metric) and the plan's own forces and points."""
 
+    model_rates = False  # rate_at runs each design's plan
+
     runs: list = dataclasses.field(default_factory=list)  # per design: its result or None
     kin: list = dataclasses.field(default_factory=list)  # per design: (kinematics plan, link)
 

@@ -32,7 +32,8 @@ class Solution:
     X: np.ndarray  # (m, n, N) coordinates, angles continuous from the assembly
     pos_ok: np.ndarray  # (n, N)
     ok: np.ndarray  # (n, N)
-    rate_t: np.ndarray | None = None  # (m, n, N) rates along the steps (dq/dt per step)
+    rate_t: np.ndarray | None = None  # (m, n, N) rates along the steps (dq/dt per step; NaN
+    # for a coordinate the metrics do not read)
     XD: np.ndarray | None = None  # (m, n, N) at the scene's speeds
     XDD: np.ndarray | None = None
     points: list | None = None  # the points function's outputs, (n, N) each
@@ -40,6 +41,8 @@ class Solution:
     C: np.ndarray | None = None  # (m, n, N) cosines of the coordinates (NaN where no position)
     S: np.ndarray | None = None
     model: object = None  # the Model that solved it
+
+    model_rates = True  # rate_at is the Model's (a subclass: another runtime's)
 
     # what the metrics read, (n, N) each; a subclass reads them from another runtime's result
     def reaction(self, joint) -> np.ndarray:

@@ -86,3 +86,43 @@ def test_rate_system_solves_as_the_dense_matrix():
     mask = np.zeros(K, bool)
     mask[steps] = True
     assert np.allclose(system.take(mask).solve(list(rhs[steps].T)).T, want[steps], rtol=1e-12)
+
+
+def test_the_screen_without_square_roots_flags_as_the_ratios():
+    """``BlockSystem.below(t)`` (``det^2 < t^2 norms^2``) flags the entries whose Hadamard
+    ratio (``ratios()``) is below ``t``, for blocks of 2 and 3 coordinates with entries of
+    every shape, at thresholds away from every ratio by more than 1e-12 relative (the two
+    may differ by a few rounding errors at the threshold itself); NaN entries are never
+    flagged."""
+    rng = np.random.default_rng(11)
+    n, N = 4, 5
+    A, _ = _mixed_system(rng, n, N)
+    ratios = A.ratios()
+    every = np.concatenate([np.ravel(r) for r in ratios if r is not None])
+    for t in np.quantile(every, [0.1, 0.5, 0.9]) * (1 + 1e-9):
+        assert np.all(np.abs(every / t - 1) > 1e-12)
+        for ratio, low in zip(ratios, A.below(t)):
+            if ratio is None:
+                assert low is None
+            else:
+                np.testing.assert_array_equal(np.broadcast_to(low, (n, N)),
+                                              np.broadcast_to(ratio < t, (n, N)))
+    nan = BlockSystem({(0, 0): np.nan, (0, 1): 1.0, (1, 0): 1.0, (1, 1): 1.0},
+                      [(0, 2, 0, 2)], 2, 3)
+    assert not np.any(nan.below(1e-3)[0])
+
+
+def test_only_the_wanted_columns_solve_as_all():
+    """``solve(rhs, only)`` gives the wanted columns exactly as the whole solve (the groups
+    they couple to solved as before), NaN for the columns nothing wanted reads."""
+    rng = np.random.default_rng(13)
+    n, N = 4, 5
+    A, _ = _mixed_system(rng, n, N)
+    rhs = [2.0, rng.normal(size=N)] + [rng.normal(size=(n, N)) for _ in range(4)]
+    every = A.solve(rhs)
+    for only, skipped in (([2], [3, 4, 5]), ([1], [2, 3, 4, 5]), ([4], []), ([0, 5], [])):
+        got = A.solve(rhs, only)
+        for c in only:
+            np.testing.assert_array_equal(got[c], every[c])
+        for c in skipped:
+            assert np.isnan(got[c]).all()

@@ -229,6 +229,29 @@ def test_results_do_not_depend_on_the_chunks():
         np.testing.assert_array_equal(one[c], big[c])
 
 
+def test_K_and_transmission_do_not_depend_on_the_angles_being_asked_for(monkeypatch):
+    """``K`` and ``min_transmission_deg`` alone take the angles' cosines and sines without
+    the angles (no arctangent); with ``swing`` (which reads the angles) the angles are
+    evaluated too: the same numbers, bit for bit.  And the limit positions of a run of
+    chunks located together equal those located chunk by chunk (one design per run)."""
+    from linkage_sym.design import execute
+
+    scene = linkage_sym.load_example("crank_rocker")
+    drv = dataclasses.replace(scene.drivers[0], start=0.0, stop=2 * math.pi, steps=181)
+    scene = dataclasses.replace(scene, drivers=(drv,))
+    axes = {"l_BC": np.linspace(0.045, 0.085, 7), "l_CD": np.linspace(0.025, 0.075, 6)}
+    alone = sweep(scene, axes, ["K", "min_transmission_deg"])
+    assert np.isfinite(np.asarray(alone["K"], float)).sum() >= 20  # most designs have K
+    with_swing = sweep(scene, axes, ["K", "swing", "min_transmission_deg"])
+    for c in ("K", "K_note", "min_transmission_deg"):
+        np.testing.assert_array_equal(alone[c], with_swing[c])
+    monkeypatch.setattr(execute, "RUN_DESIGNS", 1)
+    by_chunk = sweep(scene, axes, ["K", "swing", "min_transmission_deg"],
+                     execution=Execution(chunk_designs=5))
+    for c in with_swing.columns:
+        np.testing.assert_array_equal(by_chunk[c], with_swing[c])
+
+
 def test_monte_carlo_is_reproducible():
     scene = linkage_sym.load_example("crank_rocker")
     tol = {"l_AB": 5e-5, "l_BC": 5e-5}

@@ -28,24 +28,59 @@ being reported unassemblable.
 _EPS = float(np.finfo(float).eps)
 
 
-def clamp_tangent(prod, factors, scale):
+def clamp_tangent(prod, factors, scale, inplace=False):
     """``prod`` (a product of ``factors``) with rounding-level misses set to 0, real misses to NaN.
 
     ``scale()`` gives the size of the coordinates the factors were computed
-    from (called only when needed); a factor above
-    ``-TANGENT_ULPS * eps * scale`` counts as zero.  Only the (rare) negative
-    entries are examined.
+    from (called only when needed; a :class:`Size` is evaluated at the negative
+    entries only); a factor above ``-TANGENT_ULPS * eps * scale`` counts as zero.
+    Only the (rare) negative entries are examined.  ``inplace``: ``prod`` is the
+    caller's own temporary array, clamped where it is (else a copy is).
     """
     prod = np.asarray(prod, dtype=float)
     neg = prod < 0.0
     if not neg.any():
         return prod
-    prod = prod.copy()
-    scale = scale()
-    tol = TANGENT_ULPS * _EPS * np.broadcast_to(scale, prod.shape)[neg]
-    worst = np.min([np.broadcast_to(f, prod.shape)[neg] for f in factors], axis=0)
-    prod[neg] = np.where(worst >= -tol, 0.0, np.nan)
+    if not (inplace and prod.flags.c_contiguous and prod.flags.writeable):
+        prod = prod.copy()
+    # the negative entries' indices (row-major, as a mask selects them): gathering them
+    # from each array costs only the few entries
+    at = Entries(neg)
+    size = scale.at(at) if isinstance(scale, Size) else at.take(scale())
+    tol = TANGENT_ULPS * _EPS * size
+    worst = at.take(factors[0])
+    for f in factors[1:]:
+        worst = np.minimum(worst, at.take(f))
+    at.put(prod, np.where(worst >= -tol, 0.0, np.nan))
     return prod
+
+
+class Entries:
+    """The entries where ``mask`` (a boolean array) is true, in row-major order (the order
+    ``array[mask]`` gives): :meth:`take` gathers them from an array broadcasting to the
+    mask's shape, reading only those entries (a (n, 1) or (N,) array by its own index);
+    :meth:`put` writes them into an array of the mask's shape."""
+
+    def __init__(self, mask):
+        self.shape = mask.shape
+        self.flat = np.flatnonzero(mask)
+        self.index = np.unravel_index(self.flat, mask.shape) if mask.ndim else None
+
+    def take(self, v) -> np.ndarray:
+        """``np.broadcast_to(v, shape)[mask]``, the same numbers."""
+        v = np.asarray(v, dtype=float)
+        k = len(self.flat)
+        if v.shape == self.shape and v.flags.c_contiguous:
+            return v.ravel().take(self.flat)
+        if v.ndim == 0 or self.index is None:
+            return np.broadcast_to(v, self.shape).reshape(-1)[self.flat] if v.ndim else np.full(k, v)
+        lead = len(self.shape) - v.ndim  # v broadcasts along its missing and length-1 axes
+        idx = tuple(0 if n == 1 else i for n, i in zip(v.shape, self.index[lead:]))
+        return np.broadcast_to(v[idx], (k,))
+
+    def put(self, a, values) -> None:
+        """``a[mask] = values`` (``a`` of the mask's shape, C-contiguous)."""
+        a.reshape(-1)[self.flat] = values
 
 
 def coordinate_size(*values):
@@ -54,6 +89,29 @@ def coordinate_size(*values):
     for v in values:
         out = np.maximum(out, np.abs(v))
     return out
+
+
+class Size:
+    """:func:`coordinate_size` of ``values``, computed when asked: in whole
+    (``size()``) or at some entries only (``size.at(entries)``, :class:`Entries`;
+    the same numbers)."""
+
+    __slots__ = ("values",)
+
+    def __init__(self, values):
+        self.values = values
+
+    def __call__(self):
+        return coordinate_size(*self.values)
+
+    def at(self, entries):
+        """The size at ``entries`` (:class:`Entries`): the values of one shape reduced to
+        their largest magnitude before the gather (a maximum is exact in any order)."""
+        by_shape: dict = {}
+        for v in self.values:
+            v = np.asarray(v, dtype=float)
+            by_shape[v.shape] = np.maximum(by_shape.get(v.shape, 0.0), np.abs(v))
+        return coordinate_size(*(entries.take(v) for v in by_shape.values()))
 
 
 class Circle:
