@@ -11,9 +11,11 @@ from linkage_sym.model.scene import (
     Link,
     Load,
     LoadTable,
+    Motor,
     Scene,
+    Simulation,
     TracedPoint,
 )
 
-__all__ = ["GROUND", "OUTPUTS", "STAGES", "CamSpec", "Driver", "Effects", "Joint", "Link", "Load", "LoadTable", "Scene",
+__all__ = ["GROUND", "OUTPUTS", "STAGES", "CamSpec", "Driver", "Effects", "Joint", "Link", "Load", "LoadTable", "Motor", "Scene", "Simulation",
            "TracedPoint"]

@@ -65,11 +65,13 @@ from linkage_sym.scene.joints import (  # noqa: F401
     JointInfo,
     joint_type_problem,
 )
+from linkage_sym.scene.motors import read_simulation
 from linkage_sym.scene.schedules import SCHEDULE_KEYS, read_schedule
 
 __all__ = ["parse_scene", "value_problem", "MASS_RULE", "ANGLE_RULE"]
 
-TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs", "points")
+TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs", "points",
+            "simulate")
 LINK_KEYS = ("name", "mass", "com", "inertia")
 LOAD_KEYS = ("link", "force", "at", "torque")
 POINT_KEYS = ("name", "link", "at")
@@ -189,13 +191,15 @@ class _SceneReader(JointSection, DriverSection, SceneChecks):
         effects = self.read_effects(data)
         outputs = self.read_outputs(data)
         points = self.read_points(data)
+        n_drivers = len(data["drivers"]) if isinstance(data.get("drivers"), list) else 0
+        simulate = read_simulation(self, data, drivers, n_drivers)
         self.check_size()
         if self.links_ok and self.joints_ok and self.check_connected() and self.drivers_ok:
             self.check_mobility(len(data["drivers"]))
         if self.problems:
             raise SceneError(self.problems)
         assert name is not None and effects is not None and outputs is not None
-        return Scene(name, links, joints, drivers, loads, effects, outputs, points)
+        return Scene(name, links, joints, drivers, loads, effects, outputs, points, simulate)
 
     def read_links(self, data: Mapping[str, Any]) -> tuple[Link, ...]:
         entries = self.array(data, "links", "")
