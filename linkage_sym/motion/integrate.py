@@ -55,6 +55,7 @@ class Trajectory:
     atol: tuple = ()
     steps: int = 0
     evaluations: int = 0
+    y0: tuple = ()
 
     @property
     def t_end(self) -> float:
@@ -70,6 +71,7 @@ class Trajectory:
         for k in np.unique(which):
             sel = which == k
             out[:, sel] = self.pieces[k](t[sel])
+        out[:, t == self.t[0]] = np.asarray(self.y0, float)[:, None]  # the start, as given
         return out
 
     def integrator(self) -> dict:
@@ -111,7 +113,8 @@ def integrate_motion(eq: MotionEquations, t0: float, y0, t_bound: float, *,
         raise ValueError(f"rtol: must be in (0, {RTOL:g}], got {rtol!r}")
     scale = 1.0 if eq.driver.kind == "R" else (eq.scene.characteristic_length() or 1.0)
     atol = (ATOL * scale, ATOL * scale)
-    traj = Trajectory(t=[float(t0)], method=method, rtol=rtol, atol=atol)
+    traj = Trajectory(t=[float(t0)], method=method, rtol=rtol, atol=atol,
+                      y0=tuple(float(v) for v in y0))
     calls = eq.evaluations
 
     def fun(t, y):
