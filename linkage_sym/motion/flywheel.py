@@ -41,7 +41,7 @@ __all__ = ["FlywheelResult", "energy_method", "flywheel", "TOLERANCE"]
 
 TOLERANCE = 0.01
 """The refined flywheel's simulated fluctuation is within this fraction below the request."""
-GRID = 1440
+GRID = 7200
 """Points per period of the energy method's integral (trapezoidal rule)."""
 MAX_REFINE = 30
 MAX_SHOTS = 30

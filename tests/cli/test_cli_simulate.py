@@ -6,6 +6,8 @@ from __future__ import annotations
 import copy
 import json
 
+import pytest
+
 from linkage_sym.cli import main
 from linkage_sym.examples import example_dict
 
@@ -21,6 +23,7 @@ def short_scene(tmp_path, **simulate):
     return path
 
 
+@pytest.mark.slow
 def test_simulate_writes_the_result_and_prints_a_summary(tmp_path, capsys):
     out = tmp_path / "r" / "result.json"
     assert main(["simulate", str(short_scene(tmp_path)), "-o", str(out)]) == 0

@@ -55,6 +55,7 @@ def potential_energy(scene, analysis):
     return sum(-link.mass * np.asarray(analysis.links[link.name].com) @ g for link in scene.links)
 
 
+@pytest.mark.slow
 def test_energy_is_conserved_without_loads_and_motor_torque():
     scene = motor_scene(0.0)
     res = simulate(scene)
@@ -65,6 +66,7 @@ def test_energy_is_conserved_without_loads_and_motor_torque():
     assert np.max(np.abs(E - E[0])) <= 1e-9 * np.max(np.abs(T))
 
 
+@pytest.mark.slow
 def test_inverse_dynamics_closes_the_loop_with_the_global_method():
     loads = [{"link": "rocker", "torque": -0.8, "active_deg": [0, 200], "driver": "A"},
              {"link": "coupler", "force": [0.0, -5.0], "at": [0.05, 0.03]}]
@@ -129,6 +131,7 @@ def test_scenes_that_cannot_be_simulated_are_refused_by_field(change, field):
     assert any(p.startswith(field + ":") for p in err.value.problems)
 
 
+@pytest.mark.slow
 def test_the_refined_flywheel_gives_the_requested_fluctuation_to_one_percent():
     from linkage_sym.motion.flywheel import flywheel
     from linkage_sym.motion.periodic import periodic_motion
