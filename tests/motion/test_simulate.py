@@ -152,3 +152,38 @@ def test_the_refined_flywheel_gives_the_requested_fluctuation_to_one_percent():
     res = simulate(fitted)
     assert "speed_fluctuation" in res.motion, res.motion
     assert res.motion["speed_fluctuation"] == pytest.approx(got.fluctuation, rel=1e-3)
+
+
+def test_a_block_lifted_by_a_constant_force_moves_as_the_closed_form():
+    # one block on a vertical guide, 2 kg, pushed up by 30 N against gravity: q'' = 30/2 - 9.81
+    data = {"name": "lift", "links": [{"name": "block", "mass": 2.0, "com": [0.0, 0.0]}],
+            "joints": [{"name": "S", "type": "P", "links": ["ground", "block"], "at": [0, 0],
+                        "axis_deg": 90}],
+            "drivers": [{"joint": "S", "start": 0, "stop": 0.1, "steps": 3, "speed": 0,
+                         "motor": {"force": 30.0}}],
+            "effects": {"inertia": True, "gravity": [0, -9.81]},
+            "simulate": {"duration": 0.2, "start": 0.01, "start_speed": 0.5, "samples": 5}}
+    scene = linkage_sym.load_scene(data)
+    res = simulate(scene)
+    a = 30.0 / 2.0 - 9.81
+    t = res.time
+    d = res.analysis.drivers["S"]
+    assert np.allclose(d["q"], 0.01 + 0.5 * t + 0.5 * a * t**2, rtol=0, atol=1e-12)
+    assert np.allclose(d["qd"], 0.5 + a * t, rtol=0, atol=1e-12)
+    assert np.allclose(d["qdd"], a, rtol=1e-12, atol=0)
+    assert np.allclose(res.inertia, 2.0, rtol=1e-14)
+    assert "P joint" in res.motion["reason"]
+
+
+def test_a_crank_that_cannot_turn_round_ends_the_simulation_where_it_fails():
+    data = copy.deepcopy(example_dict("crank_rocker"))
+    data["joints"][1]["at"] = [0.04, 0.0]  # a crank too long to turn round (not Grashof)
+    data["drivers"][0]["motor"] = {"torque": 0.05}
+    data["loads"] = []
+    data["effects"]["gravity"] = False
+    data["simulate"] = {"duration": 1.0, "samples": 11, "start_speed": 1.0}
+    res = simulate(linkage_sym.load_scene(data))
+    assert res.trajectory.end == "failure"
+    assert "cannot be solved at t =" in res.message and "driver A at" in res.message
+    assert res.time[-1] <= res.trajectory.t_end < 1.0
+    assert res.analysis.n_steps == len(res.time) >= 1
