@@ -15,9 +15,9 @@ and in ``J``, ``w_max^2 - w_min^2 = 2 delta w_m^2``).
 
 **Refinement by simulation.**  With a moment of inertia ``I`` added to the driven link (a
 flywheel on its shaft) the periodic motion is found by shooting: the speed ``w0`` at the start
-angle whose motion over one period returns to ``w0`` (a secant on ``w_end(w0) - w0``, to 1e-9
-of ``w_m``), integrated as ``simulate`` integrates; its ``speed_fluctuation`` is measured as
-``simulate`` measures it (:mod:`~linkage_sym.motion.periodic`).  ``1/delta`` is nearly affine
+angle whose motion over one period returns to ``w0`` (a secant on ``w_end(w0) - w0``, to
+:data:`SHOOTING_TOL` of ``w_m``), integrated as ``simulate`` integrates; its
+``speed_fluctuation`` is measured as ``simulate`` measures it (:mod:`~linkage_sym.motion.periodic`).  ``1/delta`` is nearly affine
 in ``I``: a secant on ``1/delta(I) - 1/target``, kept within a bracket (bisection when the
 secant leaves it), until the simulated ``delta`` is at most the request and within
 :data:`TOLERANCE` of it.
@@ -44,7 +44,13 @@ TOLERANCE = 0.01
 GRID = 7200
 """Points per period of the energy method's integral (trapezoidal rule)."""
 MAX_REFINE = 30
+"""Most simulated trials of the refinement."""
 MAX_SHOTS = 30
+"""Most shots (one period each) in the search of one periodic motion."""
+SHOOTING_TOL = 1e-8
+"""A periodic motion's speed at the start angle returns to within this fraction of the mean
+speed after one period (the fluctuation it measures is then exact to far better than the
+refinement's 1 %)."""
 
 
 @dataclass
@@ -144,7 +150,7 @@ def periodic_orbit(eq: MotionEquations, w_guess: float, rtol: float) -> dict:
     wb = w_guess * (1 + 1e-3)
     fb, traj = shot(wb)
     for _ in range(MAX_SHOTS):
-        if abs(fb) <= 1e-9 * w_guess:
+        if abs(fb) <= SHOOTING_TOL * w_guess:
             break
         if fb == fa:
             break
@@ -211,10 +217,7 @@ def flywheel(scene: Scene, fluctuation: float, *, rtol: float = 1e-10,
 
 def _refine(measure, x0, d0, target, request, energy) -> float:
     """Secant on ``1/delta(I) - 1/target`` within a bracket (see the module docstring)."""
-    lo, hi = (None, x0) if d0 <= target else (x0, None)
-    if lo is None and measure(0.0) <= request:
-        return 0.0  # no flywheel needed
-    lo = 0.0 if lo is None else lo
+    lo, hi = (0.0, x0) if d0 <= target else (x0, None)
     scale = energy["delta_E_max"] / energy["mean_speed"] ** 2
     xa, fa = x0, 1 / d0 - 1 / target
     xb = x0 + 0.1 * scale / target if d0 > target else max(x0 * 0.9, 0.0)
