@@ -60,7 +60,7 @@ def summary(scene, res) -> list[str]:
     """The console's lines for a :class:`~linkage_sym.motion.simulate.SimulationResult`."""
     d = scene.drivers[0]
     unit = "rad/s" if d.kind == "R" else "m/s"
-    q, qd = res.analysis.drivers[d.joint]["q"], res.analysis.drivers[d.joint]["qd"]
+    qd = res.analysis.drivers[d.joint]["qd"]
     traj = res.trajectory
     lines = [f"simulated {scene.name}: {len(res.time)} samples over {res.time[-1]:.6g} s "
              f"({traj.method}, rtol {traj.rtol:g}: {traj.steps} steps, {traj.evaluations} "
@@ -78,7 +78,6 @@ def summary(scene, res) -> list[str]:
                      f"(from {m['min_speed']:.6g} to {m['max_speed']:.6g} {unit})")
     lines.append(f"  the solver's effort at the integrated states equals the motor's to "
                  f"{res.effort_error:.1e} (relative)")
-    del q
     return lines
 
 
