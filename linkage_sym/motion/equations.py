@@ -245,6 +245,10 @@ def _reduction_period(scene: Scene) -> float | None:
     d = scene.drivers[0]
     if d.kind != "R":
         return None
+    # a torsion spring's angle (the contract's springs at an R joint) counts whole turns: the
+    # forces then do not repeat with the driver's turns, and the angle is not reduced
+    if any(getattr(spring, "joint", None) for spring in getattr(scene, "springs", ()) or ()):
+        return None
     periods = [load.period for load in scene.loads
                if load.period is not None and load.driver in (None, d.joint)
                and (load.table is not None or load.active is not None)]
