@@ -101,8 +101,11 @@ def plot_flywheel(scene, res, folder: Path, stem: str) -> list[Path]:
     ax.axhline(energy[k], color="0.5", lw=0.6)
     ax.annotate("", xy=(deg[i], energy[i]), xytext=(deg[i], energy[k]),
                 arrowprops={"arrowstyle": "<->", "color": "C3"})
-    ax.text(deg[i], 0.5 * (energy[i] + energy[k]), f"  ΔE_max = {e['delta_E_max']:.4g} J",
-            color="C3", va="center")
+    right = deg[i] > 0.5 * (deg[0] + deg[-1])  # the label on the side with room
+    ax.text(deg[i], 0.5 * (energy[i] + energy[k]),
+            f"ΔE_max = {e['delta_E_max']:.4g} J  " if right else
+            f"  ΔE_max = {e['delta_E_max']:.4g} J", color="C3", va="center",
+            ha="right" if right else "left")
     ax.set_xlabel(f"angle of driver {scene.drivers[0].joint} (degrees)")
     ax.set_ylabel("energy (J)")
     ax.set_title(f"{scene.name}: energy diagram at the mean speed {e['mean_speed']:.5g} rad/s")

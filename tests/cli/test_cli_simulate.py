@@ -26,8 +26,12 @@ def short_scene(tmp_path, **simulate):
 @pytest.mark.slow
 def test_simulate_writes_the_result_and_prints_a_summary(tmp_path, capsys):
     out = tmp_path / "r" / "result.json"
-    assert main(["simulate", str(short_scene(tmp_path)), "-o", str(out)]) == 0
+    pics = tmp_path / "pics"
+    assert main(["simulate", str(short_scene(tmp_path)), "-o", str(out), "--plots",
+                 str(pics)]) == 0
     printed = capsys.readouterr().out
+    assert sorted(p.name for p in pics.iterdir()) == ["crank-rocker_speed.png",
+                                                       "crank-rocker_torque_balance.png"]
     assert "simulated crank-rocker: 11 samples over 0.1 s" in printed
     assert "no periodic motion" in printed
     got = json.loads(out.read_text())
