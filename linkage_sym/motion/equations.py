@@ -139,6 +139,7 @@ class MotionEquations:
         self.q0 = float(_assembly_value(scene))
         self.period = _reduction_period(scene)
         self.evaluations = 0
+        self._last = (None, None)  # the last q at which J was evaluated, and its J
         # friction (the contract's effects.friction) makes the effort nonlinear in qdd
         self.nonlinear = bool(getattr(scene.effects, "friction", False))
 
@@ -189,7 +190,9 @@ class MotionEquations:
         e0, res = self.effort(q, qd)
         if res.status[0] != "ok":
             raise StepFailure(q, qd, f"{res.status[0]}: {res.messages[0]}")
-        J = self.inertia(q)[0][0]
+        if q != self._last[0]:  # the solvers' Jacobians vary qd alone at one q: J is that q's
+            self._last = (q, self.inertia(q)[0][0])
+        J = self._last[1]
         if not J > 0:
             raise StepFailure(q, qd, f"the equivalent moment of inertia J is {J:.3g}: the "
                               "motion has no equation there")
