@@ -27,8 +27,10 @@ __all__ = [
     "compile_plan",
     "decompose",
     "derive",
+    "flywheel",
     "load_example",
     "load_scene",
+    "simulate",
     "sweep",
 ]
 
@@ -135,3 +137,28 @@ def sweep(scene, parameters, metrics=None, **options):
     from linkage_sym.design.api import sweep as _sweep
 
     return _sweep(scene, parameters, metrics, **options)
+
+
+def simulate(scene, method="LSODA", progress=None):
+    """Integrate the motion of a scene's machine driven by its motor (its ``simulate``
+    section and its driver's ``motor``).
+
+    Returns a :class:`~linkage_sym.motion.simulate.SimulationResult`: the sampled states
+    analysed as :func:`analyze` analyses a sweep, their times, the periodic ``motion``
+    (``.to_dict()``: the contract's JSON).  ``method``: ``"LSODA"``, ``"Radau"`` or
+    ``"BDF"``.  See :func:`linkage_sym.motion.simulate.simulate`.
+    """
+    from linkage_sym.motion.simulate import simulate as _simulate
+
+    return _simulate(scene, method=method, progress=progress)
+
+
+def flywheel(scene, fluctuation, progress=None):
+    """The moment of inertia (kg m^2) to add to the driven link so that the periodic motion's
+    speed fluctuation is at most ``fluctuation``: the energy method's estimate refined by
+    simulation (a :class:`~linkage_sym.motion.flywheel.FlywheelResult` with both).  See
+    :func:`linkage_sym.motion.flywheel.flywheel`.
+    """
+    from linkage_sym.motion.flywheel import flywheel as _flywheel
+
+    return _flywheel(scene, fluctuation, progress=progress)

@@ -75,6 +75,15 @@ view SCENE.json -o PAGE.html
     drag a joint or type a length and the whole sweep is solved again, download the
     edited scene (``linkage_sym.page``).
 
+simulate SCENE.json [-o RESULT.json | -o -] [--method LSODA|Radau|BDF] [--plots DIR]
+    Integrate the motion of the machine driven by its motor (``drivers[i].motor``) from
+    the scene's ``simulate`` section and write the steps at the sampled times, analysed
+    as ``analyze`` analyses a step, with the periodic motion's mean speed and speed
+    fluctuation; a progress bar follows long runs.
+flywheel SCENE.json --fluctuation DELTA [-o FLYWHEEL.json | -o -] [--plots DIR]
+    The moment of inertia to add to the driven link for a speed fluctuation of at most
+    DELTA: the energy method's estimate, refined by simulation; both reported.
+
 Plot files are named after the scene's ``name`` (made safe for a path) in
 every command.
 
@@ -103,7 +112,7 @@ __all__ = ["BROKEN_PIPE", "EXIT_STATUS", "NO_STEP_ASSEMBLED", "build_parser", "m
 
 # the command modules, in the order of the help's list
 COMMANDS = ("analyze", "derive", "structure", "demo", "synthesize", "balance", "centres", "sweep",
-            "animate", "view")
+            "animate", "view", "simulate", "flywheel")
 
 
 def build_parser() -> CommandParser:

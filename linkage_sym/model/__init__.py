@@ -12,10 +12,12 @@ from linkage_sym.model.scene import (
     Link,
     Load,
     LoadTable,
+    Motor,
     Scene,
+    Simulation,
     Spring,
     TracedPoint,
 )
 
 __all__ = ["GROUND", "OUTPUTS", "STAGES", "CamSpec", "Driver", "Effects", "Joint", "JointFriction", "Link", "Load",
-           "LoadTable", "Scene", "Spring", "TracedPoint"]
+           "LoadTable", "Motor", "Scene", "Simulation", "Spring", "TracedPoint"]

@@ -140,6 +140,34 @@ class Joint:
 
 
 @dataclass(frozen=True)
+class Motor:
+    """A driver's motor: its effort as a function of the driver's speed.
+
+    ``speeds`` (rad/s for an ``R`` driver, m/s for a ``P`` one) strictly
+    increasing and ``efforts`` (N m or N) of the same length: the effort is
+    interpolated linearly between two rows and the end rows' effort is held
+    beyond them.  A constant effort has one row (its speed 0).  ``kind`` is the
+    scene's key, ``"torque"`` (an ``R`` driver) or ``"force"`` (a ``P`` one).
+    """
+
+    kind: str
+    speeds: tuple[float, ...]
+    efforts: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """The ``simulate`` section: integrate the motion from ``start`` (radians or
+    metres, the driver's coordinate) at ``start_speed`` over ``duration`` seconds,
+    reporting ``samples`` equally spaced times."""
+
+    duration: float
+    start: float
+    start_speed: float
+    samples: int
+
+
+@dataclass(frozen=True)
 class Driver:
     """A prescribed relative coordinate of one joint.
 
@@ -155,6 +183,9 @@ class Driver:
     (:mod:`linkage_sym.codegen.precision`).  They count only while
     ``math.radians(start_deg) == start`` (likewise ``stop``); they take no part in
     comparisons.
+
+    ``motor`` (a :class:`Motor`, or ``None``) drives the joint when the
+    machine's motion is simulated (``simulate``); ``analyze`` does not read it.
     """
 
     joint: str
@@ -167,6 +198,7 @@ class Driver:
     toward: str | None = None
     start_deg: float | None = field(default=None, repr=False, compare=False)
     stop_deg: float | None = field(default=None, repr=False, compare=False)
+    motor: Motor | None = field(default=None, repr=False)
 
 
 @dataclass(frozen=True)
@@ -282,6 +314,7 @@ class Scene:
     outputs: tuple[str, ...] = OUTPUTS
     points: tuple[TracedPoint, ...] = ()
     springs: tuple[Spring, ...] = ()
+    simulate: Simulation | None = None
 
     @property
     def active_springs(self) -> tuple[Spring, ...]:

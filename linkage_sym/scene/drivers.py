@@ -17,12 +17,13 @@ from typing import Any
 from linkage_sym.model.scene import Driver
 from linkage_sym.scene.fields import ANGLE, FieldReader, radians_or_none, did_you_mean
 from linkage_sym.scene.joints import JointInfo
+from linkage_sym.scene.motors import read_motor
 
 __all__ = ["DRIVER_KEYS", "DriverSection", "MAX_SWEEP_DEG", "P_DRIVER_KEYS", "R_DRIVER_KEYS"]
 
 R_DRIVER_KEYS = ("toward", "start_deg", "stop_deg")
 P_DRIVER_KEYS = ("start", "stop")
-DRIVER_KEYS = ("joint", *R_DRIVER_KEYS, *P_DRIVER_KEYS, "steps", "speed", "acceleration")
+DRIVER_KEYS = ("joint", *R_DRIVER_KEYS, *P_DRIVER_KEYS, "steps", "speed", "acceleration", "motor")
 
 MAX_SWEEP_DEG = 360_000.0
 """Largest range ``|stop_deg - start_deg|`` of an R driver: 1000 turns.
@@ -87,9 +88,10 @@ class DriverSection(FieldReader):
             acceleration = self.number(entry, "acceleration", path, default=0.0)
             kind = None if info is None else info.type
             start, stop, toward, degrees = self.driver_range(entry, path, info)
+            motor = read_motor(self, entry, path, kind)
             if kind is not None and len(self.problems) == before:
                 drivers.append(Driver(joint, kind, start, stop, steps, speed, acceleration, toward,
-                                      *degrees))
+                                      *degrees, motor=motor))
         self.drivers_ok = refs_ok
         return tuple(drivers)
 

@@ -168,6 +168,8 @@ def dump_scene(scene: Scene) -> dict[str, Any]:
     if scene.springs:  # the contract's second part: written only when used
         out["springs"] = [_dump_spring(k) for k in scene.springs]
         out["effects"]["springs"] = scene.effects.springs  # false too: true is the default then
+    if scene.simulate is not None:  # the contract's second part: written only when given
+        out["simulate"] = _dump_simulation(scene)
     return out
 
 
@@ -249,6 +251,24 @@ def _dump_driver(driver: Driver) -> dict[str, Any]:
     out["steps"] = driver.steps
     out["speed"] = driver.speed
     out["acceleration"] = driver.acceleration
+    if driver.motor is not None:  # the contract's second part: written only when given
+        m = driver.motor
+        value: Any = (m.efforts[0] if len(m.speeds) == 1 and m.speeds[0] == 0.0
+                      else [[v, e] for v, e in zip(m.speeds, m.efforts)])
+        out["motor"] = {m.kind: value}
+    return out
+
+
+def _dump_simulation(scene: Scene) -> dict[str, Any]:
+    """The ``simulate`` section in the file layout (the start in the driver's units)."""
+    sim = scene.simulate
+    out: dict[str, Any] = {"duration": sim.duration}
+    if scene.drivers and scene.drivers[0].kind == "R":
+        out["start_deg"] = _degrees(sim.start)
+    else:
+        out["start"] = sim.start
+    out["start_speed"] = sim.start_speed
+    out["samples"] = sim.samples
     return out
 
 

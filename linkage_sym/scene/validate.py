@@ -66,12 +66,14 @@ from linkage_sym.scene.joints import (  # noqa: F401
     JointInfo,
     joint_type_problem,
 )
+from linkage_sym.scene.motors import read_simulation
 from linkage_sym.scene.schedules import SCHEDULE_KEYS, read_schedule
 from linkage_sym.scene.springs import read_springs, springs_effect
 
 __all__ = ["parse_scene", "value_problem", "MASS_RULE", "ANGLE_RULE"]
 
-TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs", "points", "springs")
+TOP_KEYS = ("name", "links", "joints", "drivers", "loads", "effects", "outputs", "points", "springs",
+            "simulate")
 LINK_KEYS = ("name", "mass", "com", "inertia")
 LOAD_KEYS = ("link", "force", "at", "torque")
 POINT_KEYS = ("name", "link", "at")
@@ -192,13 +194,16 @@ class _SceneReader(JointSection, DriverSection, SceneChecks):
         outputs = self.read_outputs(data)
         points = self.read_points(data)
         springs = read_springs(self, data)  # the contract's springs and dampers
+        n_drivers = len(data["drivers"]) if isinstance(data.get("drivers"), list) else 0
+        simulate = read_simulation(self, data, drivers, n_drivers)
         self.check_size()
         if self.links_ok and self.joints_ok and self.check_connected() and self.drivers_ok:
             self.check_mobility(len(data["drivers"]))
         if self.problems:
             raise SceneError(self.problems)
         assert name is not None and effects is not None and outputs is not None
-        return Scene(name, links, joints, drivers, loads, effects, outputs, points, springs)
+        return Scene(name, links, joints, drivers, loads, effects, outputs, points, springs,
+                     simulate)
 
     def read_links(self, data: Mapping[str, Any]) -> tuple[Link, ...]:
         entries = self.array(data, "links", "")

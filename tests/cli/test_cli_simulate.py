@@ -1,0 +1,55 @@
+"""``linkage-sym simulate`` and ``linkage-sym flywheel``: a summary on the console, the JSON
+with ``-o``, exit status 2 with the field or option named and nothing written."""
+
+from __future__ import annotations
+
+import copy
+import json
+
+import pytest
+
+from linkage_sym.cli import main
+from linkage_sym.examples import example_dict
+
+
+def short_scene(tmp_path, **simulate):
+    data = copy.deepcopy(example_dict("crank_rocker"))
+    data["links"][0]["inertia"] = 2e-3
+    data["drivers"][0]["motor"] = {"torque": [[0.0, 1.0], [16.0, 0.0]]}
+    data["simulate"] = {"duration": 0.1, "start_deg": 0.0, "start_speed": 12.0, "samples": 11,
+                        **simulate}
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(data))
+    return path
+
+
+@pytest.mark.slow
+def test_simulate_writes_the_result_and_prints_a_summary(tmp_path, capsys):
+    out = tmp_path / "r" / "result.json"
+    pics = tmp_path / "pics"
+    assert main(["simulate", str(short_scene(tmp_path)), "-o", str(out), "--plots",
+                 str(pics)]) == 0
+    printed = capsys.readouterr().out
+    assert sorted(p.name for p in pics.iterdir()) == ["crank-rocker_speed.png",
+                                                       "crank-rocker_torque_balance.png"]
+    assert "simulated crank-rocker: 11 samples over 0.1 s" in printed
+    assert "no periodic motion" in printed
+    got = json.loads(out.read_text())
+    assert [s["time"] for s in got["steps"]] == [k / 100 for k in range(11)]
+    assert got["integrator"]["rtol"] == 1e-10 and got["integrator"]["end"] == "duration"
+    assert "reason" in got["motion"]
+    assert set(got["steps"][3]) >= {"time", "status", "drivers", "joints", "links", "driving"}
+
+
+def test_simulate_refuses_a_bad_scene_by_field_and_writes_nothing(tmp_path, capsys):
+    out = tmp_path / "result.json"
+    code = main(["simulate", str(short_scene(tmp_path, duration=0)), "-o", str(out)])
+    assert code == 2
+    assert "simulate.duration" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_flywheel_refuses_a_fluctuation_out_of_range(tmp_path, capsys):
+    code = main(["flywheel", str(short_scene(tmp_path)), "--fluctuation", "0"])
+    assert code == 2
+    assert "--fluctuation" in capsys.readouterr().err
