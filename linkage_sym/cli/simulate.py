@@ -37,7 +37,7 @@ def register(sub) -> None:
     >>> a.command, a.output, a.method, a.func is cmd_simulate
     ('simulate', 'r.json', 'LSODA', True)
     """
-    from linkage_sym.motion.integrate import METHODS
+    from linkage_sym.motion.methods import METHODS
 
     c = sub.add_parser(
         "simulate", help="integrate the motion of the machine driven by its motor",

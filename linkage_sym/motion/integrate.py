@@ -26,11 +26,10 @@ from scipy import integrate
 from scipy.optimize import brentq
 
 from linkage_sym.motion.equations import MotionEquations, StepFailure
+from linkage_sym.motion.methods import METHODS
 
 __all__ = ["METHODS", "RTOL", "Trajectory", "integrate_motion"]
 
-METHODS = ("Radau", "LSODA", "BDF")
-"""The stiff-capable methods of :func:`scipy.integrate.solve_ivp` offered."""
 RTOL = 1e-10
 """The relative tolerance of the contract (at most)."""
 ATOL = 1e-12
