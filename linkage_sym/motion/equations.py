@@ -133,8 +133,11 @@ class MotionEquations:
         self.motor = self.driver.motor
         # the effort at a state: the driving output only (no kinematics records)
         self.effort_plan = compile_plan(dataclasses.replace(scene, outputs=("driving",)))
+        # J and J' need the links' motion alone: no loads, gravity, springs or friction (those
+        # reach the equation through the kinetostatic solver's effort)
         kin = dataclasses.replace(scene, outputs=("kinematics",), loads=(),
-                                  effects=dataclasses.replace(scene.effects, gravity=None))
+                                  effects=dataclasses.replace(scene.effects, gravity=None,
+                                                              springs=False, friction=False))
         self.mechanism = compile_mechanism(kin)
         self.q0 = float(_assembly_value(scene))
         self.period = _reduction_period(scene)
