@@ -37,7 +37,12 @@ def _plain_text(eqs) -> str:
             out += ["", "## joint friction (rho_J = f r: the friction circle's radius; mu_J: the "
                     "coefficient; nu_J: the sign of the joint's relative motion)"]
             out += [f"{law.friction} = {law.law}" for law in eqs.friction_laws]
-        out += ["", "## frame force x, y and moment about the origin"] + [str(e) for e in eqs.frame]
+        if eqs.spring_efforts:  # contract part two: known loads of the coordinates and rates
+            out += ["", "## springs and dampers (T_k: a spring's tension; tau_k: a joint spring's "
+                    "torque on its joint's links[1])"]
+            out += [f"{sym} = {e}" for _, sym, e, _, _ in eqs.spring_efforts]
+        out += ["", "## frame force x, y and moment about the origin"]
+        out += [str(e) for e in eqs.readable_frame]
     if eqs.parameters:
         out += ["", "## parameters"]
         out += [f"{s}: {eqs.table.params[s.name].meaning}" for s in eqs.parameters]

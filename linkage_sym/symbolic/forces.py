@@ -59,7 +59,8 @@ class ForceEquations:
     sets ``F``, ``E``, ``force_intermediates``, ``friction_laws`` (joint friction, where
     ``with_friction``: :mod:`linkage_sym.symbolic.friction`), ``spring_efforts`` (the
     acting springs: :mod:`linkage_sym.symbolic.springs`), ``link_equations``,
-    ``force_blocks``, ``readable_force_blocks``, ``all_forces`` and ``frame``.
+    ``force_blocks``, ``readable_force_blocks``, ``all_forces``, ``frame`` and
+    ``readable_frame``.
     """
 
     def _forces(self):
@@ -88,7 +89,9 @@ class ForceEquations:
         named = {sym: e for sym, e, _ in self.force_intermediates}
         self.link_equations = {n: [e.xreplace(named) for e in row] for n, row in acc.items()}
         self._group_blocks(acc, named)
-        self.frame = [(e + g).xreplace(named) for e, g in zip(self._frame_loads(), ground)]
+        # the frame with the springs' efforts named (a reader's form), and substituted
+        self.readable_frame = [e + g for e, g in zip(self._frame_loads(), ground)]
+        self.frame = [e.xreplace(named) for e in self.readable_frame]
 
     def _force_unknowns(self):
         """The joints' reactions ``F`` and the drivers' efforts ``E``, as symbols."""
