@@ -276,10 +276,11 @@ def test_the_symbolic_layer_derives_acting_springs():
     assert np.abs(sym.links["rocker"].rotation - num.links["rocker"].rotation).max() < 1e-12
 
 
-def test_design_sweeps_refuse_force_metrics_with_springs():
+def test_design_sweeps_compute_force_metrics_with_springs():
+    """Design sweeps no longer refuse force metrics under springs
+    (``tests/design/test_design_springs.py`` checks them against analyze)."""
     scene = linkage_sym.load_example("crank_rocker_spring")
-    with pytest.raises(ValueError, match="rms_driving: scene 'crank-rocker-spring' has springs "
-                                         r"\(k1, k2\)"):
-        linkage_sym.sweep(scene, {"l_AB": [0.024]}, ["K", "rms_driving"])
-    res = linkage_sym.sweep(scene, {"l_AB": [0.024]}, ["K"])
+    res = linkage_sym.sweep(scene, {"l_AB": [0.024]}, ["K", "rms_driving"])
     assert len(res) == 1
+    ok = linkage_sym.analyze(scene).forces.driving["A"][:-1]  # a whole turn: the end once
+    assert abs(res["rms_driving_A"][0] - np.sqrt(np.mean(ok ** 2))) <= 1e-10 * np.abs(ok).max()
