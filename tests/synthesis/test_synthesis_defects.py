@@ -1,0 +1,63 @@
+"""Defects found by the solver against four-bars constructed to have each one."""
+
+import math
+
+from linkage_sym.synthesis.builders import fourbar
+from linkage_sym.synthesis.defects import check_motion
+
+
+def _targets(lengths, degs, branch="open"):
+    """The coupler point's positions of a built four-bar at the crank angles (the builder's
+    closed-form assembly, not the solver)."""
+    return [fourbar(*lengths, crank_deg=x, branch=branch, coupler_point=(1.0, 0.5))
+            .scene["points"][0]["at"] for x in degs]
+
+
+def _scene(lengths, deg, branch="open"):
+    return fourbar(*lengths, crank_deg=deg, branch=branch, coupler_point=(1.0, 0.5)).scene
+
+
+CRANK_ROCKER = (1.0, 3.0, 3.0, 3.5)
+TRIPLE_ROCKER = (2.0, 3.0, 2.5, 4.0)  # s + l = 6 > p + q = 5.5
+
+
+def test_defect_free_motion_meets_every_target_to_1e_12():
+    degs = [30, 80, 150, 220, 300]
+    r = check_motion(_scene(CRANK_ROCKER, 30), degs, point="P", targets=_targets(CRANK_ROCKER, degs))
+    assert r.defect_free and r.grashof == "crank-rocker" and r.sense == 1
+    assert max(r.errors) < 1e-12 * 3.0
+    assert 0 < r.gamma_min < math.pi / 2
+
+
+def test_branch_defect_a_target_of_the_crossed_mode():
+    degs = [30, 80, 150, 220]
+    targets = _targets(CRANK_ROCKER, degs)
+    targets[2] = _targets(CRANK_ROCKER, [150], branch="crossed")[0]
+    r = check_motion(_scene(CRANK_ROCKER, 30), degs, point="P", targets=targets)
+    assert r.branch and not r.order and not r.dead_centre and not r.missed and not r.defect_free
+
+
+def test_order_defect_targets_swapped():
+    degs = [30, 150, 80, 220]
+    r = check_motion(_scene(CRANK_ROCKER, 30), degs, point="P", targets=_targets(CRANK_ROCKER, degs))
+    assert r.order and not r.branch and not r.dead_centre and not r.defect_free
+
+
+def test_dead_centre_of_a_triple_rocker_between_targets():
+    # turning clockwise 50 -> 0 -> -50 the crank stays within its range: no defect
+    degs = [50, 0, -50]
+    r = check_motion(_scene(TRIPLE_ROCKER, 50), degs, point="P",
+                     targets=_targets(TRIPLE_ROCKER, degs))
+    assert r.grashof == "triple-rocker" and r.sense == -1 and r.defect_free
+    # 50 -> -50 -> 0 comes in order only counter-clockwise, through 180 degrees, out of reach
+    degs = [50, -50, 0]
+    r = check_motion(_scene(TRIPLE_ROCKER, 50), degs, point="P",
+                     targets=_targets(TRIPLE_ROCKER, degs))
+    assert r.sense == 1 and r.dead_centre and not r.order and not r.defect_free
+
+
+def test_targets_of_another_linkage_are_missed():
+    degs = [30, 80, 150, 220]
+    targets = _targets((1.0, 3.0, 3.0, 3.6), degs)
+    r = check_motion(_scene(CRANK_ROCKER, 30), degs, point="P", targets=targets)
+    assert r.missed == (0, 1, 2, 3) and not r.defect_free
