@@ -157,6 +157,16 @@ def mirrored(scene: dict) -> dict:
     return out
 
 
+def _turn(scene: dict, other: dict, link: str) -> float:
+    """How much farther ``link`` is turned in ``other``'s assembly than in ``scene``'s (rad)."""
+    ends = {"coupler": "BC", "rocker": "DC"}.get(link)
+    if ends is None:
+        return 0.0
+    u = _joint(scene, ends[1]) - _joint(scene, ends[0])
+    v = _joint(other, ends[1]) - _joint(other, ends[0])
+    return math.atan2(u[0] * v[1] - u[1] * v[0], u @ v)
+
+
 def _unwrap(crank_deg) -> tuple[int, list, bool]:
     """``(sense, angles, order_defect)``: the targets' crank angles (rad) unwrapped from
     the first along the sense in which they come in order (counter-clockwise when
@@ -260,8 +270,10 @@ def check_motion(scene: dict, crank_deg, *, point=None, targets=None, link="coup
     bad = [k for k, e in enumerate(errs) if not e <= tol * b]
     branch, missed = False, []
     if bad:
-        other = _run(mirrored(scene), q)
-        errs_other = _errors(other, idx, point, targets, link, rotations, b)
+        other = mirrored(scene)
+        if rotations is not None:  # the other mode's assembly turns the coupler and the rocker
+            rotations = [r - _turn(scene, other, link) for r in rotations]
+        errs_other = _errors(_run(other, q), idx, point, targets, link, rotations, b)
         for k in bad:
             if errs_other[k] <= tol * b:
                 branch = True

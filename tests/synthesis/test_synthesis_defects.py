@@ -61,3 +61,20 @@ def test_targets_of_another_linkage_are_missed():
     targets = _targets((1.0, 3.0, 3.0, 3.6), degs)
     r = check_motion(_scene(CRANK_ROCKER, 30), degs, point="P", targets=targets)
     assert r.missed == (0, 1, 2, 3) and not r.defect_free
+
+
+def test_branch_defect_with_rotations_of_the_coupler():
+    # the crossed mode's coupler is turned otherwise at assembly: its rotations are compared
+    # with the targets' after that turn
+    degs = [30, 80, 150, 220]
+    scenes = [_scene(CRANK_ROCKER, x) for x in degs]
+    scenes[2] = _scene(CRANK_ROCKER, 150, branch="crossed")
+
+    def angle(s):
+        j = {x["name"]: x["at"] for x in s["joints"]}
+        return math.atan2(j["C"][1] - j["B"][1], j["C"][0] - j["B"][0])
+
+    rotations = [angle(s) - angle(scenes[0]) for s in scenes]
+    targets = [s["points"][0]["at"] for s in scenes]
+    r = check_motion(scenes[0], degs, point="P", targets=targets, rotations=rotations)
+    assert r.branch and not r.missed
