@@ -17,7 +17,7 @@ Examples
 >>> poses = [[0.0, 0.0, 0.0], [1.0, 0.2, 10.0], [1.8, 0.7, 25.0], [2.3, 1.5, 45.0], [2.5, 2.4, 70.0]]
 >>> result = motion_synthesis(poses)
 >>> len(result.dyads), len(result.designs) == len(result.dyads) * (len(result.dyads) - 1)
-(4, True)
+(2, True)
 """
 
 from __future__ import annotations
