@@ -136,6 +136,33 @@ def test_random_start_newton_finds_no_solution_the_method_missed(data):
             <= 1e-6 * size
 
 
+def _distinct(xs, scale):
+    out = []
+    for x in xs:
+        if all(np.linalg.norm(x - u) > 1e-6 * scale for u in out):
+            out.append(x)
+    return out
+
+
+poses5 = st.lists(st.tuples(st.floats(-1.0, 1.0), st.floats(-1.0, 1.0), st.floats(-60.0, 60.0)),
+                  min_size=5, max_size=5)
+
+
+@settings(max_examples=8, derandomize=True, deadline=None, database=None)
+@given(poses5)
+def test_the_count_of_real_solutions_of_any_five_poses_agrees_with_newton(rows):
+    poses = [list(r) for r in rows]
+    P = np.array([r[:2] for r in rows])
+    assume(min(np.linalg.norm(P[i] - P[k]) for i in range(5) for k in range(i)) > 0.05)
+    assume(min(abs(rows[i][2] - rows[k][2]) for i in range(5) for k in range(i)) > 1.0)
+    dyads = burmester_points(poses)
+    assert len(dyads) in (0, 2, 4)
+    found = _distinct(_newton_dyads(poses, 150, np.random.default_rng(1), 1.0), 1.0)
+    for x in found:
+        assert min(math.dist(x[:2], d.centre) + math.dist(x[2:], d.local) for d in dyads) <= 1e-6
+    # (Newton's starts, within 3 spreads of pose 1, need not find a dyad far beyond)
+
+
 @settings(max_examples=4, derandomize=True, deadline=None, database=None,
           suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
 @given(fourbars)
