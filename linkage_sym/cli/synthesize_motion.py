@@ -47,7 +47,7 @@ def _cell(v) -> str:
 
 def _print_table(rows) -> None:
     cols = ["design", "Ax", "Ay", "Dx", "Dy", "crank", "coupler", "rocker", "ground", "grashof",
-            "branch", "order", "dead_centre", "gamma_min_deg", "error"]
+            "branch", "circuit", "order", "dead_centre", "gamma_min_deg", "error"]
     shown = [[_cell(r[c]) for c in cols] for r in rows[:SHOWN]]
     widths = [max(len(c), *(len(s[i]) for s in shown)) for i, c in enumerate(cols)]
     print("  ".join(c.rjust(w) for c, w in zip(cols, widths)))

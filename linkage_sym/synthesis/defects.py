@@ -20,6 +20,13 @@ synthesis that made the design:
   the target while the same linkage assembled in the other assembly mode
   (``C`` mirrored in the line ``BD``) meets it: the target lies on the
   other branch (or circuit) and the crank cannot bring the linkage there;
+* **circuit defect**: a branch defect of a Grashof four-bar whose target lies
+  on the other of its two circuits (Chase and Mirth, "Circuits and branches
+  of single-degree-of-freedom planar linkages", 1993): no driver, not only
+  the crank, brings the linkage there without taking it apart.  The circuit
+  is the sign of the triangle of the link opposite the shortest, the next
+  link and the diagonal to the shortest link's far joint -- constant on each
+  circuit, as that triangle never flattens while the shortest link turns fully;
 * a target missed in both modes is reported as *missed* (a wrong design).
 
 Also the Grashof class (:func:`linkage_sym.structure.grashof.classify`) and
@@ -83,6 +90,10 @@ class MotionCheck:
         The crank meets the targets out of order, turning either way.
     dead_centre : bool
         The crank's motion from the first target to the last passes a dead centre.
+    circuit : bool
+        A target met only in the other assembly mode lies on the other circuit of
+        a Grashof four-bar (see the module docstring); False for one that is not
+        Grashof (it has one circuit).
     missed : tuple of int
         Targets (0-based) met in neither assembly mode at their crank angle.
     sense : int
@@ -105,6 +116,7 @@ class MotionCheck:
     branch: bool
     order: bool
     dead_centre: bool
+    circuit: bool
     missed: tuple
     sense: int
     crank_angles: tuple
@@ -216,6 +228,16 @@ def _errors(res, idx, point, targets, link, rotations, b) -> list:
     return errs
 
 
+def _circuit(res, i, lengths) -> float:
+    """The circuit sign of the solver's configuration at step ``i`` (see the module docstring):
+    ``lengths`` in loop order ground, crank, coupler, rocker."""
+    J = [res.joints[n].position[i] for n in "ABCD"]  # J[k]: between link k and link k + 1
+    k = int(np.argmin(lengths))  # the shortest link spans J[k - 1] and J[k]
+    o, far, near = J[(k - 2) % 4], J[(k + 1) % 4], J[k]
+    u, v = far - o, near - o
+    return float(np.sign(u[0] * v[1] - u[1] * v[0]))
+
+
 def _gamma_min(res) -> float:
     ok = res.status == "ok"
     if not ok.any():
@@ -268,15 +290,19 @@ def check_motion(scene: dict, crank_deg, *, point=None, targets=None, link="coup
     lo, hi = min(idx), max(idx)
     dead = bool(np.any(res.status[lo:hi + 1] != "ok"))
     bad = [k for k, e in enumerate(errs) if not e <= tol * b]
-    branch, missed = False, []
+    branch, circuit, missed = False, False, []
     if bad:
         other = mirrored(scene)
         if rotations is not None:  # the other mode's assembly turns the coupler and the rocker
             rotations = [r - _turn(scene, other, link) for r in rotations]
-        errs_other = _errors(_run(other, q), idx, point, targets, link, rotations, b)
+        res_other = _run(other, q)
+        errs_other = _errors(res_other, idx, point, targets, link, rotations, b)
         for k in bad:
             if errs_other[k] <= tol * b:
                 branch = True
+                if grashof in ("crank-rocker", "double-crank", "double-rocker"):
+                    circuit |= (_circuit(res_other, idx[k], [d, a, b, c])
+                                != _circuit(res, idx[0], [d, a, b, c]))
             elif math.isfinite(errs[k]) or math.isfinite(errs_other[k]):
                 missed.append(k)
             else:
@@ -285,13 +311,14 @@ def check_motion(scene: dict, crank_deg, *, point=None, targets=None, link="coup
     if order:
         notes.append("order defect: turning either way the crank meets the targets out of order")
     if branch:
-        notes.append("branch defect: a target is met only in the other assembly mode")
+        notes.append("branch defect: a target is met only in the other assembly mode"
+                     + (", on the other circuit" if circuit else ""))
     if dead:
         notes.append("dead centre: the crank cannot drive the linkage from the first target to "
                      "the last (coupler and rocker come in line)")
     if missed:
         notes.append(f"targets {[k + 1 for k in missed]} are missed in both assembly modes")
-    return MotionCheck(grashof, branch, order, dead, tuple(missed), sense, tuple(angles),
+    return MotionCheck(grashof, branch, order, dead, circuit, tuple(missed), sense, tuple(angles),
                        tuple(errs), _gamma_min(res), tuple(notes))
 
 

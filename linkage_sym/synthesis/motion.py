@@ -216,7 +216,8 @@ def table(result: MotionSynthesis) -> list[dict]:
         rows.append({
             "design": f"design-{i:02d}", "Ax": j["A"][0], "Ay": j["A"][1], "Dx": j["D"][0],
             "Dy": j["D"][1], **d.lengths, "grashof": c.grashof, "branch": c.branch,
-            "order": c.order, "dead_centre": c.dead_centre, "defect_free": c.defect_free,
+            "circuit": c.circuit, "order": c.order, "dead_centre": c.dead_centre,
+            "defect_free": c.defect_free,
             "gamma_min_deg": math.degrees(c.gamma_min) if math.isfinite(c.gamma_min) else math.nan,
             "error": max(finite) / d.lengths["coupler"] if finite else math.inf,
         })

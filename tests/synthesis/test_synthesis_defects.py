@@ -35,6 +35,32 @@ def test_branch_defect_a_target_of_the_crossed_mode():
     targets[2] = _targets(CRANK_ROCKER, [150], branch="crossed")[0]
     r = check_motion(_scene(CRANK_ROCKER, 30), degs, point="P", targets=targets)
     assert r.branch and not r.order and not r.dead_centre and not r.missed and not r.defect_free
+    assert r.circuit  # a crank-rocker's assembly modes are its two circuits
+
+
+def test_branch_defect_of_a_triple_rocker_is_on_its_one_circuit():
+    degs = [50, 20, 0]
+    targets = _targets(TRIPLE_ROCKER, degs)
+    targets[2] = _targets(TRIPLE_ROCKER, [0], branch="crossed")[0]
+    r = check_motion(_scene(TRIPLE_ROCKER, 50), degs, point="P", targets=targets)
+    assert r.branch and not r.circuit and not r.missed
+
+
+def test_circuits_of_a_grashof_double_rocker_are_not_its_assembly_modes():
+    # shortest link the coupler, which turns fully relative to the ground: a circuit keeps C
+    # on one side of the ground line AD (C crosses it only with B, C, D or A, B, C in line,
+    # which the fully turning coupler never is); the assembly modes at a crank angle are C
+    # mirrored in BD, on one side of AD or on both
+    lengths = (3.0, 1.0, 3.5, 4.0)  # crank, coupler, rocker, ground: 1 + 4 < 3 + 3.5
+    degs = [45, 60, 75]
+    for deg in (60, 75):
+        targets = _targets(lengths, degs)
+        targets[degs.index(deg)] = _targets(lengths, [deg], branch="crossed")[0]
+        r = check_motion(_scene(lengths, 45), degs, point="P", targets=targets)
+        assert r.grashof == "double-rocker" and r.branch and not r.missed
+        c1 = _scene(lengths, 45)["joints"][2]["at"]
+        c2 = _scene(lengths, deg, branch="crossed")["joints"][2]["at"]
+        assert r.circuit == ((c1[1] > 0) != (c2[1] > 0))
 
 
 def test_order_defect_targets_swapped():
