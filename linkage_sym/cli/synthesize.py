@@ -15,6 +15,9 @@ synthesize guide-bar --K K --ground D [-o ...]
     it occurs; write the scene with -o.
 synthesize coupler-positions --positions FILE.json [--pivots AX,AY,DX,DY] [-o ...]
     A four-bar through 2 or 3 given coupler positions ``[[Bx, By, Cx, Cy], ...]``.
+synthesize motion --poses P.json [-o DIR]
+    Four-bars through 4 or 5 coupler poses (Burmester theory):
+    :mod:`linkage_sym.cli.synthesize_motion`.
 synthesize equations [--latex] [-o FILE]
     The design equations, derived with SymPy, as text or a LaTeX fragment.
 
@@ -269,3 +272,6 @@ def register(sub) -> None:
     eq.add_argument("--latex", action="store_true", help="a LaTeX fragment (needs amsmath)")
     eq.add_argument("-o", "--output", metavar="FILE", help="output file (default: standard output)")
     eq.set_defaults(func=cmd_synthesize)
+    from linkage_sym.cli.synthesize_motion import add_motion
+
+    add_motion(kinds)
