@@ -125,6 +125,9 @@ def _make_pictures(name: str, scene_file: Path, folder: Path) -> None:
 def gallery_pages(srcdir: Path) -> None:
     """Write ``gallery/index.md`` and one page per shipped example (pictures when stale)."""
     from linkage_sym.examples import example_dict, example_names, example_path
+    from linkage_sym.page.gallery import example_descriptions
+
+    descriptions = example_descriptions()
 
     gallery = srcdir / "gallery"
     entries = []
@@ -136,7 +139,8 @@ def gallery_pages(srcdir: Path) -> None:
         pictures = json.loads((folder / "pictures.json").read_text())
         data = example_dict(name)
         title = data.get("name", name)
-        description = data.get("description", "")
+        # the one-line description of the examples' README.md (the page gallery's own)
+        description = descriptions[name]
         rel_scene = Path("..", "..", "linkage_sym", "examples", scene_file.name)
         lines = [f"# {escape(title)}", "", escape(description), "",
                  f"`linkage_sym.load_example(\"{name}\")`; on the command line: "
