@@ -22,7 +22,7 @@ from pathlib import Path
 _MARKDOWN = re.compile(r"([\\`*_\[\]<>|{}#$~])")
 
 # the animations stay small: a few frames at a modest size (a GIF is a few hundred kB)
-GIF_FRAMES = 36
+GIF_FRAMES = 24
 
 
 def escape(text: str) -> str:
