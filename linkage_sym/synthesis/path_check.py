@@ -120,3 +120,28 @@ def check(scene_dict, targets, thetas) -> Check:
     return Check(float(np.max(errors)) if ok[CHECK_STEPS:].all() else math.inf, errors,
                  lengths["b"], bool(ok.all()), branch, order,
                  float(np.degrees(np.nanmin(gam))) if ok.all() else 0.0, g.name, full)
+
+
+def curves(scene_dict, thetas, samples=361):
+    """The coupler point's curve by the solver: over a full turn from the first target (NaN
+    where the solver solves no configuration), from the first target to the last, and the
+    joints and ``P`` at the first target.
+
+    Returns
+    -------
+    full, motion : ndarray (k, 2)
+    joints : dict of str to (float, float)
+    """
+    import linkage_sym
+
+    plan = linkage_sym.compile_plan(linkage_sym.load_scene(scene_dict))
+    out = []
+    for q in (thetas[0] + np.linspace(0.0, 2 * np.pi, samples),
+              np.linspace(thetas[0], thetas[-1], samples)):
+        res = plan.run(q={"A": q}, qd={"A": np.ones(len(q))}, qdd={"A": np.zeros(len(q))})
+        P = np.array(res.points["P"].position, dtype=float)
+        P[res.status != "ok"] = np.nan
+        out.append(P)
+    joints = {j["name"]: tuple(j["at"]) for j in scene_dict["joints"]}
+    joints["P"] = tuple(scene_dict["points"][0]["at"])
+    return out[0], out[1], joints
