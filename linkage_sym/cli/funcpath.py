@@ -1,12 +1,12 @@
 """``synthesize function`` and ``synthesize path`` (added to ``synthesize`` by :func:`add_kinds`).
 
-synthesize function (--expr EXPR | --table F.csv) --phi-range A0,A1 --psi-range B0,B1
-        [--x-range X0,X1] [--precision-points N | --at X1,X2,...] [--ground D]
+synthesize function (--function EXPR | --table F.csv) --phi-range A0,A1 --psi-range B0,B1
+        [--x-range X0,X1] [--precision-points N | --x-points X1,X2,...] [--ground D]
         [--plot ERR.png] [--error-csv ERR.csv] [-o SCENE.json]
     A four-bar generating y = f(x) by Freudenstein's equation; the structural
     error measured by the solver over the range.
 synthesize path (--points PTS.json | --curve C.csv [--samples N]) [--crank-deg A1,A2,...]
-        [--starts N] [--keep K] [--min-transmission DEG] [--grashof-crank]
+        [--starts N] [--keep K] [--min-transmission-deg DEG] [--grashof-crank]
         [--random-state N] [-o DIR] [--csv T.csv] [--plot CURVES.png]
     Four-bars whose coupler point passes through the points, best first.
 """
@@ -67,19 +67,19 @@ def cmd_function(args) -> int:
     check_outputs(files=[("-o/--output", args.output), ("--plot", args.plot),
                          ("--error-csv", args.error_csv)])
     try:
-        if args.expr is not None:
-            f = parse(args.expr)
+        if args.function is not None:
+            f = parse(args.function)
             xr = _numbers("--x-range", args.x_range, exact=2)
             if xr is None:
                 from linkage_sym.cli.common import OptionError
-                raise OptionError("--x-range: the range of x is needed with --expr")
+                raise OptionError("--x-range: the range of x is needed with --function")
         else:
             tab = _read_csv("--table", args.table)
             f = table_function(tab[:, 0], tab[:, 1])
             xr = _numbers("--x-range", args.x_range, exact=2) or [tab[0, 0], tab[-1, 0]]
         d = function_generator(f, xr, _numbers("--phi-range", args.phi_range, exact=2),
                                _numbers("--psi-range", args.psi_range, exact=2),
-                               n_points=args.precision_points, x_points=_numbers("--at", args.at, 3),
+                               precision_points=args.precision_points, x_points=_numbers("--x-points", args.x_points, 3),
                                ground=args.ground, name=args.name, steps=args.steps,
                                speed=args.speed)
     except SynthesisError as err:
@@ -158,7 +158,7 @@ def cmd_path(args) -> int:
     try:
         T = read_targets(_targets(args))
         designs = synthesize_path(T, _numbers("--crank-deg", args.crank_deg, 3), starts=args.starts,
-                                  keep=args.keep, min_transmission_deg=args.min_transmission,
+                                  keep=args.keep, min_transmission_deg=args.min_transmission_deg,
                                   full_turn=args.grashof_crank, random_state=args.random_state,
                                   name=args.name, steps=args.steps)
     except SynthesisError as err:
@@ -204,7 +204,7 @@ def add_kinds(kinds, sweep_options) -> None:
     """Add ``function`` and ``path`` to the ``synthesize`` command's subparsers ``kinds``."""
     fn = kinds.add_parser("function", help="four-bar generating y = f(x) (Freudenstein)")
     src = fn.add_mutually_exclusive_group(required=True)
-    src.add_argument("--expr", help="f as an expression of x (numbers, + - * / **, pi, e, "
+    src.add_argument("--function", help="f as an expression of x (numbers, + - * / **, pi, e, "
                      "sin cos tan exp log log10 sqrt ...), e.g. 'log10(x)'")
     src.add_argument("--table", metavar="F.csv", help="f as a table of rows x, y (interpolated)")
     fn.add_argument("--x-range", metavar="X0,X1", help="range of x (default with --table: the table's)")
@@ -214,7 +214,7 @@ def add_kinds(kinds, sweep_options) -> None:
                     help="rocker angles at f(x0) and f(x1) (deg from +x)")
     fn.add_argument("--precision-points", type=int, default=3,
                     help="Chebyshev-spaced points (3 exact, more least squares; default 3)")
-    fn.add_argument("--at", metavar="X1,X2,...", help="the precision points' x instead")
+    fn.add_argument("--x-points", metavar="X1,X2,...", help="the precision points' x instead")
     fn.add_argument("--ground", type=float, default=1.0, help="frame AD (m, default 1)")
     fn.add_argument("--plot", metavar="ERR.png", help="plot of the structural error")
     fn.add_argument("--error-csv", metavar="ERR.csv", help="the structural error as CSV")
@@ -230,7 +230,7 @@ def add_kinds(kinds, sweep_options) -> None:
                     "(deg; only differences count): prescribed timing")
     pa.add_argument("--starts", type=int, default=4000, help="random four-bars (default 4000)")
     pa.add_argument("--keep", type=int, default=5, help="designs kept at most (default 5)")
-    pa.add_argument("--min-transmission", type=float, default=20.0,
+    pa.add_argument("--min-transmission-deg", type=float, default=20.0,
                     help="smallest transmission angle between the points (deg, default 20)")
     pa.add_argument("--grashof-crank", action="store_true", help="a crank that turns fully only")
     pa.add_argument("--random-state", type=int, default=0, help="the random generator's state")

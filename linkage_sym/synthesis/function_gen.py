@@ -127,7 +127,7 @@ def _mode(B, C, D) -> float:
     return float(np.sign((D[0] - B[0]) * (C[1] - B[1]) - (D[1] - B[1]) * (C[0] - B[0])))
 
 
-def function_generator(f, x_range, phi_range_deg, psi_range_deg, *, n_points=3, x_points=None,
+def function_generator(f, x_range, phi_range_deg, psi_range_deg, *, precision_points=3, x_points=None,
                        ground=1.0, name="function-generator", steps=181, speed=1.0) -> Design:
     """A four-bar generating ``y = f(x)``: the rocker angle against the crank angle.
 
@@ -140,7 +140,7 @@ def function_generator(f, x_range, phi_range_deg, psi_range_deg, *, n_points=3, 
         ``x0, x1``.
     phi_range_deg, psi_range_deg : (float, float)
         The crank's and the rocker's angles (degrees from ``+x``) at ``x0`` and ``x1``.
-    n_points : int
+    precision_points : int
         Precision points, Chebyshev-spaced (3: exact; more: least squares).
     x_points : sequence of float, optional
         The precision points' ``x`` instead (at least 3).
@@ -171,9 +171,9 @@ def function_generator(f, x_range, phi_range_deg, psi_range_deg, *, n_points=3, 
     steps, speed = sweep_options(steps, speed)
     name = scene_name(name)
     if x_points is None:
-        if not isinstance(n_points, int) or n_points < 3:
-            raise SynthesisError("n_points", f"at least 3 precision points, got {n_points!r}")
-        xs = chebyshev(*x_range, n_points)
+        if not isinstance(precision_points, int) or precision_points < 3:
+            raise SynthesisError("precision_points", f"at least 3, got {precision_points!r}")
+        xs = chebyshev(*x_range, precision_points)
     else:
         xs = np.array([number("x_points", v) for v in x_points])
         if len(xs) < 3 or len(set(xs.tolist())) != len(xs):
