@@ -17,6 +17,13 @@
   (:mod:`~linkage_sym.synthesis.defects`: branch, order and dead-centre
   defects, Grashof class, minimum transmission angle)
   (``linkage-sym synthesize motion``);
+* :mod:`~linkage_sym.synthesis.function_gen` -- function generation by
+  Freudenstein's equation, the function parsed safely by
+  :mod:`~linkage_sym.synthesis.expression` (``linkage-sym synthesize function``);
+* :mod:`~linkage_sym.synthesis.path_gen` -- path generation: three points
+  exactly, more by many starts solved at once and least squares; its closed
+  forms in :mod:`~linkage_sym.synthesis.path_model`, the solver's check of each
+  design in :mod:`~linkage_sym.synthesis.path_check` (``linkage-sym synthesize path``);
 * :mod:`~linkage_sym.synthesis.equations` -- the design equations derived
   with SymPy, as text or LaTeX (``linkage-sym synthesize equations``); the
   only module here that imports SymPy (import contract in ``pyproject.toml``).
