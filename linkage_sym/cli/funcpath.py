@@ -18,8 +18,6 @@ import json
 import math
 import sys
 
-import numpy as np
-
 
 def _numbers(option, text, least=2, exact=None):
     from linkage_sym.cli.common import OptionError
@@ -37,6 +35,8 @@ def _numbers(option, text, least=2, exact=None):
 
 def _read_csv(option, path):
     """Rows of numbers of a CSV file (a header row of words is skipped)."""
+    import numpy as np  # the command's work, not its help
+
     from linkage_sym.cli.common import OptionError
 
     try:
@@ -59,6 +59,8 @@ def _read_csv(option, path):
 
 def cmd_function(args) -> int:
     """``linkage-sym synthesize function``."""
+    import numpy as np  # the command's work, not its help
+
     from linkage_sym.cli.common import check_outputs, option_error, write
     from linkage_sym.synthesis.common import SynthesisError
     from linkage_sym.synthesis.expression import parse
@@ -115,6 +117,8 @@ def cmd_function(args) -> int:
 
 
 def _phi(ex, x):
+    import numpy as np  # the command's work, not its help
+
     (x0, x1), (p0, p1) = ex["x_range"], ex["phi_range"]
     return np.radians(p0 + (x - x0) / (x1 - x0) * (p1 - p0))
 
