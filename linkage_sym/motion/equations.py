@@ -49,6 +49,7 @@ import numpy as np
 
 from linkage_sym.errors import SceneError
 from linkage_sym.model import GROUND, Scene
+from linkage_sym.motion.lean import effort_at, inertia_at
 
 __all__ = ["MotionEquations", "StepFailure", "motor_effort"]
 
@@ -188,31 +189,43 @@ class MotionEquations:
 
     def acceleration(self, q: float, qd: float) -> float:
         """``qdd`` at the state ``(q, qd)``; raises :class:`StepFailure` where the mechanism
-        cannot be solved."""
+        cannot be solved.  One state, without a result's bookkeeping
+        (:mod:`~linkage_sym.motion.lean`): the same solves as :meth:`effort` and
+        :meth:`inertia`."""
         self.evaluations += 1
-        e0, res = self.effort(q, qd)
-        if res.status[0] != "ok":
-            raise StepFailure(q, qd, f"{res.status[0]}: {res.messages[0]}")
+        e0 = self._effort_at(q, qd, 0.0)
         if q != self._last[0]:  # the solvers' Jacobians vary qd alone at one q: J is that q's
-            self._last = (q, self.inertia(q)[0][0])
+            self._last = (q, self._inertia_at(q))
         J = self._last[1]
         if not J > 0:
             raise StepFailure(q, qd, f"the equivalent moment of inertia J is {J:.3g}: the "
                               "motion has no equation there")
         M = float(motor_effort(self.motor, qd))
-        qdd = (M - e0[0]) / J
+        qdd = (M - e0) / J
         if self.nonlinear:
-            qdd = self._root(q, qd, qdd, M, J, abs(M) + abs(e0[0]))
+            qdd = self._root(q, qd, qdd, M, J, abs(M) + abs(e0))
         return float(qdd)
+
+    def _effort_at(self, q: float, qd: float, qdd: float) -> float:
+        """The driver's effort at one state (``q`` reduced); :class:`StepFailure` where the
+        step is not ``ok``."""
+        e, status, message = effort_at(self.effort_plan, self.joint, float(self.reduce(q)),
+                                       qd, qdd)
+        if status != "ok":
+            raise StepFailure(q, qd, f"{status}: {message}")
+        return e
+
+    def _inertia_at(self, q: float) -> float:
+        """``J`` at one driver value (``q`` reduced), by the full run where the lean one
+        declines the state."""
+        got = inertia_at(self.mechanism, self.scene, self.joint, float(self.reduce(q)))
+        return self.inertia(q)[0][0] if got is None else got[0]
 
     def _root(self, q, qd, qdd, M, J, scale):
         """``qdd`` where the effort equals ``M`` when the effort is not affine in ``qdd``
         (friction): fixed-point steps ``qdd -= (effort - M) / J`` from the affine one."""
         for _ in range(MAX_ROOT_STEPS):
-            e, res = self.effort(q, qd, qdd)
-            if res.status[0] != "ok":
-                raise StepFailure(q, qd, f"{res.status[0]}: {res.messages[0]}")
-            r = e[0] - M
+            r = self._effort_at(q, qd, qdd) - M
             if abs(r) <= 1e-13 * (scale + abs(J * qdd)):
                 return qdd
             qdd -= r / J

@@ -170,6 +170,42 @@ class Plan:
         else:
             q = {k: np.asarray(v, dtype=float) for k, v in q.items()}
             path = self._path(q)
+        qd = {k: np.asarray(v, dtype=float) for k, v in qd.items()}
+        qdd = {k: np.asarray(v, dtype=float) for k, v in qdd.items()}
+        S, block, status, messages, condition, forces, ok, ind_min, path_index = self._solve(
+            q, qd, qdd, path, exact_condition, method)
+        res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
+        if self.scene.cams:  # each contact's point and pressure angle, in its joint's record
+            from linkage_sym.numeric.kinematics.cams import cam_records
+
+            cam_records(self.solvers, S, res.joints, status)
+        finish(res, self.scene, [n for sv in self.solvers for n in sv.notes], path_index,
+               self.decomposition)
+        self._set_accuracy(res, ok, ind_min)
+        return res
+
+    def driving(self, q, qd, qdd, method="dyad") -> tuple:
+        """The drivers' efforts alone at the states ``(q, qd, qdd)`` (dicts of ``(N,)``
+        arrays, as :meth:`run` takes them): what :meth:`run` solves, without the result's
+        records (points, warnings, transmission angles, accuracies).
+
+        Returns
+        -------
+        driving : dict
+            Each driven joint's effort, ``(N,)`` (meaningful where the step is ``ok``).
+        status, messages : ndarray, dict
+            Each step's status and the messages of those not ``ok``, as :meth:`run` gives them.
+        """
+        check_method(method)
+        q = {k: np.asarray(v, dtype=float) for k, v in q.items()}
+        qd = {k: np.asarray(v, dtype=float) for k, v in qd.items()}
+        qdd = {k: np.asarray(v, dtype=float) for k, v in qdd.items()}
+        got = self._solve(q, qd, qdd, self._path(q), False, method)
+        return got[5].driving, got[2], got[3]
+
+    def _solve(self, q, qd, qdd, path, exact_condition, method) -> tuple:
+        """Positions, rates and forces along ``path``: ``(S, block, status, messages,
+        condition, forces, ok, ind_min, path_index)``."""
         N = len(next(iter(q.values())))
         S = {GROUND: LinkState()}
         for n in self.scene.link_names:
@@ -189,8 +225,6 @@ class Plan:
         # --- singularity: exact condition number where an indicator is small
         ind_min, condition, ok = self._find_singular(S, inds, out, failed, status, messages,
                                                      exact_condition)
-        qd = {k: np.asarray(v, dtype=float) for k, v in qd.items()}
-        qdd = {k: np.asarray(v, dtype=float) for k, v in qdd.items()}
         block = self._solve_rates(S, q, qd, qdd, N)
         forces = None
         if self.force_plan is not None:
@@ -198,15 +232,7 @@ class Plan:
 
             forces = self.force_plan.run(S, ok, method, q)
             mark_self_locking(status, messages, ok, forces)  # friction (contract part two)
-        res = self._analysis(S, block, q, qd, qdd, status, messages, condition, forces)
-        if self.scene.cams:  # each contact's point and pressure angle, in its joint's record
-            from linkage_sym.numeric.kinematics.cams import cam_records
-
-            cam_records(self.solvers, S, res.joints, status)
-        finish(res, self.scene, [n for sv in self.solvers for n in sv.notes], path_index,
-               self.decomposition)
-        self._set_accuracy(res, ok, ind_min)
-        return res
+        return S, block, status, messages, condition, forces, ok, ind_min, path_index
 
     def _solve_positions(self, S, path) -> tuple:
         """Every group's positions along the path (rotations unwrapped early where the plan
