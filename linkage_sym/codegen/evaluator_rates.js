@@ -83,10 +83,14 @@
       const lo = load.active[0], hi = load.active[1];
       let inside;
       if (load.period !== null) {
-        const r = (x - lo) % load.period;
-        inside = (r < 0 ? r + load.period : r) <= hi - lo;
+        // ends included, up to rounding (loads.ACTIVE_END)
+        const tol = CONST.ACTIVE_END * load.period;
+        let r = (x - lo) % load.period;
+        if (r < 0) r += load.period;
+        inside = r <= hi - lo + tol || r >= load.period - tol;
       } else {
-        inside = x >= lo && x <= hi;
+        const tol = CONST.ACTIVE_END * Math.max(Math.abs(lo), Math.abs(hi), hi - lo);
+        inside = x >= lo - tol && x <= hi + tol;
       }
       if (!inside) f = 0.0;
     }

@@ -37,6 +37,7 @@ from linkage_sym.codegen.runtime import ASSEMBLY_MATCH, SCREEN
 from linkage_sym.errors import SYMBOLIC_LACKS, SceneError
 from linkage_sym.model import Scene
 from linkage_sym.numeric.continuation import roots
+from linkage_sym.numeric.forces.loads import ACTIVE_END
 from linkage_sym.numeric.engine.run import MAX_ANGLE_STEP, MAX_SLIDE_STEP, SINGULAR_COND
 from linkage_sym.numeric.kinematics.loci import TANGENT_ULPS
 from linkage_sym.numeric.results.transmission import rrr_dyads
@@ -55,7 +56,7 @@ CONSTANTS = {
     "SEARCH_ITER": roots.SEARCH_ITER, "SEARCH_STEP": roots.SEARCH_STEP,
     "SCREEN": SCREEN, "SINGULAR_COND": SINGULAR_COND, "ASSEMBLY_MATCH": ASSEMBLY_MATCH,
     "MAX_ANGLE_STEP": MAX_ANGLE_STEP, "MAX_SLIDE_STEP": MAX_SLIDE_STEP,
-    "TANGENT_ULPS": TANGENT_ULPS, "EPS": float(2.0 ** -52),
+    "TANGENT_ULPS": TANGENT_ULPS, "EPS": float(2.0 ** -52), "ACTIVE_END": ACTIVE_END,
 }
 """The evaluator's constants, each the Python runtime's own (``CONST`` in the script)."""
 

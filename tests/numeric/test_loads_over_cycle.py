@@ -157,8 +157,11 @@ def test_printing_force_acts_only_over_its_range():
     res0 = compile_plan(load_scene(bare)).run()
     res1 = compile_plan(load_scene(const)).run()
     deg = np.degrees(res.drivers["A"]["q"])
-    inside = np.mod(deg - lo, 360.0) <= hi - lo
+    # ends included (the format's rule): a step on an end up to rounding (1e-9°) is inside; the
+    # steps at 330° and 630° are ends, which rounding had put outside (the code too, before)
+    inside = np.mod(deg - lo + 1e-9, 360.0) <= hi - lo + 2e-9
     assert inside.any() and (~inside).any()
+    assert np.isclose(deg, hi).any() and np.isclose(deg, lo + 360.0).any()
     assert res.ok.all()
     tau, tau0, tau1 = (r.forces.driving["A"] for r in (res, res0, res1))
     scale = np.max(np.abs(tau1))
@@ -304,3 +307,17 @@ def test_several_drivers_need_the_driver_named():
     d["loads"][i]["driver"] = d["drivers"][1]["joint"]
     scene = load_scene(d)
     assert scene.loads[i].driver == d["drivers"][1]["joint"]
+
+
+def test_an_active_range_includes_both_ends_whatever_the_rounding():
+    """A range across 0° written past the period, [340°, 560°], over a 361-step turn: the steps
+    at 340°..360° and 0°..200° act, 222 of them, counted here from the step numbers (the
+    step at exactly 200° was left out by rounding: 221)."""
+    from linkage_sym.numeric.forces.loads import load_factor
+
+    ld = Load("ram", force=(1.0, 0.0), driver="A", period=2 * math.pi,
+              active=(math.radians(340.0), math.radians(560.0)))
+    q = np.linspace(0.0, 2 * math.pi, 361)
+    f = load_factor(ld, {"A": q})
+    k = np.arange(361)
+    assert np.array_equal(f > 0, (k <= 200) | (k >= 340))

@@ -68,7 +68,10 @@ def load_factor(ld, a) -> np.ndarray | float:
         y = np.asarray(a.drivers[ld.driver]["q"], float)
         if ld.period is not None:
             y = lo + (y - lo) - ld.period * np.floor((y - lo) / ld.period)
-        f = f * ((y >= lo) & (y <= hi))
+        # ends included: a step on an end, up to rounding (1e-12 of the range's scale), is in
+        end = 1e-12 * max(abs(lo), abs(hi), 1.0)
+        f = f * ((y >= lo - end) & (y <= hi + end) | (ld.period is not None)
+                 & (y >= lo + ld.period - end))
     return f
 
 

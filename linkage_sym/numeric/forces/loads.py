@@ -76,6 +76,13 @@ def reference_local(scene: Scene) -> dict:
     return out
 
 
+ACTIVE_END = 64 * float(np.finfo(float).eps)
+"""How near an end of a load's ``active`` range a driver value counts as on it (ends
+included), relative to the period (a ``P`` driver: to the range's largest value): a step
+whose value is an end, computed with rounding (``start + k (stop - start) / (steps - 1)``,
+``mod`` by the period), is never left out by a few ulps."""
+
+
 def load_factor(load: Load, q: dict | None):
     """The factor of a load's force and torque at the driver values ``q`` (an extension of
     the format: loads over the cycle, :mod:`linkage_sym.scene.schedules`).
@@ -115,9 +122,13 @@ def load_factor(load: Load, q: dict | None):
     if load.active is not None:
         lo, hi = load.active
         if load.period is not None:
-            inside = np.mod(x - lo, load.period) <= hi - lo
+            # ends included: a value on an end, up to rounding, is in the range
+            tol = ACTIVE_END * load.period
+            d = np.mod(x - lo, load.period)
+            inside = (d <= hi - lo + tol) | (d >= load.period - tol)
         else:
-            inside = (x >= lo) & (x <= hi)
+            tol = ACTIVE_END * max(abs(lo), abs(hi), hi - lo)
+            inside = (x >= lo - tol) & (x <= hi + tol)
         f = np.where(inside, f, 0.0)
     return f
 
