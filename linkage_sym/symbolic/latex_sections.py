@@ -21,7 +21,10 @@ from linkage_sym.symbolic.latex_notation import (
     rows_of,
 )
 
-__all__ = ["UNITS", "equations", "nomenclature", "scene_joint_type", "symbol_list"]
+__all__ = ["MAX_MEANING", "UNITS", "equations", "nomenclature", "scene_joint_type", "symbol_list"]
+
+MAX_MEANING = 60
+"""A symbol's meaning longer than this (characters) is set as a paragraph in the symbol table."""
 
 UNITS = {
     "length": "m", "coordinate": "m", "angle": "rad", "mass": "kg",
@@ -106,6 +109,8 @@ def nomenclature(doc, nm, eqs) -> None:
     doc.text(r"\begin{longtable}{lll}")
     doc.text(r"symbol & meaning & unit \\ \hline \endhead")
     for sym, meaning, unit in rows:
+        if len(meaning) > MAX_MEANING:  # a paragraph of its own: the table keeps to the margins
+            meaning = rf"\parbox[t]{{0.6\linewidth}}{{\raggedright {meaning}}}"
         doc.text(rf"${sym}$ & {meaning} & {unit} \\")
     doc.text(r"\end{longtable}")
 
