@@ -10,7 +10,10 @@ notation of :mod:`linkage_sym.symbolic.latex_notation`.
 
 from __future__ import annotations
 
+import numpy as np
 import sympy as sp
+
+from linkage_sym.symbolic.latex_blocks import rate_matrix
 
 from linkage_sym.symbolic.latex_notation import (
     MAX_EQUATION,
@@ -280,12 +283,15 @@ def _velocities(doc, nm, eqs) -> None:
         doc.equation(r"\mathbf{A}\,\dot{\mathbf{x}} = \mathbf{B}\,\dot{\mathbf{q}}", "velocity")
         doc.align([rf"\dot{{\mathbf{{x}}}} &= {col_xd}", rf"\dot{{\mathbf{{q}}}} &= {col_qd}"],
                   numbered=False)
+        rows = [ge.rows for ge in eqs.groups]
+        starts = np.cumsum([0] + [len(ge.x) for ge in eqs.groups])
+        cols = [slice(int(a), int(b)) for a, b in zip(starts[:-1], starts[1:])]
         if A is None:
-            doc.entries(nm, r"\mathbf{A}", eqs.A, "the matrix", "A")
+            rate_matrix(doc, nm, "A", eqs.A, rows, cols)
         else:
             doc.align([rf"\mathbf{{A}} &= {A}"], numbered=False)
         if B is None:
-            doc.entries(nm, r"\mathbf{B}", eqs.B, "the matrix", "B")
+            rate_matrix(doc, nm, "B", eqs.B, rows, [slice(0, len(eqs.q))])
         else:
             doc.align([rf"\mathbf{{B}} &= {B}"], numbered=False)
 
