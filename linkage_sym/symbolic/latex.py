@@ -129,7 +129,8 @@ def latex_document(eqs: MechanismEquations, symbols: bool = False) -> str:
     doc.text(
         r"Link angles $\theta$ are measured from the $x$-axis to each link's axis, "
         r"$\omega = \dot\theta$, $\alpha = \ddot\theta$; $s$ is the slide of a prismatic "
-        r"joint (0 in the assembly configuration), $q$ a driver coordinate."
+        r"joint (0 in the assembly configuration), $q$ a driver coordinate, "
+        r"$(x^{G}, y^{G})$ a link's centre of mass in the link's frame."
     )
     if symbols:
         nomenclature(doc, nm, eqs)
