@@ -41,7 +41,7 @@ def block_matrix(namer: Namer, M: sp.Matrix, force: bool = False) -> str | None:
     cells = [[namer(M[i, j]) for j in range(M.cols)] for i in range(M.rows)]
     if not force and (max(len(c) for r in cells for c in r) > MAX_ENTRY
                       or max(sum(len(c) for c in r) for r in cells) > BLOCK_ROW
-                      or M.rows > MAX_MATRIX):
+                      or M.rows > MAX_MATRIX or M.cols > 10):  # amsmath's MaxMatrixCols
         return None
     # one matrix row a source line: the .tex reads as the matrix it typesets
     return r"\begin{pmatrix} " + " \\\\\n".join(" & ".join(r) for r in cells) + r" \end{pmatrix}"

@@ -13,8 +13,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from linkage_sym.symbolic.latex_blocks import rate_matrix
-
+from linkage_sym.symbolic.latex_blocks import block_matrix, rate_matrix
 from linkage_sym.symbolic.latex_notation import (
     MAX_EQUATION,
     MAX_MATRIX,
@@ -349,8 +348,10 @@ def _force_group(doc, nm, ge, block) -> None:
     links = escape_text(", ".join(ge.group.links))
     doc.text(rf"\subparagraph{{Group {g}}} ({escape_text(ge.group.kind)}: links {links}).")
     a = pmatrix(nm, Ag)
+    wide_a = a or block_matrix(nm, Ag)  # whole, a source line a row, when the rows fit a line
     b = pmatrix(nm, bg)
     c = pmatrix(nm, Cg) if later else None
+    wide_c = (c or block_matrix(nm, Cg)) if later else None
     F = column(nm, ge.forces)
     Fl = column(nm, later) if later else None
     small = a is not None and b is not None and (not later or c is not None)
@@ -366,9 +367,9 @@ def _force_group(doc, nm, ge, block) -> None:
             rows += rows_of(nm, rf"\mathbf{{F}}_{{>{g}}}", later)
         doc.align(rows, numbered=False)
         for name, M, m_tex, what, entry in (
-            (rf"\mathbf{{A}}_{{{g}}}", Ag, a, "the matrix", f"A^{{({g})}}"),
+            (rf"\mathbf{{A}}_{{{g}}}", Ag, wide_a, "the matrix", f"A^{{({g})}}"),
             (rf"\mathbf{{b}}_{{{g}}}", bg, b, "the column", f"b^{{({g})}}"),
-            (rf"\mathbf{{C}}_{{{g}}}", Cg, c, "the matrix", f"C^{{({g})}}"),
+            (rf"\mathbf{{C}}_{{{g}}}", Cg, wide_c, "the matrix", f"C^{{({g})}}"),
         ):
             if name.startswith(r"\mathbf{C}") and not later:
                 continue

@@ -55,3 +55,18 @@ def test_the_rate_matrix_is_a_grid_of_blocks_with_its_zero_blocks(name):
     assert "entries $A_{ij}$ of the matrix" not in doc
     # block lower triangular: a group uses no coordinate of a group solved after it
     assert all(grid[i][j] == r"\mathbf{0}" for i in range(n) for j in range(i + 1, n))
+
+
+def test_a_force_group_matrix_is_printed_as_a_matrix_with_its_zeros():
+    """The four-bar's dyad: A_2 (6 x 6) as a matrix, a source line a row, its zero entries
+    shown, not as the list of its non-zero entries."""
+    eqs = derive(load_example("crank_rocker"), forces=True)
+    doc = latex_document(eqs)
+    Ag = eqs.readable_force_blocks[1][0]
+    m = re.search(r"\\mathbf\{A\}_\{2\} &= \\begin\{pmatrix\} (.*?) \\end\{pmatrix\}", doc, re.S)
+    assert m, "A_2 is not printed as a matrix"
+    rows = [r.split("&") for r in m.group(1).split("\\\\")]
+    assert len(rows) == Ag.rows and all(len(r) == Ag.cols for r in rows)
+    zeros = sum(c.strip() == "0" for r in rows for c in r)
+    assert zeros == sum(1 for v in Ag if v == 0) > 0
+    assert "entries $A^{(2)}_{ij}$" not in doc
