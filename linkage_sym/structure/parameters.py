@@ -209,9 +209,8 @@ class ParameterTable:
     def com(self, link: str):
         n = ident(link)
         return (
-            # xG, yG: not p, q (q is a driver coordinate, q_A, in the same equations)
-            self._register(f"xG_{n}", ("p", link), f"centre of mass of link {link}: x in the link frame", "length"),
-            self._register(f"yG_{n}", ("q", link), f"centre of mass of link {link}: y in the link frame", "length"),
+            self._register(f"p_{n}", ("p", link), f"centre of mass of link {link}: x in the link frame", "length"),
+            self._register(f"q_{n}", ("q", link), f"centre of mass of link {link}: y in the link frame", "length"),
         )
 
     def gravity(self):
