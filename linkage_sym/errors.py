@@ -114,9 +114,8 @@ class SymbolicUnsupportedError(SceneError):
 
     field = "method"
 
-    def __init__(self, joints, springs=()):
+    def __init__(self, joints):
         self.joints = [tuple(j) for j in joints]
-        self.springs = [tuple(k) for k in springs]
         super().__init__(self.problems_naming(f"{self.field} 'dyad' or 'global'"))
 
     def problems_naming(self, choice: str) -> list[str]:
@@ -126,24 +125,20 @@ class SymbolicUnsupportedError(SceneError):
                 if t == FRICTION else
                 f"joints[{i}]: the symbolic method does not support {SYMBOLIC_LACKS[t]} yet "
                 f"(joint '{name}' is of type {t}); the numeric methods do ({choice})"
-                for i, name, t in self.joints] + [
-                f"springs[{i}]: the symbolic method does not derive springs and dampers in its "
-                f"force equations yet (spring '{name}'); the numeric methods do ({choice})"
-                for i, name in self.springs]
+                for i, name, t in self.joints]
 
 
-def refuse_symbolic_unsupported(scene, forces: bool = False, friction_derived: bool = False) -> None:
+def refuse_symbolic_unsupported(scene, friction_derived: bool = False) -> None:
     """Raise :class:`SymbolicUnsupportedError` if ``scene`` has joints the symbolic layer
-    does not derive, or (``forces``: its force equations are wanted) springs that act.
+    does not derive.
 
     The symbolic method (derived equations, their compiled and arbitrary-precision
     runs, and what builds on them: LaTeX, balancing conditions, design sweeps)
     does not support cam contacts yet (issue 20), nor joint friction (issue 29: a
     joint's ``friction`` when ``effects.friction`` is true; :func:`linkage_sym.symbolic.derive`
     writes its terms out, the compiled runtime does not solve them); the numeric methods do.
-    Nor does it derive springs and dampers in its force equations yet: with
-    ``forces`` true, a scene whose springs act (``effects.springs``) is refused
-    too (its kinematics alone are derived).  Every such joint and spring is named.
+    Every such joint is named (springs and dampers are derived:
+    :mod:`linkage_sym.symbolic.springs`).
     ``friction_derived``: the caller writes the friction's terms out
     (:func:`linkage_sym.symbolic.derive`), so friction is not refused.
 
@@ -170,8 +165,5 @@ def refuse_symbolic_unsupported(scene, forces: bool = False, friction_derived: b
     if scene.effects.friction and not friction_derived:  # contract part two: numeric solvers
         joints += [(i, j.name, FRICTION) for i, j in enumerate(scene.joints)
                    if j.friction is not None and j.friction.coefficient > 0]
-    springs = []
-    if forces and scene.active_springs:  # the contract's springs, acting
-        springs = [(i, k.name) for i, k in enumerate(scene.springs)]
-    if joints or springs:
-        raise SymbolicUnsupportedError(joints, springs)
+    if joints:
+        raise SymbolicUnsupportedError(joints)

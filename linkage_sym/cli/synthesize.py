@@ -15,6 +15,11 @@ synthesize guide-bar --K K --ground D [-o ...]
     it occurs; write the scene with -o.
 synthesize coupler-positions --positions FILE.json [--pivots AX,AY,DX,DY] [-o ...]
     A four-bar through 2 or 3 given coupler positions ``[[Bx, By, Cx, Cy], ...]``.
+synthesize motion --poses P.json [-o DIR]
+    Four-bars through 4 or 5 coupler poses (Burmester theory):
+    :mod:`linkage_sym.cli.synthesize_motion`.
+synthesize function ... | synthesize path ...
+    Function and path generation (:mod:`linkage_sym.cli.funcpath`).
 synthesize equations [--latex] [-o FILE]
     The design equations, derived with SymPy, as text or a LaTeX fragment.
 
@@ -265,7 +270,13 @@ def register(sub) -> None:
         p.set_defaults(name=default)
         _output(p)
         p.set_defaults(func=cmd_synthesize)
+    from linkage_sym.cli.funcpath import add_kinds
+
+    add_kinds(kinds, _sweep_options)
     eq = kinds.add_parser("equations", help="the design equations (SymPy), as text or LaTeX")
     eq.add_argument("--latex", action="store_true", help="a LaTeX fragment (needs amsmath)")
     eq.add_argument("-o", "--output", metavar="FILE", help="output file (default: standard output)")
     eq.set_defaults(func=cmd_synthesize)
+    from linkage_sym.cli.synthesize_motion import add_motion
+
+    add_motion(kinds)

@@ -108,6 +108,9 @@ def signature(scene: Scene) -> dict:
         "drivers": [[d.joint, d.kind, d.toward] for d in scene.drivers],
         "loads": [[ld.link, ld.force is not None, bool(ld.torque)] for ld in scene.loads],
         "effects": [bool(eff.inertia), eff.gravity is not None, bool(eff.loads)],
+        # the acting springs: their ends' links (or joint) and whether a damper acts
+        "springs": [[k.name, list(k.links or ()), k.joint, k.damping != 0.0]
+                    for k in scene.active_springs],
         "outputs": sorted(scene.outputs),
     }
 

@@ -369,6 +369,8 @@ class _Builder:
                 put(f"C:{k}", [Cg[i, j] for i, j in pc])
                 force_layout.append({"unknowns": [fi[s] for s in ge.forces], "A": pa,
                                      "C": [(i, fi[later[j]]) for i, j in pc]})
+            for name, _, effort, _, value in eqs.spring_efforts:  # each spring's record
+                put(f"spring:{name}", [value, effort])
             self.add("frame", list(eqs.frame), "frame force x, y and moment about the origin", True)
         self.add("points", outs, "joint, origin and centre-of-mass kinematics, slide units, force blocks",
                  True)
@@ -418,7 +420,7 @@ def compile_mechanism(scene: Scene, use_cache: bool = True) -> CompiledMechanism
     >>> round(float(result.forces.driving["A"][0]), 4)  # as the numeric solver
     -0.0755
     """
-    refuse_symbolic_unsupported(scene, forces="forces" in needed_stages(scene))
+    refuse_symbolic_unsupported(scene)
     if use_cache:
         got = load_compiled(scene)
         if got is not None:

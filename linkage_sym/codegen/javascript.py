@@ -115,15 +115,17 @@ def page_scene(scene: Scene) -> Scene:
 
 
 def forces_left_out(scene: Scene) -> str | None:
-    """Why a page of ``scene`` leaves its forces out, or None: the symbolic layer does not
-    derive acting springs or joint friction (the contract's second part) in its force
-    equations yet, so such a page solves and draws the kinematics, and its force layer
-    says why it is off.
+    """Why a page of ``scene`` leaves its forces out, or None: the compiled symbolic layer
+    does not solve joint friction (the contract's second part; its springs and dampers it
+    derives), so such a page solves and draws the kinematics, and its force layer says why
+    it is off.
 
     Examples
     --------
     >>> from linkage_sym.examples import load_example
     >>> forces_left_out(load_example("crank_rocker")) is None
+    True
+    >>> forces_left_out(load_example("crank_rocker_spring")) is None
     True
     >>> forces_left_out(load_example("slider_crank_press_friction"))
     "the page's equations leave the joints' friction out (the numeric methods solve it)"
@@ -131,8 +133,6 @@ def forces_left_out(scene: Scene) -> str | None:
     if scene.effects.friction and any(
             j.friction is not None and j.friction.coefficient > 0 for j in scene.joints):
         return "the page's equations leave the joints' friction out (the numeric methods solve it)"
-    if scene.active_springs:
-        return "the page's equations leave the springs out (the numeric methods solve them)"
     return None
 
 

@@ -129,7 +129,8 @@ class PreciseResult:
         of ``x_names``), ``"links"`` ``{name: {"rotation", "omega", "alpha"}}``,
         ``"joints"`` ``{name: {"position", "velocity", "acceleration"}}`` (pairs),
         ``"points"`` likewise, and with forces ``"reactions"`` ``{joint: (fx, fy)}``,
-        ``"reaction_moments"``, ``"driving"``, ``"frame"`` ``(fx, fy, m)``.
+        ``"reaction_moments"``, ``"driving"``, ``"frame"`` ``(fx, fy, m)``, ``"springs"``
+        ``{name: (length or angle, effort)}``.
     x_names : list of str
     """
 
@@ -338,7 +339,7 @@ class PreciseMechanism(Evaluator):
                 pts = self.call("points", P, X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
                 F = self.solve_forces(pts)
             rec["pts"], rec["F"] = pts, F
-            rec["frame"] = self.call("frame", P, X=X, F=F, CS=CS)
+            rec["frame"] = self.call("frame", P, X=X, XD=XD, F=F, CS=CS)
         return rec
 
     # -- the sweep ------------------------------------------------------------------
@@ -471,6 +472,9 @@ class PreciseMechanism(Evaluator):
             rec["reaction_moments"] = {name: r[2] for name, r in reactions.items()}
             rec["driving"] = driving
             rec["frame"] = tuple(s["frame"])
+            # each acting spring's length or angle and its effort (symbolic.springs)
+            rec["springs"] = {k.name: tuple(art.rows(pts, f"spring:{k.name}"))
+                              for k in scene.active_springs}
         return rec
 
     def _round_into(self, res, records, stages):
@@ -490,6 +494,9 @@ class PreciseMechanism(Evaluator):
                             for name, arr in getattr(fo, section).items()]
             targets += [(fo.frame_force, lambda r: r["frame"][:2], True),
                         (fo.frame_moment, lambda r: r["frame"][2], True)]
+            targets += [(arr, lambda r, n=name, i=i: r["springs"][n][i], True)
+                        for name, rec in fo.springs.items()
+                        for i, arr in enumerate(rec.values())]
         for arr, get, rate in targets:
             if not arr.flags.writeable:
                 continue  # pragma: no cover - results own their arrays

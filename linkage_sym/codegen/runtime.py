@@ -48,6 +48,7 @@ from linkage_sym.numeric.kinematics.constraints import jacobian
 from linkage_sym.numeric.kinematics.joint_rows import scene_constraints
 from linkage_sym.numeric.kinematics.gears import pulling_note
 from linkage_sym.numeric.kinematics.state import LinkState
+from linkage_sym.numeric.forces.springs import record_keys
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.results.result import OK, Analysis, Forces, GroupForces
 from linkage_sym.numeric.engine.run import (
@@ -431,7 +432,7 @@ class CompiledMechanism(NumpyEvaluator):
         pts = points(arrays="forces" in stages)  # the force solve indexes every output
         forces = None
         if "forces" in stages:
-            forces = self._forces(pts, points, Xk, CS, rate_ok, idx, N)
+            forces = self._forces(pts, points, Xk, XD, CS, rate_ok, idx, N)
         res = self._analysis(X, XD, XDD, CS, pts, idx, status, messages, condition, forces,
                              q, qd, qdd)
         if self._decomposition is None:  # for the transmission angles, made once
@@ -451,7 +452,7 @@ class CompiledMechanism(NumpyEvaluator):
             return None
         return self.loads_at(self.scene, q)
 
-    def _forces(self, pts, points, Xk, CS, rate_ok, idx, N):
+    def _forces(self, pts, points, Xk, XD, CS, rate_ok, idx, N):
         """Forces at the steps with rates.  A gear mesh's tooth load must press: solved with
         every flank +1, then again with the flanks the tooth loads show (as the numeric
         solver does, :mod:`linkage_sym.numeric.forces.kinetostatics`)."""
@@ -473,14 +474,15 @@ class CompiledMechanism(NumpyEvaluator):
         P = None
         if len(self.flanks):  # the frame's mesh forces on the flanks settled on
             P = self.with_flanks(None, [f[sel] for f in flank])
-        return self._force_records(pts, Fv, Xk, CS, sel, ok_idx, N, notes, P)
+        return self._force_records(pts, Fv, (Xk, XD), CS, sel, ok_idx, N, notes, P)
 
-    def _force_records(self, pts, Fv, Xk, CS, sel, ok_idx, N, notes, P):
+    def _force_records(self, pts, Fv, XkD, CS, sel, ok_idx, N, notes, P):
         art = self.art
+        Xk, XD = XkD  # the coordinates and their rates (a damper's pull on the frame)
         Kk = len(ok_idx)
         fx, fy, mz = (
             np.broadcast_to(np.asarray(v, float), (Kk,))
-            for v in self.call("frame", P, X=list(Xk[:, sel]), F=list(Fv),
+            for v in self.call("frame", P, X=list(Xk[:, sel]), XD=[v[sel] for v in XD], F=list(Fv),
                                CS=(list(CS[0][:, sel]), list(CS[1][:, sel])))
         )
         def spread(v):
@@ -495,6 +497,9 @@ class CompiledMechanism(NumpyEvaluator):
             reactions[name] = np.stack([spread(rx), spread(ry)], axis=-1)
             moments[name] = spread(mm)
         driving = {name: spread(v) for name, v in efforts.items()}
+        springs = {k.name: dict(zip(record_keys(k), (spread(full(v, len(sel))[sel])
+                                                       for v in art.rows(pts, f"spring:{k.name}"))))
+                   for k in self.scene.active_springs}
         return Forces(
             method="symbolic",
             reactions=reactions,
@@ -504,6 +509,7 @@ class CompiledMechanism(NumpyEvaluator):
             frame_moment=spread(mz),
             groups=[GroupForces(tuple(g.links), "symbolic") for g in art.groups],
             notes=notes,
+            springs=springs,
         )
 
     def _analysis(self, X, XD, XDD, CS, pts, idx, status, messages, condition, forces, q, qd, qdd):

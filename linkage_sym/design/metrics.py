@@ -151,13 +151,6 @@ class MetricPlan:
         self.need = set().union(*(_NEEDS.get(m, set()) for m in self.metrics))
         self.forces = "forces" in self.need
         refuse_meshes(scene)
-        if self.forces and scene.active_springs:  # the generated force blocks have no springs
-            forcing = [m for m in self.metrics if "forces" in _NEEDS.get(m, set())]
-            raise SweepError("metrics", f"{', '.join(forcing)}: scene {scene.name!r} has springs "
-                                        f"({', '.join(k.name for k in scene.springs)}), and design "
-                                        "sweeps compute forces with the symbolic layer's "
-                                        "functions, which do not derive springs yet (the "
-                                        f"kinematic metrics do not need them); {POINTERS['analyze']}")
         self.output = self._output(output) if "rate_t" in self.need else None
         if "K" in self.metrics and not (len(scene.drivers) == 1
                                         and scene.joint(scene.drivers[0].joint).type == "R"):

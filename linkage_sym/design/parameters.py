@@ -299,7 +299,20 @@ def _field(scene, name: str, recipe: tuple):
         return f"{name} in degrees", ANGLE_RULE, "angle"
     if kind == "radius":
         return f"joints[{joints[recipe[1]]}].radius", None, "length"
+    if kind in SPRING_FIELDS:  # a spring's (the contract's springs and dampers)
+        from linkage_sym.scene.springs import RULE
+
+        i = [k.name for k in scene.springs].index(recipe[1])
+        field, rule, how = SPRING_FIELDS[kind]
+        return f"springs[{i}].{field}", RULE if rule else None, how
     return name, None, ""
+
+
+SPRING_FIELDS = {"k": ("stiffness", True, ""), "c": ("damping", True, ""),
+                 "L0": ("free_length", True, ""), "theta_f": ("free_angle_deg", False, "angle"),
+                 "xi_s": ("at", False, ""), "eta_s": ("at", False, "")}
+"""A spring parameter's recipe tag: its field, whether the spring rule (not negative)
+holds, and how it is held."""
 
 
 def _problem(name: str, field: str, rule, how: str, v: float) -> str:
@@ -424,6 +437,8 @@ def _meaning(table, name: str) -> str:
         else:
             for i in range(len(scene.loads)):
                 table.load(i)
+            for k in scene.springs:  # the contract's springs: k_, c_, L0_, theta_f_, xi_, eta_
+                table.spring(k.name)
     except (KeyError, ValueError, TypeError):
         pass
     p = table.params.get(name)

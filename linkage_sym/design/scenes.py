@@ -119,4 +119,24 @@ def design_scene(model, P, X0, joints0, d: int, name: str):
     points = tuple(dataclasses.replace(p, at=place(p.link, local(p.link, p.at)))
                    for p in scene.points)
     return dataclasses.replace(scene, name=name, links=tuple(links), joints=tuple(joints),
-                               loads=tuple(loads), effects=effects, points=points)
+                               loads=tuple(loads), effects=effects, points=points,
+                               springs=_springs(scene, value, local, place))
+
+
+def _springs(scene, value, local, place) -> tuple:
+    """The scene's springs with the design's values (``value(recipe, default)``), their ends
+    carried along with their links (``local``, ``place``: see :func:`design_scene`)."""
+    springs = []
+    for k in scene.springs:
+        kw = {"stiffness": value(("k", k.name), k.stiffness),
+              "damping": value(("c", k.name), k.damping)}
+        if k.joint is not None:
+            kw["free_angle_deg"] = math.degrees(value(("theta_f", k.name), k.free_angle))
+        else:
+            kw["free_length"] = value(("L0", k.name), k.free_length)
+            kw["at"] = tuple(
+                place(link, (value(("xi_s", k.name, i), x0), value(("eta_s", k.name, i), y0)))
+                for i, link in enumerate(k.links)
+                for x0, y0 in (local(link, k.at[i]),))
+        springs.append(dataclasses.replace(k, **kw))
+    return tuple(springs)

@@ -237,6 +237,30 @@ class ParameterTable:
             out["torque"] = self._register(f"T_{k}", ("T", i), f"load {k} on {ld.link}: torque", "load")
         return out
 
+    def spring(self, name: str):
+        """Names of spring ``name``'s parameters: ``{"k", "c" (a damped spring's: ``None``
+        without damping), and "L0", "ends" (each end's point in its link's frame) between
+        two links, or "theta_f" at a joint}``."""
+        k = next(k for k in self.scene.springs if k.name == name)
+        n = ident(name)
+        out = {
+            "k": self._register(f"k_{n}", ("k", name), f"stiffness of spring {name}", "stiffness"),
+            "c": None if k.damping == 0.0 else self._register(
+                f"c_{n}", ("c", name), f"damping of spring {name}", "damping"),
+        }
+        if k.joint is not None:
+            out["theta_f"] = self._register(f"theta_f_{n}", ("theta_f", name),
+                                            f"free angle of spring {name}", "angle")
+            return out
+        out["L0"] = self._register(f"L0_{n}", ("L0", name), f"free length of spring {name}", "length")
+        out["ends"] = tuple(
+            (self._register(f"xi_{n}_{i}", ("xi_s", name, i),
+                            f"spring {name}: end {i} x in the frame of {link}", kind),
+             self._register(f"eta_{n}_{i}", ("eta_s", name, i),
+                            f"spring {name}: end {i} y in the frame of {link}", kind))
+            for i, link in enumerate(k.links)
+            for kind in ("coordinate" if link == GROUND else "length",))
+        return out
 
     def mesh(self, joint: str):
         """Names ``(r_a, r_b, phi, epsilon)`` of gear mesh ``joint`` (see the module docstring)."""

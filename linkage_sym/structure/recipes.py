@@ -264,7 +264,27 @@ class Load(Recipe):
         return self.args[0] if self.tag in ("Fx", "Fy", "T") else None
 
 
+class SpringValue(Recipe):
+    """``k``, ``c``, ``L0``, ``theta_f``: a spring's stiffness, damping, free length and
+    free angle (rad); ``xi_s``, ``eta_s``: the point of its end ``i`` in the frame of
+    ``links[i]`` (the ground's: global).  Args ``(spring name,)`` or ``(spring name, i)``."""
+
+    tags = ("k", "c", "L0", "theta_f", "xi_s", "eta_s")
+
+    def read(self, ctx):
+        k = next(k for k in ctx.scene.springs if k.name == self.args[0])
+        if self.tag in ("xi_s", "eta_s"):
+            i = self.args[1]
+            link, at = k.links[i], k.at[i]
+            x, y = ctx.num.point(at) if link == GROUND else ctx.local(link, at)
+            return x if self.tag == "xi_s" else y
+        if self.tag == "theta_f":  # the scene's degrees in the number type's radians
+            return ctx.num.number(k.free_angle_deg) * (ctx.num.atan2(1, 0) * 2) / 180
+        value = {"k": k.stiffness, "c": k.damping, "L0": k.free_length}[self.tag]
+        return ctx.num.number(value)
+
+
 RECIPES = {tag: kind for kind in (PointDistance, GroundPoint, AssemblyAngle, SlideDirection,
-                                  DriverDirection, Inertia, Gravity, Mesh, Load)
+                                  DriverDirection, Inertia, Gravity, Mesh, Load, SpringValue)
            for tag in kind.tags}
 """Every recipe kind by its tag."""

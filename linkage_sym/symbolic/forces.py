@@ -31,6 +31,7 @@ import sympy as sp
 from linkage_sym.model import GROUND
 from linkage_sym.structure.parameters import ident
 from linkage_sym.symbolic.friction import friction_laws, friction_loads, on_frame
+from linkage_sym.symbolic.springs import spring_loads
 from linkage_sym.symbolic.vectors import Vec
 
 __all__ = ["ForceEquations"]
@@ -56,8 +57,10 @@ class ForceEquations:
     ``slide_unit``, ``pitch_point``, ``line_of_action``, ``sym``), the points'
     accelerations (``com_kin``) and the groups of the class that inherits it, and
     sets ``F``, ``E``, ``force_intermediates``, ``friction_laws`` (joint friction, where
-    ``with_friction``: :mod:`linkage_sym.symbolic.friction`), ``link_equations``,
-    ``force_blocks``, ``readable_force_blocks``, ``all_forces`` and ``frame``.
+    ``with_friction``: :mod:`linkage_sym.symbolic.friction`), ``spring_efforts`` (the
+    acting springs: :mod:`linkage_sym.symbolic.springs`), ``link_equations``,
+    ``force_blocks``, ``readable_force_blocks``, ``all_forces``, ``frame`` and
+    ``readable_frame``.
     """
 
     def _forces(self):
@@ -71,10 +74,24 @@ class ForceEquations:
                        lambda link, f=None, lever=None, couple=0: _add(acc, link, f, lever, couple))
         self._driver_loads(acc)
         self._body_loads(acc)
+        # the scene's springs and dampers (contract part two), known loads: see symbolic.springs
+        ground = [sp.Integer(0)] * 3
+
+        def on_ground(fx, fy, mz):
+            for i, v in enumerate((fx, fy, mz)):
+                ground[i] += v
+
+        self.spring_efforts = spring_loads(
+            self, lambda link, f=None, lever=None, couple=0: _add(acc, link, f, lever, couple),
+            on_ground)
+        self.force_intermediates += [(sym, e, f"{kind} of spring {name}")
+                                     for name, sym, e, kind, _ in self.spring_efforts]
         named = {sym: e for sym, e, _ in self.force_intermediates}
         self.link_equations = {n: [e.xreplace(named) for e in row] for n, row in acc.items()}
         self._group_blocks(acc, named)
-        self.frame = self._frame_loads()
+        # the frame with the springs' efforts named (a reader's form), and substituted
+        self.readable_frame = [e + g for e, g in zip(self._frame_loads(), ground)]
+        self.frame = [e.xreplace(named) for e in self.readable_frame]
 
     def _force_unknowns(self):
         """The joints' reactions ``F`` and the drivers' efforts ``E``, as symbols."""

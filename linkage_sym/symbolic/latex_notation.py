@@ -26,6 +26,7 @@ import re
 import sympy as sp
 
 from linkage_sym.symbolic.mechanism import MechanismEquations
+from linkage_sym.structure.parameters import ident
 
 __all__ = [
     "LINE", "ROW_SOURCE", "TYPESET", "MAX_ENTRY", "MAX_EQUATION", "MAX_MATRIX", "MAX_MATRIX_CHARS",
@@ -197,7 +198,12 @@ class Namer:
                 names[law.arm] = (r"\rho" if law.kind == "R" else r"\mu") + f"_{{{n}}}"
         for s in eqs.parameters:
             names.setdefault(s, self.param(s.name))
+        springs = {sym: name for name, sym, _, _, _ in getattr(eqs, "spring_efforts", ())}
         for s, _, _ in getattr(eqs, "force_intermediates", ()):
+            if s in springs:  # a spring's tension T or torque tau (contract part two)
+                head = r"\tau" if s.name.startswith("tau_") else "T"
+                names[s] = rf"{head}_{{{_sub(ident(springs[s]), upright=True)}}}"
+                continue
             comp, link = s.name[2], s.name[4:]
             names[s] = rf"a^{{G}}_{{{_sub(link, upright=True)},{comp}}}"
         for s, _ in eqs.intermediates:

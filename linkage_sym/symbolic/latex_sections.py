@@ -329,7 +329,10 @@ def _forces(doc, nm, eqs) -> None:
     if eqs.force_intermediates:
         doc.text(
             r"The d'Alembert forces use the accelerations $a^{G}$ of the centres of mass, "
-            "from the positions and rates above:"
+            "from the positions and rates above:" if not eqs.spring_efforts else
+            r"The d'Alembert forces use the accelerations $a^{G}$ of the centres of mass, "
+            r"and the springs and dampers pull with the tensions $T$ (a joint spring: the "
+            r"torque $\tau$ on its joint's second link), from the positions and rates above:"
         )
         rows, keys = [], []
         for sym, e, _ in eqs.force_intermediates:
@@ -390,7 +393,7 @@ def _frame(doc, nm, eqs) -> None:
     rows, keys = [], []
     for lhs, e, k in zip(
         (r"F^{\mathrm{fr}}_{x}", r"F^{\mathrm{fr}}_{y}", r"M^{\mathrm{fr}}"),
-        eqs.frame,
+        eqs.readable_frame,
         ("frame-x", "frame-y", "frame-moment"),
     ):
         r = nm.sum_rows(lhs, e)

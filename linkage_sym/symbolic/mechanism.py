@@ -136,10 +136,9 @@ class MechanismEquations(ClosedForms, ForceEquations):
                  friction=False):
         outs = set(scene.outputs)
         want = bool(outs & {"reactions", "driving", "frame"}) if forces is None else forces
-        # cams, and springs in the force equations, not derived yet; joint friction only where
-        # asked (derive(): its terms and laws written out; the compiled runtime does not solve
-        # them): refused by name, never wrong
-        refuse_symbolic_unsupported(scene, forces=want, friction_derived=friction)
+        # cams not derived yet; joint friction only where asked (derive(): its terms and laws
+        # written out; the compiled runtime does not solve them): refused by name, never wrong
+        refuse_symbolic_unsupported(scene, friction_derived=friction)
         self.with_friction = friction
         self.friction_laws: list = []
         self.scene = scene

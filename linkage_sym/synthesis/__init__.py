@@ -11,6 +11,19 @@
   (``linkage-sym synthesize crank-rocker|slider-crank|guide-bar``);
 * :mod:`~linkage_sym.synthesis.positions` -- design by two or three coupler
   positions (``linkage-sym synthesize coupler-positions``);
+* :mod:`~linkage_sym.synthesis.motion` -- motion generation through four
+  or five coupler poses by Burmester theory (:mod:`~linkage_sym.synthesis.burmester`),
+  every candidate driven through the poses by the solver and classified
+  (:mod:`~linkage_sym.synthesis.defects`: branch, order and dead-centre
+  defects, Grashof class, minimum transmission angle)
+  (``linkage-sym synthesize motion``);
+* :mod:`~linkage_sym.synthesis.function_gen` -- function generation by
+  Freudenstein's equation, the function parsed safely by
+  :mod:`~linkage_sym.synthesis.expression` (``linkage-sym synthesize function``);
+* :mod:`~linkage_sym.synthesis.path_gen` -- path generation: three points
+  exactly, more by many starts solved at once and least squares; its closed
+  forms in :mod:`~linkage_sym.synthesis.path_model`, the solver's check of each
+  design in :mod:`~linkage_sym.synthesis.path_check` (``linkage-sym synthesize path``);
 * :mod:`~linkage_sym.synthesis.equations` -- the design equations derived
   with SymPy, as text or LaTeX (``linkage-sym synthesize equations``); the
   only module here that imports SymPy (import contract in ``pyproject.toml``).
@@ -34,6 +47,18 @@ from linkage_sym.synthesis.kratio import guide_bar as guide_bar_by_K
 from linkage_sym.synthesis.kratio import slider_crank as slider_crank_by_K
 from linkage_sym.synthesis.positions import coupler_positions
 
+
+def motion_synthesis(poses, **options):
+    """Four-bars whose coupler frame passes through 4 or 5 poses ``[x, y, angle_deg]``.
+
+    See :func:`linkage_sym.synthesis.motion.motion_synthesis` (loaded on call:
+    its solver checks need SciPy).
+    """
+    from linkage_sym.synthesis.motion import motion_synthesis as _motion
+
+    return _motion(poses, **options)
+
+
 __all__ = [
     "Design",
     "SynthesisError",
@@ -41,6 +66,7 @@ __all__ = [
     "crank_rocker",
     "extreme_position_angle",
     "fourbar",
+    "motion_synthesis",
     "guide_bar",
     "guide_bar_by_K",
     "slider_crank",

@@ -57,7 +57,7 @@ def test_recipes_in_mpmath_agree_with_float64(name):
     40 digits (the same scene numbers, another arithmetic): within 4 ulps of the parameter's
     scale (the float64 recipe rounds a few times: a frame angle, its cosine and sine, a
     difference); and the table's value is the float recipe's, exactly.  (Every example
-    the symbolic layer derives: cam contacts are not, nor are springs or joint friction.)"""
+    the symbolic layer derives: cam contacts are not, nor is joint friction; springs are.)"""
     scene = linkage_sym.load_example(name)
     frames = link_frames(scene)
     L = scene.characteristic_length() or 1.0

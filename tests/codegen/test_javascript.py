@@ -158,12 +158,23 @@ console.log(JSON.stringify(got.map((g) => ({{status: g.status, joints: g.joints}
                 assert err <= POSITION_TOL * L, (case, k, j.name)
 
 
-@pytest.mark.parametrize("name, word", [("crank_rocker_spring", "springs"),
-                                        ("slider_crank_press_friction", "friction")])
-def test_a_page_of_springs_or_friction_derives_kinematics_and_says_why_forces_are_off(name, word):
-    """The symbolic layer does not derive springs or joint friction in its force equations:
-    the page derives the kinematics alone (no force stage), its model says why its force
-    layer is off, and the downloadable scene keeps the springs and friction."""
+def test_a_page_of_springs_derives_its_forces():
+    """The symbolic layer derives springs and dampers: the page of a scene with springs has
+    its forces (checked against the numeric solver by ``tests/page/test_page_layers.py``)."""
+    from linkage_sym.codegen.javascript import forces_left_out, mechanism_model, page_artifact
+    from linkage_sym.examples import load_example
+    scene = load_example("crank_rocker_spring")
+    assert forces_left_out(scene) is None
+    art = page_artifact(scene)
+    assert "forces" in art.stages
+    assert mechanism_model(scene, art)["scene"]["springs"]
+
+
+@pytest.mark.parametrize("name, word", [("slider_crank_press_friction", "friction")])
+def test_a_page_of_friction_derives_kinematics_and_says_why_forces_are_off(name, word):
+    """The compiled symbolic layer does not solve joint friction: the page derives the
+    kinematics alone (no force stage), its model says why its force layer is off, and the
+    downloadable scene keeps the friction."""
     from linkage_sym.codegen.javascript import mechanism_model, page_artifact
     from linkage_sym.examples import load_example
     scene = load_example(name)

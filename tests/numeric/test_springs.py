@@ -29,7 +29,6 @@ import numpy as np
 import pytest
 
 import linkage_sym
-from linkage_sym.errors import SceneError
 from linkage_sym.examples import example_dict
 from linkage_sym.numeric.plan import compile_plan
 from linkage_sym.structure.disconnection import usable_disconnections
@@ -263,27 +262,25 @@ def test_springs_that_do_not_act_give_the_same_bytes_as_none():
         assert a == b
 
 
-def test_the_symbolic_layer_refuses_acting_springs_by_name():
+def test_the_symbolic_layer_derives_acting_springs():
+    """The symbolic layer no longer refuses springs (it derives them:
+    ``tests/codegen/test_symbolic_springs.py`` checks its forces); its kinematics are
+    unchanged by them."""
     scene = linkage_sym.load_example("crank_rocker_spring")
-    with pytest.raises(SceneError) as err:
-        linkage_sym.analyze(scene, method="symbolic")
-    assert err.value.problems == [
-        f"springs[{i}]: the symbolic method does not derive springs and dampers in its force "
-        f"equations yet (spring '{n}'); the numeric methods do (method 'dyad' or 'global')"
-        for i, n in enumerate(["k1", "k2"])]
-    with pytest.raises(SceneError, match=r"springs\[0\]"):
-        linkage_sym.derive(scene, forces=True)
-    # the kinematics alone are derived: springs do not change them
+    sym = linkage_sym.analyze(scene, method="symbolic")
+    assert set(sym.forces.springs) == {"k1", "k2"}
+    assert linkage_sym.derive(scene, forces=True).spring_efforts
     kin = dataclasses.replace(scene, outputs=("kinematics",))
     sym = linkage_sym.analyze(kin, method="symbolic")
     num = linkage_sym.analyze(kin)
     assert np.abs(sym.links["rocker"].rotation - num.links["rocker"].rotation).max() < 1e-12
 
 
-def test_design_sweeps_refuse_force_metrics_with_springs():
+def test_design_sweeps_compute_force_metrics_with_springs():
+    """Design sweeps no longer refuse force metrics under springs
+    (``tests/design/test_design_springs.py`` checks them against analyze)."""
     scene = linkage_sym.load_example("crank_rocker_spring")
-    with pytest.raises(ValueError, match="rms_driving: scene 'crank-rocker-spring' has springs "
-                                         r"\(k1, k2\)"):
-        linkage_sym.sweep(scene, {"l_AB": [0.024]}, ["K", "rms_driving"])
-    res = linkage_sym.sweep(scene, {"l_AB": [0.024]}, ["K"])
+    res = linkage_sym.sweep(scene, {"l_AB": [0.024]}, ["K", "rms_driving"])
     assert len(res) == 1
+    ok = linkage_sym.analyze(scene).forces.driving["A"][:-1]  # a whole turn: the end once
+    assert abs(res["rms_driving_A"][0] - np.sqrt(np.mean(ok ** 2))) <= 1e-10 * np.abs(ok).max()

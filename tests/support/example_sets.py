@@ -7,10 +7,8 @@ cam contacts) are left out of checks against ``reference_kinematics.py``, an
 independent solver of R and P joints only.  ``test_gears.py`` and
 ``test_cams.py`` check those against the Willis formula, closed forms, the
 equivalent four-bar and the direct contact equations instead.  Examples
-whose springs act (the contract's ``springs``) are left out of the checks of
-the symbolic layer too: its force equations do not derive springs yet, and
-it refuses such a scene by name (``tests/numeric/test_springs.py`` checks the
-refusal, and the springs against a power balance and closed forms).
+whose springs act (the contract's ``springs``) are checked like the others: the
+symbolic layer derives them (``tests/codegen/test_symbolic_springs.py``).
 """
 
 from __future__ import annotations
@@ -47,11 +45,10 @@ def has_friction(name: str) -> bool:
 
 
 def symbolic_examples() -> list[str]:
-    """The shipped examples the symbolic layer derives (no joint it refuses, no acting spring
-    its force equations leave out, no joint friction), sorted."""
+    """The shipped examples the symbolic layer derives (no joint it refuses, no joint
+    friction; acting springs it derives), sorted."""
     return [n for n in example_names()
-            if not joint_types(n) & set(SYMBOLIC_LACKS) and not has_springs(n)
-            and not has_friction(n)]
+            if not joint_types(n) & set(SYMBOLIC_LACKS) and not has_friction(n)]
 
 
 def lower_pair_examples() -> list[str]:

@@ -1,0 +1,1 @@
+../../notebooks/balancing_fourbar_sixbar.py

@@ -1,0 +1,1 @@
+../../notebooks/instant_centres.py

@@ -1,0 +1,1 @@
+../../notebooks/kinematics_fourbar.py

@@ -1,0 +1,1 @@
+../../notebooks/song_wang_sixbar.py

@@ -1,0 +1,1 @@
+../../notebooks/symbolic_fourbar_slider.py

@@ -1,0 +1,1 @@
+../../notebooks/synthesis_by_K.py

@@ -1,0 +1,130 @@
+"""Pictures of a motion generation: the poses with a linkage in each, the Burmester curves.
+
+Only the synthesis' results are read here (:class:`~linkage_sym.synthesis.motion.MotionSynthesis`):
+the linkage in pose ``j`` is its fixed pivots and its moving pivots carried by
+the coupler frame of pose ``j``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from matplotlib.patches import Polygon
+
+from linkage_sym.plotting import style
+
+
+def _frame(ax, x, y, t, size, color, label):
+    """A pose: the coupler frame's origin and its x axis (an arrow)."""
+    ax.annotate("", xy=(x + size * math.cos(t), y + size * math.sin(t)), xytext=(x, y),
+                arrowprops={"arrowstyle": "->", "color": color, "lw": 1.6})
+    ax.plot([x], [y], "o", color=color, ms=4)
+    ax.annotate(label, (x, y), textcoords="offset points", xytext=(4, -10), color=color, fontsize=8)
+
+
+def _at(pose, local):
+    x, y, t = pose
+    c, s = math.cos(t), math.sin(t)
+    return x + c * local[0] - s * local[1], y + s * local[0] + c * local[1]
+
+
+def _spread(poses) -> float:
+    return float(max(np.max(np.hypot(*(poses[:, :2] - poses[0, :2]).T)), 1e-300))
+
+
+def plot_poses(result, path, design: int = 0):
+    """The poses, each with the linkage ``result.designs[design]`` in it; written to ``path``.
+
+    Parameters
+    ----------
+    result : MotionSynthesis
+        A motion generation's result.
+    path : str or Path
+        The PNG to write.
+    design : int
+        Which design (0: the best).
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
+    d = result.designs[design]
+    crank, rocker = result.dyads[d.crank], result.dyads[d.rocker]
+    fig = style.new_figure(6.4, 5.4)
+    ax = fig.add_subplot()
+    size = 0.15 * _spread(result.poses)
+    A, D = crank.centre, rocker.centre
+    for j, pose in enumerate(result.poses):
+        color = style.PALETTE[j % len(style.PALETTE)]
+        B, C = _at(pose, crank.local), _at(pose, rocker.local)
+        ax.add_patch(Polygon([B, C, pose[:2]], closed=True, facecolor=color, alpha=0.15,
+                             edgecolor=color))
+        ax.plot([A[0], B[0], C[0], D[0]], [A[1], B[1], C[1], D[1]], "-o", color=color, lw=1.2,
+                ms=3)
+        _frame(ax, pose[0], pose[1], pose[2], size, color, f"pose {j + 1}")
+    ax.plot([A[0], D[0]], [A[1], D[1]], "^", color="k", ms=9, label="fixed pivots A, D")
+    c = d.check
+    state = "no defect" if c.defect_free else "; ".join(n.split(":")[0] for n in c.notes)
+    ax.set_title(f"{d.scene['name']}: {c.grashof}, min transmission angle "
+                 f"{math.degrees(c.gamma_min):.1f}°, {state}", fontsize=9)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.legend(loc="best", fontsize=8)
+    ax.grid(True, lw=0.3)
+    return style.save(fig, path)
+
+
+def plot_curves(result, path):
+    """The centre-point and circle-point curves (four poses) or the Burmester point pairs
+    (five), with the poses and the dyads combined; written to ``path``.
+
+    Parameters
+    ----------
+    result : MotionSynthesis
+        A motion generation's result.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
+    fig = style.new_figure(6.4, 5.4)
+    ax = fig.add_subplot()
+    if result.curves is not None:
+        for branch in range(2):
+            for pts, color, name in ((result.curves.centre[branch], "#1f77b4", "centre-point curve"),
+                                     (result.curves.circle[branch], "#d62728", "circle-point curve")):
+                ax.plot(pts[:, 0], pts[:, 1], ".", color=color, ms=1.2,
+                        label=name if branch == 0 else None)
+        title = f"four poses: Burmester curves, {len(result.dyads)} dyads sampled"
+    else:
+        title = f"five poses: {len(result.dyads)} Burmester point pairs"
+    for k, dy in enumerate(result.dyads):
+        ax.plot([dy.centre[0], dy.circle[0]], [dy.centre[1], dy.circle[1]], "-", color="0.5", lw=0.8)
+        ax.plot([dy.centre[0]], [dy.centre[1]], "^", color="#1f77b4", ms=7,
+                label="centre points (fixed pivots)" if k == 0 else None)
+        ax.plot([dy.circle[0]], [dy.circle[1]], "o", color="#d62728", ms=5,
+                label="circle points (moving pivots, pose 1)" if k == 0 else None)
+    pts = np.array([*result.poses[:, :2], *(dy.centre for dy in result.dyads),
+                    *(dy.circle for dy in result.dyads)])
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    mid, half = 0.5 * (lo + hi), 0.55 * float(max(hi - lo))
+    for j, pose in enumerate(result.poses):
+        _frame(ax, pose[0], pose[1], pose[2], 0.3 * _spread(result.poses), "k", str(j + 1))
+    ax.set_xlim(mid[0] - half, mid[0] + half)
+    ax.set_ylim(mid[1] - half, mid[1] + half)
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_title(title, fontsize=9)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.legend(loc="best", fontsize=8, markerscale=2)
+    ax.grid(True, lw=0.3)
+    return style.save(fig, path)
+
+
+__all__ = ["plot_curves", "plot_poses"]

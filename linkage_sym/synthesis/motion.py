@@ -1,0 +1,227 @@
+"""Motion generation: four-bars whose coupler passes through four or five given poses.
+
+The dyads come from Burmester theory (:mod:`~linkage_sym.synthesis.burmester`):
+for five poses every Burmester point pair, for four poses dyads sampled along
+the centre-point curve.  Every ordered pair of dyads (the first the crank,
+the second the rocker) is a four-bar candidate; each is written as a scene
+(pivots in the poses' own coordinates, assembled in pose 1, the coupler frame's
+origin the traced point ``P``, the driver turning the crank from pose 1 to
+the last pose through the others) and driven through the poses by the
+solver (:func:`~linkage_sym.synthesis.defects.check_motion`), which reports
+its branch, order and dead-centre defects, its Grashof class and its
+minimum transmission angle over the motion.  Designs without a defect come
+first, then by decreasing minimum transmission angle.
+
+Examples
+--------
+>>> poses = [[0.0, 0.0, 0.0], [1.0, 0.2, 10.0], [1.8, 0.7, 25.0], [2.3, 1.5, 45.0], [2.5, 2.4, 70.0]]
+>>> result = motion_synthesis(poses)
+>>> len(result.dyads), len(result.designs) == len(result.dyads) * (len(result.dyads) - 1)
+(2, True)
+"""
+
+from __future__ import annotations
+
+import cmath
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from linkage_sym.synthesis.burmester import Curves, Dyad, burmester_curves, burmester_points, read_poses
+from linkage_sym.synthesis.common import SynthesisError, scene_name, sweep_options
+from linkage_sym.synthesis.defects import MotionCheck, check_motion
+
+REACH = 10.0
+"""Four poses: dyads whose centre or circle point lies farther than this many spreads of
+the poses (the largest distance of a pose's origin from pose 1's) from pose 1 are not
+sampled."""
+
+APART = 1e-6
+"""Two pivots closer than this fraction of the poses' spread make no four-bar."""
+
+
+@dataclass(frozen=True)
+class MotionDesign:
+    """A four-bar candidate through the poses, as the solver found it.
+
+    Attributes
+    ----------
+    scene : dict
+        The scene (``linkage_sym.load_scene`` reads it).
+    crank, rocker : int
+        Indices of its dyads in :attr:`MotionSynthesis.dyads`.
+    lengths : dict of str to float
+        ``crank``, ``coupler``, ``rocker``, ``ground`` (m).
+    check : MotionCheck
+        The solver's findings (defects, Grashof class, transmission angle, errors).
+    """
+
+    scene: dict
+    crank: int
+    rocker: int
+    lengths: dict
+    check: MotionCheck
+
+
+@dataclass(frozen=True)
+class MotionSynthesis:
+    """Every four-bar of a motion generation, best first.
+
+    Attributes
+    ----------
+    poses : ndarray, shape (n, 3)
+        The poses (m, m, rad).
+    dyads : list of Dyad
+        The dyads combined (Burmester point pairs, or samples of the curves).
+    curves : Curves or None
+        Four poses: the centre-point and circle-point curves.
+    designs : list of MotionDesign
+        Defect-free designs first, then by decreasing minimum transmission angle.
+    skipped : int
+        Pairs of dyads that make no four-bar (a shared pivot).
+    """
+
+    poses: np.ndarray
+    dyads: list
+    curves: Curves | None
+    designs: list
+    skipped: int
+
+
+def _sample(curves: Curves, count: int, poses: np.ndarray) -> list[Dyad]:
+    """``count`` dyads spread evenly along the curves' samples within :data:`REACH`."""
+    spread = float(np.max(np.hypot(*(poses[:, :2] - poses[0, :2]).T)))
+    near = [d for branch in curves.dyads for d in branch
+            if max(math.dist(d.centre, poses[0, :2]), math.dist(d.circle, poses[0, :2]))
+            <= REACH * spread]
+    if len(near) < 2:
+        raise SynthesisError("poses", f"fewer than two dyads have their pivots within {REACH:g} "
+                                      "spreads of the poses")
+    idx = np.unique(np.linspace(0, len(near) - 1, min(count, len(near))).round().astype(int))
+    return [near[i] for i in idx]
+
+
+def _scene(name, crank: Dyad, rocker: Dyad, poses, steps, speed) -> dict:
+    xy = lambda p: [float(p[0]), float(p[1])]  # noqa: E731
+    A, B, C, D = crank.centre, crank.circle, rocker.circle, rocker.centre
+    start = math.degrees(math.atan2(B[1] - A[1], B[0] - A[0]))
+    return {
+        "name": name,
+        "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "rocker"}],
+        "joints": [
+            {"name": "A", "type": "R", "links": ["ground", "crank"], "at": xy(A)},
+            {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": xy(B)},
+            {"name": "C", "type": "R", "links": ["coupler", "rocker"], "at": xy(C)},
+            {"name": "D", "type": "R", "links": ["rocker", "ground"], "at": xy(D)},
+        ],
+        "points": [{"name": "P", "link": "coupler", "at": xy(poses[0, :2])}],
+        "drivers": [{"joint": "A", "toward": "B", "start_deg": start, "stop_deg": start + 360.0,
+                     "steps": steps, "speed": speed, "acceleration": 0.0}],
+        "outputs": ["kinematics"],
+    }
+
+
+def _design(name, dyads, k, l, poses, steps, speed) -> MotionDesign | None:
+    crank, rocker = dyads[k], dyads[l]
+    spread = float(np.max(np.hypot(*(poses[:, :2] - poses[0, :2]).T)))
+    pts = (crank.centre, crank.circle, rocker.circle, rocker.centre)
+    if min(math.dist(p, q) for i, p in enumerate(pts) for q in pts[i + 1:]) <= APART * spread:
+        return None
+    scene = _scene(name, crank, rocker, poses, steps, speed)
+    W = complex(*crank.circle) - complex(*crank.centre)
+    phi = [math.degrees(cmath.phase(W) + bj) for bj in crank.beta]
+    check = check_motion(scene, phi, point="P", targets=poses[:, :2].tolist(),
+                         rotations=(poses[:, 2] - poses[0, 2]).tolist())
+    drv = scene["drivers"][0]
+    drv["stop_deg"] = drv["start_deg"] + math.degrees(check.crank_angles[-1] - check.crank_angles[0])
+    lengths = {"crank": math.dist(pts[0], pts[1]), "coupler": math.dist(pts[1], pts[2]),
+               "rocker": math.dist(pts[2], pts[3]), "ground": math.dist(pts[3], pts[0])}
+    return MotionDesign(scene, k, l, lengths, check)
+
+
+def motion_synthesis(poses, *, dyads: int = 12, samples: int = 720, name: str = "motion",
+                     steps: int = 361, speed: float = 1.0) -> MotionSynthesis:
+    """Four-bars whose coupler frame passes through four or five poses.
+
+    Parameters
+    ----------
+    poses : sequence of 4 or 5 ``[x, y, angle_deg]``
+        The coupler frame's origin (m) and angle (degrees) in each pose, in the
+        order the linkage is to reach them.
+    dyads : int
+        Four poses: how many dyads to sample along the curves (every ordered
+        pair is a candidate: ``dyads * (dyads - 1)`` of them).
+    samples : int
+        Four poses: samples of the curves over a turn of the crank's rotation to pose 2.
+    name : str
+        The scenes' name stem (``name-01`` ...).
+    steps, speed
+        Each scene's sweep: steps from pose 1 to the last pose, the crank's speed (rad/s).
+
+    Returns
+    -------
+    MotionSynthesis
+
+    Raises
+    ------
+    SynthesisError
+        Malformed poses, degenerate poses, fewer than two dyads (five poses
+        with no real Burmester point pair, say).
+    """
+    P = read_poses(poses)
+    steps, speed = sweep_options(steps, speed)
+    name = scene_name(name)
+    if isinstance(dyads, bool) or not isinstance(dyads, int) or dyads < 2:
+        raise SynthesisError("dyads", f"an integer >= 2 is expected, got {dyads!r}")
+    curves = None
+    if len(P) == 5:
+        found = burmester_points(poses)
+        if len(found) < 2:
+            raise SynthesisError("poses", f"the five poses have {len(found)} real Burmester point "
+                                          "pairs: no four-bar meets them (move a pose, or give four)")
+    else:
+        curves = burmester_curves(poses, samples)
+        found = _sample(curves, dyads, P)
+    designs, skipped = [], 0
+    for k in range(len(found)):
+        for l in range(len(found)):
+            if k == l:
+                continue
+            d = _design(name, found, k, l, P, steps, speed)
+            if d is None:
+                skipped += 1
+            else:
+                designs.append(d)
+    designs.sort(key=lambda d: (not d.check.defect_free, -np.nan_to_num(d.check.gamma_min, nan=-1)))
+    for i, d in enumerate(designs, 1):
+        d.scene["name"] = f"{name}-{i:02d}"
+    return MotionSynthesis(P, found, curves, designs, skipped)
+
+
+def table(result: MotionSynthesis) -> list[dict]:
+    """One row per design, best first: what the console and the CSV show.
+
+    Examples
+    --------
+    >>> poses = [[0.0, 0.0, 0.0], [1.0, 0.2, 10.0], [1.8, 0.7, 25.0], [2.3, 1.5, 45.0], [2.5, 2.4, 70.0]]
+    >>> list(table(motion_synthesis(poses))[0])[:6]
+    ['design', 'Ax', 'Ay', 'Dx', 'Dy', 'crank']
+    """
+    rows = []
+    for i, d in enumerate(result.designs, 1):
+        j = {x["name"]: x["at"] for x in d.scene["joints"]}
+        c = d.check
+        finite = [e for e in c.errors if math.isfinite(e)]
+        rows.append({
+            "design": f"design-{i:02d}", "Ax": j["A"][0], "Ay": j["A"][1], "Dx": j["D"][0],
+            "Dy": j["D"][1], **d.lengths, "grashof": c.grashof, "branch": c.branch,
+            "circuit": c.circuit, "order": c.order, "dead_centre": c.dead_centre,
+            "defect_free": c.defect_free,
+            "gamma_min_deg": math.degrees(c.gamma_min) if math.isfinite(c.gamma_min) else math.nan,
+            "error": max(finite) / d.lengths["coupler"] if finite else math.inf,
+        })
+    return rows
+
+
+__all__ = ["MotionDesign", "MotionSynthesis", "motion_synthesis", "table"]
