@@ -29,7 +29,8 @@ analyze SCENE.json [-o RESULT.json | -o -] [--format json|csv|npz|parquet]
     ``--extremes`` locates the sweep's extremes (``linkage_sym.cli.accuracy``).
 derive SCENE.json [--latex] [--numeric] [-o FILE]
     Derive the scene's equations with SymPy (loops, closed forms, velocity,
-    acceleration and force equations) and print them as SymPy text, or with
+    acceleration and force equations) and print them as SymPy text (the positions as
+    named steps, every line within the terminal's width), or with
     ``--latex`` as a LaTeX fragment in the notation of the textbook chapter
     "Kinematic analysis of planar mechanisms" (for ``\\input``
     in a document that loads amsmath).  ``--numeric`` puts the scene's

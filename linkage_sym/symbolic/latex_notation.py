@@ -29,8 +29,8 @@ from linkage_sym.symbolic.mechanism import MechanismEquations
 from linkage_sym.structure.parameters import ident
 
 __all__ = [
-    "LINE", "MAX_ENTRY", "MAX_EQUATION", "MAX_MATRIX", "MAX_MATRIX_CHARS",
-    "Doc", "Namer", "column", "escape_text", "pmatrix", "rows_of",
+    "LINE", "ROW_SOURCE", "TYPESET", "MAX_ENTRY", "MAX_EQUATION", "MAX_MATRIX", "MAX_MATRIX_CHARS",
+    "Doc", "Namer", "column", "escape_text", "pmatrix", "rows_of", "typeset_width",
 ]
 
 # prefixes of parameter names, and how they print
@@ -57,6 +57,10 @@ _GREEK = {
     "dy": r"\Delta y",
     "cphi": r"\cos\varphi",
     "sphi": r"\sin\varphi",
+    # a link's centre of mass in its frame: the parameters p_<link>, q_<link> print as
+    # x^G, y^G, so that q means only a driver coordinate (q_A) in the equations
+    "p": r"x^{G}",
+    "q": r"y^{G}",
     "xQ": r"x^{Q}",
     "yQ": r"y^{Q}",
 }
@@ -68,7 +72,11 @@ MAX_MATRIX = 8
 MAX_ENTRY = 70
 MAX_MATRIX_CHARS = 900
 LINE = 150
-"""Sums longer than this (LaTeX characters) are broken over several rows."""
+"""The longest row of a matrix block written whole (LaTeX characters, less 30)."""
+TYPESET = 80
+"""A sum wider than this when typeset (:func:`typeset_width`, in characters) is broken over
+several rows, as is one longer than :data:`ROW_SOURCE` LaTeX characters."""
+ROW_SOURCE = 200
 MAX_EQUATION = 250
 """A matrix equation longer than this is written with named matrices and their entries."""
 
@@ -89,6 +97,46 @@ _TEXT_ESCAPES = {
 def escape_text(s: str) -> str:
     """``s`` safe in LaTeX text mode (and inside ``\\mathrm``)."""
     return "".join(_TEXT_ESCAPES.get(c, c) for c in s)
+
+
+def typeset_width(tex: str) -> float:
+    """An estimate of the typeset width of math ``tex``, in characters of the body font:
+    a command (``\\alpha``, ``\\sin``) as its printed letters, sub- and superscripts at
+    0.7, ``\\left``, ``\\right``, ``\\mathrm`` and braces as nothing, an operator with
+    its spaces as 2.
+
+    Examples
+    --------
+    >>> typeset_width(r"x_{D} - x_{B}")
+    5.4
+    """
+    t = re.sub(r"\\(left|right|mathrm|operatorname|quad)\b", "", tex)
+    t = re.sub(r"\\(sin|cos|tan|sqrt|atan2)\b", lambda m: m.group(1)[:3], t)
+    t = re.sub(r"\\[A-Za-z]+", "a", t)
+    width, depth = 0.0, 0
+    script = []  # brace depths at which a sub- or superscript started
+    pending = False
+    for c in t:
+        if c in "_^":
+            pending = True
+            continue
+        if c == "{":
+            depth += 1
+            if pending:
+                script.append(depth)
+                pending = False
+            continue
+        if c == "}":
+            if script and script[-1] == depth:
+                script.pop()
+            depth -= 1
+            continue
+        if c == " ":
+            continue
+        w = 2.0 if c in "+-=" else 1.0
+        width += 0.7 * w if (script or pending) else w
+        pending = False
+    return round(width, 6)
 
 
 def _sub(name: str, upright: bool = False) -> str:
@@ -162,6 +210,8 @@ class Namer:
             base = s.name.rstrip("'")
             names[s] = self.param(base) + "'" * (len(s.name) - len(base))
         self.names = names
+        # each coordinate, rate and acceleration ranks as its link (or slide) in solving order
+        self.rank = {s: i for i, trio in enumerate(zip(eqs.x, eqs.xd, eqs.xdd)) for s in trio}
 
     @staticmethod
     def param(name: str) -> str:
@@ -180,27 +230,54 @@ class Namer:
         return sp.latex(expr, symbol_names=self.names).replace(
             r"\operatorname{atan}_{2}", r"\operatorname{atan2}")
 
-    def sum_rows(self, lhs: str, expr, width: int = LINE) -> list[str]:
-        """``lhs &= expr`` as align rows, a long sum broken between its terms."""
-        expr = sp.sympify(expr)
-        whole = self(expr)
-        if len(whole) <= width:
-            return [f"{lhs} &= {whole}"]
-        # a term too long for a row is expanded into terms of its own, where that helps
-        terms = []
-        for t in (expr.as_ordered_terms() if isinstance(expr, sp.Add) else [expr]):
-            te = sp.expand(t) if len(self(t)) > width else t
-            terms += te.as_ordered_terms() if isinstance(te, sp.Add) else [t]
-        if len(terms) == 1:
-            return [f"{lhs} &= {whole}"]
-        rows, cur = [], ""
+    def terms(self, expr) -> list:
+        """A sum's terms in the order a person writes them: by the link whose coordinate,
+        rate or acceleration they hold, in solving order (terms of the dimensions alone
+        last), and within each the positive terms before the negative ones (``x_D - x_B``,
+        not SymPy's ``-x_B + x_D``)."""
+        if not isinstance(expr, sp.Add):
+            return [expr]
+
+        def key(t):
+            ranks = [self.rank[s] for s in t.free_symbols if s in self.rank]
+            return (min(ranks) if ranks else len(self.rank), t.could_extract_minus_sign())
+
+        return sorted(expr.as_ordered_terms(), key=key)
+
+    def _join(self, terms, first: bool = True) -> list[str]:
+        """Each term as ``+ t`` or ``- t`` (the very first without its ``+``)."""
+        out = []
         for i, t in enumerate(terms):
             neg = t.could_extract_minus_sign()
             body = self(-t if neg else t)
             if isinstance(-t if neg else t, sp.Add):
                 body = rf"\left({body}\right)"
-            piece = ("- " if neg else ("" if i == 0 else "+ ")) + body
-            if cur and len(cur) + len(piece) > width:
+            out.append(("- " if neg else ("" if first and i == 0 else "+ ")) + body)
+        return out
+
+    def sum_rows(self, lhs: str, expr, width: float = TYPESET) -> list[str]:
+        """``lhs &= expr`` as align rows, a long sum broken between its terms (in the
+        order of :meth:`terms`): no row wider than ``width`` typeset characters
+        (:func:`typeset_width`) or longer than :data:`ROW_SOURCE` LaTeX characters, but
+        where a single term is."""
+        expr = sp.sympify(expr)
+
+        def fits(tex):
+            return typeset_width(tex) <= width and len(tex) <= ROW_SOURCE
+
+        whole = " ".join(self._join(self.terms(expr)))
+        if fits(whole):
+            return [f"{lhs} &= {whole}"]
+        # a term too long for a row is expanded into terms of its own, where that helps
+        terms = []
+        for t in self.terms(expr):
+            te = sp.expand(t) if not fits(self(t)) else t
+            terms += self.terms(te) if isinstance(te, sp.Add) else [t]
+        if len(terms) == 1:
+            return [f"{lhs} &= {whole}"]
+        rows, cur = [], ""
+        for piece in self._join(terms):
+            if cur and not fits(cur + " " + piece):
                 rows.append(cur)
                 cur = ""
             cur = (cur + " " + piece).strip()

@@ -10,8 +10,10 @@ notation of :mod:`linkage_sym.symbolic.latex_notation`.
 
 from __future__ import annotations
 
+import numpy as np
 import sympy as sp
 
+from linkage_sym.symbolic.latex_blocks import block_matrix, rate_matrix
 from linkage_sym.symbolic.latex_notation import (
     MAX_EQUATION,
     MAX_MATRIX,
@@ -21,7 +23,10 @@ from linkage_sym.symbolic.latex_notation import (
     rows_of,
 )
 
-__all__ = ["UNITS", "equations", "nomenclature", "scene_joint_type", "symbol_list"]
+__all__ = ["MAX_MEANING", "UNITS", "equations", "nomenclature", "scene_joint_type", "symbol_list"]
+
+MAX_MEANING = 60
+"""A symbol's meaning longer than this (characters) is set as a paragraph in the symbol table."""
 
 UNITS = {
     "length": "m", "coordinate": "m", "angle": "rad", "mass": "kg",
@@ -106,6 +111,8 @@ def nomenclature(doc, nm, eqs) -> None:
     doc.text(r"\begin{longtable}{lll}")
     doc.text(r"symbol & meaning & unit \\ \hline \endhead")
     for sym, meaning, unit in rows:
+        if len(meaning) > MAX_MEANING:  # a paragraph of its own: the table keeps to the margins
+            meaning = rf"\parbox[t]{{0.6\linewidth}}{{\raggedright {meaning}}}"
         doc.text(rf"${sym}$ & {meaning} & {unit} \\")
     doc.text(r"\end{longtable}")
 
@@ -275,12 +282,15 @@ def _velocities(doc, nm, eqs) -> None:
         doc.equation(r"\mathbf{A}\,\dot{\mathbf{x}} = \mathbf{B}\,\dot{\mathbf{q}}", "velocity")
         doc.align([rf"\dot{{\mathbf{{x}}}} &= {col_xd}", rf"\dot{{\mathbf{{q}}}} &= {col_qd}"],
                   numbered=False)
+        rows = [ge.rows for ge in eqs.groups]
+        starts = np.cumsum([0] + [len(ge.x) for ge in eqs.groups])
+        cols = [slice(int(a), int(b)) for a, b in zip(starts[:-1], starts[1:])]
         if A is None:
-            doc.entries(nm, r"\mathbf{A}", eqs.A, "the matrix", "A")
+            rate_matrix(doc, nm, "A", eqs.A, rows, cols)
         else:
             doc.align([rf"\mathbf{{A}} &= {A}"], numbered=False)
         if B is None:
-            doc.entries(nm, r"\mathbf{B}", eqs.B, "the matrix", "B")
+            rate_matrix(doc, nm, "B", eqs.B, rows, [slice(0, len(eqs.q))])
         else:
             doc.align([rf"\mathbf{{B}} &= {B}"], numbered=False)
 
@@ -341,8 +351,10 @@ def _force_group(doc, nm, ge, block) -> None:
     links = escape_text(", ".join(ge.group.links))
     doc.text(rf"\subparagraph{{Group {g}}} ({escape_text(ge.group.kind)}: links {links}).")
     a = pmatrix(nm, Ag)
+    wide_a = a or block_matrix(nm, Ag)  # whole, a source line a row, when the rows fit a line
     b = pmatrix(nm, bg)
     c = pmatrix(nm, Cg) if later else None
+    wide_c = (c or block_matrix(nm, Cg)) if later else None
     F = column(nm, ge.forces)
     Fl = column(nm, later) if later else None
     small = a is not None and b is not None and (not later or c is not None)
@@ -358,9 +370,9 @@ def _force_group(doc, nm, ge, block) -> None:
             rows += rows_of(nm, rf"\mathbf{{F}}_{{>{g}}}", later)
         doc.align(rows, numbered=False)
         for name, M, m_tex, what, entry in (
-            (rf"\mathbf{{A}}_{{{g}}}", Ag, a, "the matrix", f"A^{{({g})}}"),
+            (rf"\mathbf{{A}}_{{{g}}}", Ag, wide_a, "the matrix", f"A^{{({g})}}"),
             (rf"\mathbf{{b}}_{{{g}}}", bg, b, "the column", f"b^{{({g})}}"),
-            (rf"\mathbf{{C}}_{{{g}}}", Cg, c, "the matrix", f"C^{{({g})}}"),
+            (rf"\mathbf{{C}}_{{{g}}}", Cg, wide_c, "the matrix", f"C^{{({g})}}"),
         ):
             if name.startswith(r"\mathbf{C}") and not later:
                 continue

@@ -1,0 +1,66 @@
+"""The notation of the derived equations as a reader writes them (issue 31): sums in a
+person's order and collected by the quantity they multiply, one meaning per symbol."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from linkage_sym.examples import load_example
+from linkage_sym.symbolic import derive
+from linkage_sym.symbolic.latex import latex_document
+
+
+@pytest.fixture(scope="module")
+def crank_rocker():
+    eqs = derive(load_example("crank_rocker"), forces=True)
+    return eqs, latex_document(eqs, symbols=True)
+
+
+def _row(doc: str, lhs: str) -> list[str]:
+    """The align rows of the equation ``lhs &= ...`` (its continuation rows too)."""
+    lines = doc.splitlines()
+    i = next(k for k, ln in enumerate(lines) if ln.startswith(lhs + " &= "))
+    out = [lines[i]]
+    for ln in lines[i + 1:]:
+        if not ln.startswith(r"&\quad"):
+            break
+        out.append(ln)
+    return out
+
+
+def test_a_difference_is_written_positive_term_first(crank_rocker):
+    _, doc = crank_rocker
+    assert r"\Delta x_{2} &= x_{D} - x_{B}" in doc
+    assert r"\Delta y_{2} &= y_{D} - y_{B}" in doc
+
+
+def test_an_acceleration_is_collected_by_link_and_by_the_rate_it_multiplies(crank_rocker):
+    """a^G of the coupler: the crank's terms (B's acceleration) first, then the coupler's,
+    each of its angular acceleration and its rate squared once, as the factor of a sum."""
+    _, doc = crank_rocker
+    rows = _row(doc, r"a^{G}_{\mathrm{coupler},x}")
+    text = " ".join(rows)
+    assert text.index(r"\alpha_{\mathrm{crank}}") < text.index(r"\alpha_{\mathrm{coupler}}")
+    assert text.count(r"\alpha_{\mathrm{coupler}}") == 1
+    assert text.count(r"\omega_{\mathrm{coupler}}^{2}") == 1
+    assert r"\alpha_{\mathrm{coupler}} \left(" in text
+    assert len(rows) <= 3
+
+
+def test_q_is_only_a_driver_coordinate(crank_rocker):
+    """The symbol table gives every symbol printed as ``q_{...}`` one meaning: a driver
+    coordinate; the centre of mass in a link's frame is (x^G, y^G)."""
+    eqs, doc = crank_rocker
+    table = re.search(r"\\begin\{longtable\}\{lll\}\n(.*?)\\end\{longtable\}", doc, re.S).group(1)
+    meanings = {}
+    for r in table.splitlines()[1:]:
+        sym, meaning, _ = (c.strip() for c in r.rstrip("\\ ").split(" & "))
+        meanings[sym] = meaning
+    qs = {s: m for s, m in meanings.items() if s.startswith("$q_")}
+    assert qs and all(m.startswith("driver coordinate") for m in qs.values()), qs
+    assert not any(s.startswith("$p_") for s in meanings), meanings
+    assert meanings[r"$x^{G}_{\mathrm{coupler}}$"].startswith("centre of mass of link coupler")
+    assert len(set(meanings)) == len(table.splitlines()[1:])  # no symbol printed twice
+    assert {"p_coupler", "q_coupler"} <= {s.name for s in eqs.parameters}  # the names kept
