@@ -452,9 +452,10 @@ def test_latex_names_the_flanks_and_tooth_loads():
     from linkage_sym.symbolic.mechanism import derive
 
     tex = latex_document(derive(load_scene(example_dict("planetary_train"))), symbols=True)
-    assert r"\kappa_{\mathrm{G\_sp}}$ & flank of gear mesh G\_sp" in tex
-    assert r"F_{\mathrm{G\_rp},n}$ & tooth load of gear mesh G\_rp on its line of action " \
-           r"(gear ground on gear planet)" in tex
+    # a long meaning wraps in a \parbox (the symbol table's column stays within the page)
+    assert r"\kappa_{\mathrm{G\_sp}}$ & \parbox[t]{0.6\linewidth}{\raggedright flank of gear mesh G\_sp" in tex
+    assert r"F_{\mathrm{G\_rp},n}$ & \parbox[t]{0.6\linewidth}{\raggedright tooth load of gear " \
+           r"mesh G\_rp on its line of action (gear ground on gear planet)" in tex
     assert r"\paragraph{Gear meshes.}" in tex and r"\label{eq:planetary-train:mesh-G-rp}" in tex
     assert "from its loop and mesh equations above" in tex
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import linkage_sym
-from linkage_sym.cli.derive import _plain_text
+from linkage_sym.symbolic.text import plain_text as _plain_text
 from linkage_sym.examples import example_dict
 from linkage_sym.structure.parameters import ident, link_frames
 from linkage_sym.symbolic.latex import latex_document
