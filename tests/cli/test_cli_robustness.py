@@ -596,6 +596,12 @@ def _closed_stdout_commands(tmp_path):
         j = builders.fourbar(1.0, 3.0, 3.0, 3.5, crank_deg=phi).scene["joints"]
         rows.append([*j[1]["at"], *j[2]["at"]])
     (tmp_path / "positions.json").write_text(json.dumps(rows))
+    motor = example_dict("crank_rocker_motor")  # a short simulation: two samples after the start
+    motor["simulate"].update(duration=0.02, samples=3)
+    (tmp_path / "motor.json").write_text(json.dumps(motor))
+    (tmp_path / "poses.json").write_text(json.dumps(
+        [[0.0, 0.0, 0.0], [0.02, 0.01, 10.0], [0.035, 0.025, 25.0], [0.04, 0.045, 40.0]]))
+    (tmp_path / "points.json").write_text(json.dumps([[0.0, 0.0], [0.01, 0.005], [0.02, 0.0]]))
     out = str(tmp_path / "out")
     cr = ["--K", "1.5", "--rocker", "0.075", "--swing-deg", "45", "--ground", "0.1"]
     return [
@@ -623,6 +629,12 @@ def _closed_stdout_commands(tmp_path):
         ["sweep", scene, "--vary", "l_AB=0.02:0.03:3", "-o", "-"],
         ["animate", scene, "-o", f"{out}/m.gif", "--frames", "2"],
         ["view", scene, "-o", f"{out}/p.html"], ["view", scene, "-o", "-"],
+        ["simulate", str(tmp_path / "motor.json"), "-o", "-"],
+        ["flywheel", str(tmp_path / "motor.json"), "--fluctuation", "0.2", "-o", "-"],
+        ["synthesize", "motion", "--poses", str(tmp_path / "poses.json"), "-o", f"{out}/motion"],
+        ["synthesize", "function", "--function", "x", "--x-range", "1,2", "--phi-range", "30,120",
+         "--psi-range", "240,330", "-o", "-"],
+        ["synthesize", "path", "--points", str(tmp_path / "points.json"), "-o", f"{out}/path"],
     ]
 
 
