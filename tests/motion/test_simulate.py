@@ -27,6 +27,7 @@ from linkage_sym.errors import SceneError
 from linkage_sym.examples import example_dict
 from linkage_sym.motion.equations import MotionEquations
 from linkage_sym.motion.simulate import simulate
+from tests.support.motion_energy import kinetic_energy
 
 
 def motor_scene(torque, loads=None, gravity=(0.0, -9.81), duration=0.15, start_speed=12.0,
@@ -40,14 +41,6 @@ def motor_scene(torque, loads=None, gravity=(0.0, -9.81), duration=0.15, start_s
                         "samples": samples}
     return linkage_sym.load_scene(data)
 
-
-def kinetic_energy(scene, analysis):
-    T = np.zeros(analysis.n_steps)
-    for link in scene.links:
-        lk = analysis.links[link.name]
-        v = np.asarray(lk.com_velocity)
-        T += 0.5 * link.mass * (v[:, 0] ** 2 + v[:, 1] ** 2) + 0.5 * link.inertia * lk.omega ** 2
-    return T
 
 
 def potential_energy(scene, analysis):

@@ -20,16 +20,9 @@ import pytest
 import linkage_sym
 from linkage_sym.examples import example_dict
 from linkage_sym.motion.simulate import simulate
+from tests.support.motion_energy import kinetic_energy
 from tests.support.spring_checks import energy
 
-
-def kinetic_energy(scene, analysis):
-    T = np.zeros(analysis.n_steps)
-    for link in scene.links:
-        lk = analysis.links[link.name]
-        v = np.asarray(lk.com_velocity)
-        T += 0.5 * link.mass * (v[:, 0] ** 2 + v[:, 1] ** 2) + 0.5 * link.inertia * lk.omega ** 2
-    return T
 
 
 @pytest.mark.slow
