@@ -25,7 +25,6 @@ from __future__ import annotations
 import io
 import json
 import math
-import shutil
 from pathlib import Path
 
 import numpy as np
@@ -33,8 +32,7 @@ import pytest
 
 from linkage_sym.examples import example_names
 
-CHROMIUM = Path("/usr/bin/chromium")
-CHROMEDRIVER = shutil.which("chromedriver") or "/usr/bin/chromedriver"
+from tests.support.browser import CHROMEDRIVER, CHROMIUM, chromium
 TOL = 1e-9
 
 webdriver = pytest.importorskip(
@@ -59,16 +57,7 @@ from linkage_sym.scene import parse_scene  # noqa: E402
 
 @pytest.fixture(scope="module")
 def browser():
-    from selenium.webdriver.chrome.service import Service
-
-    opts = webdriver.ChromeOptions()
-    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                "--window-size=1400,900"):
-        opts.add_argument(arg)
-    opts.binary_location = str(CHROMIUM)
-    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=opts)
-    driver.set_script_timeout(120)
+    driver = chromium()
     yield driver
     driver.quit()
 
