@@ -30,6 +30,7 @@ from linkage_sym.codegen import cache
 from linkage_sym.codegen.precision import analyze_precise
 from linkage_sym.examples import example_dict
 from tests.support.force_checks import link_residuals, max_rel, power_residual, reaction_scale
+from tests.support.spring_checks import class3_with_springs
 
 TOL = 1e-10
 
@@ -39,22 +40,6 @@ def _crank_rocker():
     d["springs"][1]["damping"] = 0.01  # the joint spring damped too
     return linkage_sym.load_scene(d)
 
-
-def _class3():
-    d = example_dict("sixbar_class3")
-    d["drivers"][0]["steps"] = 73
-    d["springs"] = [
-        {"name": "inside", "links": ["link_BC", "rocker_FG"], "at": [[0.10, 0.09], [0.26, -0.04]],
-         "stiffness": 800.0, "free_length": 0.15, "damping": 3.0},
-        {"name": "across", "links": ["crank", "lever"], "at": [[0.0, 0.04], [0.2, 0.06]],
-         "stiffness": 300.0, "damping": 1.0},
-        {"name": "anchor", "links": ["lever", "ground"], "at": [[0.25, 0.03], [0.3, 0.2]],
-         "stiffness": 500.0, "free_length": 0.1},
-        {"name": "torsion", "joint": "D", "stiffness": 2.0, "free_angle_deg": 15.0,
-         "damping": 0.02},
-        {"name": "pivot", "joint": "E", "stiffness": 1.0, "damping": 0.01},
-    ]
-    return linkage_sym.load_scene(d)
 
 
 def _same_forces(scene, a, b, tol):
@@ -80,7 +65,7 @@ def _same_forces(scene, a, b, tol):
             assert np.nanmax(np.abs(got - v)) <= tol * np.nanmax(np.abs(v)), (name, key)
 
 
-@pytest.mark.parametrize("make", [_crank_rocker, _class3])
+@pytest.mark.parametrize("make", [_crank_rocker, class3_with_springs])
 def test_the_compiled_symbolic_run_equals_the_dyad_run(make):
     scene = make()
     sym = linkage_sym.analyze(scene, method="symbolic")

@@ -33,7 +33,7 @@ from linkage_sym.examples import example_dict
 from linkage_sym.numeric.plan import compile_plan
 from linkage_sym.structure.disconnection import usable_disconnections
 from tests.support.force_checks import applied, link_residuals, max_rel, power_residual, reaction_scale
-from tests.support.spring_checks import energy
+from tests.support.spring_checks import class3_with_springs, energy
 
 TOL = 1e-9
 
@@ -115,25 +115,9 @@ def test_damping_alone_needs_velocities_stiffness_alone_does_not():
     assert compile_plan(linkage_sym.load_scene(d)).stages == ("position", "forces")
 
 
-def _class3_with_springs():
-    d = example_dict("sixbar_class3")
-    d["drivers"][0]["steps"] = 73
-    d["springs"] = [
-        {"name": "inside", "links": ["link_BC", "rocker_FG"], "at": [[0.10, 0.09], [0.26, -0.04]],
-         "stiffness": 800.0, "free_length": 0.15, "damping": 3.0},
-        {"name": "across", "links": ["crank", "lever"], "at": [[0.0, 0.04], [0.2, 0.06]],
-         "stiffness": 300.0, "damping": 1.0},
-        {"name": "anchor", "links": ["lever", "ground"], "at": [[0.25, 0.03], [0.3, 0.2]],
-         "stiffness": 500.0, "free_length": 0.1},
-        {"name": "torsion", "joint": "D", "stiffness": 2.0, "free_angle_deg": 15.0,
-         "damping": 0.02},
-        {"name": "pivot", "joint": "E", "stiffness": 1.0, "damping": 0.01},
-    ]
-    return linkage_sym.load_scene(d)
-
 
 def test_class_three_group_by_every_disconnection_and_the_global_method():
-    scene = _class3_with_springs()
+    scene = class3_with_springs()
     g = compile_plan(scene).run(method="global")
     _checked(scene, g)
     _frame_is_the_resultant(scene, g)

@@ -114,3 +114,25 @@ def spring_power(scene, a):
         power = power - dV - lost
         scale = scale + s
     return power, scale
+
+
+def class3_with_springs():
+    """The shipped class-III six-bar (73 steps) with five springs: two between links of its
+    triad and across it, one to the ground, two at joints, most of them damped."""
+    import linkage_sym
+    from linkage_sym.examples import example_dict
+
+    d = example_dict("sixbar_class3")
+    d["drivers"][0]["steps"] = 73
+    d["springs"] = [
+        {"name": "inside", "links": ["link_BC", "rocker_FG"], "at": [[0.10, 0.09], [0.26, -0.04]],
+         "stiffness": 800.0, "free_length": 0.15, "damping": 3.0},
+        {"name": "across", "links": ["crank", "lever"], "at": [[0.0, 0.04], [0.2, 0.06]],
+         "stiffness": 300.0, "damping": 1.0},
+        {"name": "anchor", "links": ["lever", "ground"], "at": [[0.25, 0.03], [0.3, 0.2]],
+         "stiffness": 500.0, "free_length": 0.1},
+        {"name": "torsion", "joint": "D", "stiffness": 2.0, "free_angle_deg": 15.0,
+         "damping": 0.02},
+        {"name": "pivot", "joint": "E", "stiffness": 1.0, "damping": 0.01},
+    ]
+    return linkage_sym.load_scene(d)
