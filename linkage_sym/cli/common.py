@@ -167,6 +167,11 @@ def option_error(err, command: str | None = None) -> OptionError:
                         for field, why in err.problems])
 
 
+NUMERIC_METHOD_COMMANDS = frozenset({"analyze", "animate"})
+"""The commands whose ``--method`` picks the dyad or the global method: a refusal of the
+symbolic method by any other command names ``linkage-sym analyze``'s option instead."""
+
+
 def error_text(err, command: str | None = None) -> str:
     """What the command line prints of a library error it does not turn into an
     :class:`OptionError` (an invalid scene, a balancing that cannot be met): its text, the
@@ -179,13 +184,18 @@ def error_text(err, command: str | None = None) -> str:
     >>> error_text(BalanceError("no step could be assembled", field="optimize"), "balance")
     'cannot balance: --optimize: no step could be assembled'
     >>> from linkage_sym.errors import SymbolicUnsupportedError
-    >>> error_text(SymbolicUnsupportedError([(1, "K", "cam")]), "derive")[-50:]
+    >>> error_text(SymbolicUnsupportedError([(1, "K", "cam")]), "analyze")[-50:]
     '; the numeric methods do (--method dyad or global)'
+    >>> error_text(SymbolicUnsupportedError([(1, "K", "cam")]), "derive")[-56:]
+    'methods do (linkage-sym analyze --method dyad or global)'
     """
     from linkage_sym.errors import BalanceError, SceneError, SymbolicUnsupportedError
 
     if isinstance(err, SymbolicUnsupportedError):  # the choice of method: analyze's option
-        return str(SceneError(err.problems_naming(f"{option_of(err.field)} dyad or global")))
+        choice = f"{option_of(err.field)} dyad or global"
+        if command not in NUMERIC_METHOD_COMMANDS:  # this command has no such option
+            choice = f"linkage-sym analyze {choice}"
+        return str(SceneError(err.problems_naming(choice)))
     field = getattr(err, "field", None) if isinstance(err, BalanceError) else None
     if field is None:
         return command_words(str(err))

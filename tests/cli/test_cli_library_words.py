@@ -95,6 +95,13 @@ def test_the_symbolic_method_and_cams(capsys):
     assert cli.rstrip().endswith("the numeric methods do (--method dyad or global)"), cli
 
 
+def test_a_command_without_a_method_option_names_analyze(capsys):
+    """``derive`` has no ``--method``: its refusal of a cam names the command that has one."""
+    cli = _cli_err(capsys, "derive", str(example_path("cam_eccentric_rocker")))
+    assert cli.rstrip().endswith(
+        "the numeric methods do (linkage-sym analyze --method dyad or global)"), cli
+
+
 def test_the_disconnection_choices_of_a_complex_group(capsys):
     path = example_path("sixbar_class3")
     scene = linkage_sym.load_scene(path)
