@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from typing import Any
 
 from linkage_sym.model.scene import Point
@@ -100,6 +100,54 @@ class FieldReader:
             return list(value)
         self.add(_join(path, key), f"must be an array, got {json_kind(value)}")
         return None
+
+    def named_entries(
+        self, data: Mapping[str, Any], section: str, allowed: tuple[str, ...], noun: str,
+        *, taken: Mapping[str, str] | None = None,
+    ) -> Iterator[tuple[str, Mapping[str, Any], str | None, int]]:
+        """Each object entry of the optional array ``data[section]`` whose entries are named
+        (``springs``, ``points``): ``(path, entry, name, before)``.
+
+        Checked here, each problem recorded: the section is an array, each entry an object
+        with only the ``allowed`` keys, its ``name`` a name unique in the section and not one
+        of ``taken`` (a name another section owns, mapped to where it stands).  ``before``
+        is the count of problems before the entry, so the caller keeps the entry only if its
+        own checks add none.
+
+        Examples
+        --------
+        >>> r = FieldReader()
+        >>> data = {"points": [{"name": "P"}, {"name": "P"}, 3, {"name": "B"}]}
+        >>> [(path, name) for path, _, name, _ in
+        ...  r.named_entries(data, "points", ("name",), "point", taken={"B": "joints[1]"})]
+        [('points[0]', 'P'), ('points[1]', 'P'), ('points[3]', 'B')]
+        >>> r.problems  # doctest: +NORMALIZE_WHITESPACE
+        ["points[1].name: duplicate point name 'P' (first at points[0])",
+         'points[2]: must be an object, got a number',
+         "points[3].name: 'B' already names joints[1]; a point needs its own name"]
+        """
+        if section not in data:
+            return
+        entries = self.array(data, section, "")
+        if entries is None:
+            return
+        seen: dict[str, int] = {}
+        for i, entry in enumerate(entries):
+            path = f"{section}[{i}]"
+            before = len(self.problems)
+            if not self.object(entry, path):
+                continue
+            self.keys(entry, path, allowed)
+            name = self.name(entry, "name", path)
+            if name in seen:
+                self.add(f"{path}.name",
+                         f"duplicate {noun} name '{name}' (first at {section}[{seen[name]}])")
+            elif name is not None and taken is not None and name in taken:
+                self.add(f"{path}.name",
+                         f"'{name}' already names {taken[name]}; a {noun} needs its own name")
+            elif name is not None:
+                seen[name] = i
+            yield path, entry, name, before
 
     def name(self, obj: Mapping[str, Any], key: str, path: str, *, why: str = "") -> str | None:
         if not self.present(obj, key, path, REQUIRED, why):

@@ -72,24 +72,8 @@ def read_springs(r, data: Mapping[str, Any]) -> tuple[Spring, ...]:
     ``joints`` (``None`` where their section was not even an array) resolve the
     names.  Problems are recorded in ``r``; only springs without one are returned.
     """
-    if "springs" not in data:
-        return ()
-    entries = r.array(data, "springs", "")
-    if entries is None:
-        return ()
-    seen: dict[str, int] = {}
     out = []
-    for i, entry in enumerate(entries):
-        path = f"springs[{i}]"
-        before = len(r.problems)
-        if not r.object(entry, path):
-            continue
-        r.keys(entry, path, SPRING_KEYS)
-        name = r.name(entry, "name", path)
-        if name in seen:
-            r.add(f"{path}.name", f"duplicate spring name '{name}' (first at springs[{seen[name]}])")
-        elif name is not None:
-            seen[name] = i
+    for path, entry, name, before in r.named_entries(data, "springs", SPRING_KEYS, "spring"):
         if "joint" in entry and "links" in entry:
             r.add(path, "give either 'joint' (a spring at an R joint) or 'links' and 'at' "
                         "(a spring between two links), not both")

@@ -274,27 +274,11 @@ class _SceneReader(JointSection, DriverSection, SceneChecks):
 
     def read_points(self, data: Mapping[str, Any]) -> tuple[TracedPoint, ...]:
         """``points`` (an extension of the format): named points fixed on moving links."""
-        if "points" not in data:
-            return ()
-        entries = self.array(data, "points", "")
-        if entries is None:
-            return ()
-        seen: dict[str, int] = {}
+        taken = None if self.joints is None else {
+            joint: f"joints[{info.index}]" for joint, info in self.joints.items()}
         points = []
-        for i, entry in enumerate(entries):
-            path = f"points[{i}]"
-            before = len(self.problems)
-            if not self.object(entry, path):
-                continue
-            self.keys(entry, path, POINT_KEYS)
-            name = self.name(entry, "name", path)
-            if name in seen:
-                self.add(f"{path}.name", f"duplicate point name '{name}' (first at points[{seen[name]}])")
-            elif name is not None and self.joints is not None and name in self.joints:
-                first = self.joints[name].index
-                self.add(f"{path}.name", f"'{name}' already names joints[{first}]; a point needs its own name")
-            elif name is not None:
-                seen[name] = i
+        for path, entry, name, before in self.named_entries(data, "points", POINT_KEYS, "point",
+                                                            taken=taken):
             link = self.name(entry, "link", path)
             if link == GROUND:
                 self.add(f"{path}.link", f"a point on '{GROUND}' does not move; points trace moving links")
