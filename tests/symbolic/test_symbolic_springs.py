@@ -60,6 +60,7 @@ def test_derived_springs_give_the_numeric_springs(machine, i):
             assert abs(float(e.xreplace(subs))) <= 1e-10 * scale * (L if k == 2 else 1.0), (link, k)
 
 
+@pytest.mark.slow  # over 10 s on a loaded machine: the fast lane stays under 2 min
 def test_derive_prints_the_springs():
     eqs = linkage_sym.derive(linkage_sym.load_example("crank_rocker_spring"))
     text = _plain_text(eqs)

@@ -42,6 +42,7 @@ def _coupler(d):
     return float(np.hypot(*(C - B)))
 
 
+@pytest.mark.slow  # over 10 s on a loaded machine: the fast lane stays under 2 min
 @pytest.mark.parametrize("timing", [False, True])
 def test_three_points_exact(timing):
     rng = np.random.default_rng(3)

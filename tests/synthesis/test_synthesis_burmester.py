@@ -14,6 +14,7 @@ recalled reliably enough (values and all) to be named.
 import math
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
@@ -123,6 +124,7 @@ def _newton_dyads(poses, starts, rng, scale):
     return found
 
 
+@pytest.mark.slow  # over 10 s on a loaded machine: the fast lane stays under 2 min
 @settings(max_examples=6, derandomize=True, deadline=None, database=None,
           suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
 @given(fourbars)
@@ -148,6 +150,7 @@ poses5 = st.lists(st.tuples(st.floats(-1.0, 1.0), st.floats(-1.0, 1.0), st.float
                   min_size=5, max_size=5)
 
 
+@pytest.mark.slow  # over 10 s on a loaded machine: the fast lane stays under 2 min
 @settings(max_examples=8, derandomize=True, deadline=None, database=None)
 @given(poses5)
 def test_the_count_of_real_solutions_of_any_five_poses_agrees_with_newton(rows):
@@ -181,6 +184,7 @@ def test_every_design_passes_through_every_pose_as_the_solver_finds(data):
     assert known_pair == 1
 
 
+@pytest.mark.slow  # over 10 s on a loaded machine: the fast lane stays under 2 min
 def test_four_poses_give_curves_and_designs_through_them():
     poses, j = known((1.0, 3.0, 3.0, 3.5), (1.0, 0.5), [20, 60, 100, 150], 0.3, (1.0, -2.0))
     curves = burmester_curves(poses, samples=360)

@@ -5,6 +5,7 @@ import json
 import math
 
 import numpy as np
+import pytest
 
 import linkage_sym
 from linkage_sym.cli import main
@@ -12,6 +13,7 @@ from linkage_sym.cli import main
 POSES = [[0.0, 0.0, 0.0], [1.0, 0.2, 10.0], [1.8, 0.7, 25.0], [2.3, 1.5, 45.0], [2.5, 2.4, 70.0]]
 
 
+@pytest.mark.slow  # over 10 s on a loaded machine: the fast lane stays under 2 min
 def test_five_poses_write_scenes_through_the_poses(tmp_path, capsys):
     poses = tmp_path / "p.json"
     poses.write_text(json.dumps(POSES))
