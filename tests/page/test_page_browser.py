@@ -32,7 +32,7 @@ import pytest
 
 from linkage_sym.examples import example_names
 
-from tests.support.browser import CHROMEDRIVER, CHROMIUM, chromium
+from tests.support.browser import CHROMEDRIVER, CHROMIUM, open_page, twelve
 TOL = 1e-9
 
 webdriver = pytest.importorskip(
@@ -53,42 +53,6 @@ from linkage_sym.examples import load_example  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 from linkage_sym.page import page_html  # noqa: E402
 from linkage_sym.scene import parse_scene  # noqa: E402
-
-
-@pytest.fixture(scope="module")
-def browser():
-    driver = chromium()
-    yield driver
-    driver.quit()
-
-
-@pytest.fixture(scope="module")
-def pages(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("pages")
-    made = {}
-
-    def page(name):
-        if name not in made:
-            path = folder / f"{name}.html"
-            path.write_text(page_html(load_example(name)))
-            made[name] = path
-        return made[name]
-
-    return page
-
-
-def open_page(browser, path):
-    browser.get(path.as_uri())
-    browser.get_log("browser")  # drained: what follows is this page's
-    return browser.execute_script("return window.linkageSym.summary()")
-
-
-def twelve(scene):
-    """12 steps of the scene's sweep evenly across it: their indices, their driver values
-    (D, 12) and the page's driver lists."""
-    idx = np.round(np.linspace(0, scene.steps - 1, 12)).astype(int)
-    Q = np.array([np.linspace(d.start, d.stop, d.steps)[idx] for d in scene.drivers])
-    return idx, Q, Q.T.tolist()
 
 
 def page_solve(browser, qs):

@@ -25,6 +25,7 @@ import numpy as np
 import pytest
 
 from tests.support import browser as support
+from tests.support.browser import open_page, twelve
 
 pytestmark = [pytest.mark.skipif(support.missing() is not None, reason=str(support.missing())),
               pytest.mark.slow]
@@ -40,40 +41,6 @@ from tests.support.example_sets import symbolic_examples  # noqa: E402
 
 TOL = 1e-9
 LAYERS = ("velocity", "acceleration", "forces", "centres", "transmission")
-
-
-@pytest.fixture(scope="module")
-def browser():
-    driver = support.chromium()
-    yield driver
-    driver.quit()
-
-
-@pytest.fixture(scope="module")
-def pages(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("pages")
-    made = {}
-
-    def page(name, scene=None):
-        if name not in made:
-            path = folder / f"{name}.html"
-            path.write_text(page_html(scene if scene is not None else load_example(name)))
-            made[name] = path
-        return made[name]
-
-    return page
-
-
-def open_page(browser, path):
-    browser.get(path.as_uri())
-    browser.get_log("browser")
-    return browser.execute_script("return window.linkageSym.summary()")
-
-
-def twelve(scene):
-    idx = np.round(np.linspace(0, scene.steps - 1, 12)).astype(int)
-    Q = np.array([np.linspace(d.start, d.stop, d.steps)[idx] for d in scene.drivers])
-    return idx, Q, Q.T.tolist()
 
 
 def page_layers(browser, qs):

@@ -40,3 +40,21 @@ def chromium():
     driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=opts)
     driver.set_script_timeout(120)
     return driver
+
+
+def open_page(driver, path):
+    """Open the page at ``path`` and return its ``window.linkageSym.summary()``; the
+    browser log is drained first, so what a test reads of it is this page's."""
+    driver.get(path.as_uri())
+    driver.get_log("browser")
+    return driver.execute_script("return window.linkageSym.summary()")
+
+
+def twelve(scene):
+    """12 steps of the scene's sweep evenly across it: their indices, their driver values
+    (D, 12) and the page's driver lists."""
+    import numpy as np
+
+    idx = np.round(np.linspace(0, scene.steps - 1, 12)).astype(int)
+    Q = np.array([np.linspace(d.start, d.stop, d.steps)[idx] for d in scene.drivers])
+    return idx, Q, Q.T.tolist()
