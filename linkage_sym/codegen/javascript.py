@@ -31,6 +31,7 @@ import json
 import math
 from importlib import resources
 
+from linkage_sym.codegen import cache
 from linkage_sym.codegen.artifact import Artifact
 from linkage_sym.codegen.compile import _Builder
 from linkage_sym.codegen.runtime import ASSEMBLY_MATCH, SCREEN
@@ -138,8 +139,10 @@ def forces_left_out(scene: Scene) -> str | None:
 
 
 def page_artifact(scene: Scene) -> Artifact:
-    """``scene``'s artifact with JavaScript sources (derived here: the cache holds NumPy's),
-    derived with the outputs the page's layers need (:func:`page_scene`).
+    """``scene``'s artifact with JavaScript sources, derived with the outputs the page's
+    layers need (:func:`page_scene`): from the compiled-mechanism cache
+    (:mod:`linkage_sym.codegen.cache`, under a key of its own printer), else derived and
+    stored there, so a page of a topology already seen needs no SymPy derivation.
 
     Raises
     ------
@@ -153,15 +156,22 @@ def page_artifact(scene: Scene) -> Artifact:
         for i, j in enumerate(scene.joints) if j.type in SYMBOLIC_LACKS]
     if problems:
         raise SceneError(problems)
+    page = page_scene(scene)
+    sig = {**cache.signature(page), "printer": "javascript"}  # one topology: one artifact
+    key = cache.key_of(sig)
+    got = cache.load_artifact(key)
+    if got is not None:
+        return got
     # the derivation's own builder, to print one more function from its equations
-    builder = _Builder(page_scene(scene), "javascript")
-    art = builder.artifact(None, None)
+    builder = _Builder(page, "javascript")
+    art = builder.artifact(key, sig)
     eqs = builder.eqs
     outs = [e for j in scene.joints for e in eqs.joint_kin[j.name][0]]
     outs += [e for n in scene.link_names for e in eqs.origin_kin[n][0]]
     builder.add(POSITION_POINTS, outs, "the joints' positions, then the frame origins' "
                 "(the first rows of points: its layout)", True)
     art.functions[POSITION_POINTS] = builder.funcs[POSITION_POINTS]
+    cache.store_artifact(key, art)
     return art
 
 

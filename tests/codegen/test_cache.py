@@ -93,3 +93,34 @@ def test_an_unusable_cache_folder_warns_once_and_is_not_used(fresh_cache, monkey
     assert len(got) == 1  # once, however often the disk cache is tried
     assert cache.load(key) == {"key": key}  # the in-memory cache still serves the process
     assert blocker.read_text() == "not a folder"
+
+
+def test_the_page_artifact_is_cached_apart_from_numpys(fresh_cache, monkeypatch):
+    """The page's JavaScript artifact is stored under its own key (never served as the
+    NumPy one, nor the reverse); read back from disk it prints the same page script as a
+    fresh derivation, and a scene of the same topology with other dimensions derives
+    nothing (the derivation's builder is never called)."""
+    from linkage_sym.codegen import javascript
+    from linkage_sym.codegen.javascript import mechanism_script, page_artifact
+    from linkage_sym.examples import example_dict
+    from linkage_sym.scene import parse_scene
+
+    scene = load_example("watt_sixbar")
+    fresh = mechanism_script(scene, page_artifact(scene))
+    numpy_key = cache.key_of(cache.signature(scene))
+    compile_mechanism(scene)
+    files = sorted(p.name for p in (fresh_cache / "cache").glob("*.json"))
+    assert len(files) == 2 and f"{numpy_key}.json" in files
+    cache.clear_memory()
+
+    def no_derivation(*args, **kwargs):
+        raise AssertionError("derived again: the cached artifact was not used")
+
+    monkeypatch.setattr(javascript, "_Builder", no_derivation)
+    assert mechanism_script(scene, page_artifact(scene)) == fresh
+    d = example_dict("watt_sixbar")
+    d["joints"][1]["at"] = [v * 1.1 for v in d["joints"][1]["at"]]
+    other = parse_scene(d)
+    assert mechanism_script(other, page_artifact(other)) != fresh  # its own numbers
+    assert javascript.POSITION_POINTS in page_artifact(scene).functions
+    assert javascript.POSITION_POINTS not in cache.load_artifact(numpy_key).functions
