@@ -78,7 +78,7 @@ def exudyn_case(step=5e-5) -> dict | None:
     except ImportError:
         return None
     sys.path.insert(0, str(HERE.parent))
-    from tests.support.exudyn_crank_rocker import crank_omega
+    from tests.support.exudyn_model import driver_speed
 
     data = example_dict("crank_rocker_motor")
     rocker = data["loads"][0]
@@ -91,7 +91,7 @@ def exudyn_case(step=5e-5) -> dict | None:
     res = simulate(scene)
     ours = time.process_time() - t
     t = time.process_time()
-    te, we = crank_omega(data, scene.simulate.duration, step)
+    te, we = driver_speed(data, scene.simulate.duration, step)
     theirs = time.process_time() - t
     q = res.analysis.drivers["A"]["qd"]
     turns = abs(float(res.analysis.drivers["A"]["q"][-1])) / (2 * math.pi)

@@ -4,7 +4,7 @@ dynamics to 1e-6").
 The crank-rocker with its motor (``crank_rocker_motor``) with a constant torque on the rocker
 (the example's switches on and off with the crank's angle, a discontinuity Exudyn's fixed-step
 generalized-alpha crosses with a first-order error, 3e-5 at its 5e-5 s step): Exudyn's
-redundant-coordinate model (:mod:`tests.support.exudyn_crank_rocker`, no code shared with
+redundant-coordinate model (:mod:`tests.support.exudyn_model`, no code shared with
 linkage_sym) at a 5e-5 s step agrees with ``simulate`` to about 5e-8 of the crank's top speed
 over 3 s from rest (its error falls as the step squared: 1e-6 at 1e-4 s over 0.5 s); asserted
 to 1e-6.
@@ -26,7 +26,7 @@ exudyn = pytest.importorskip(
 
 @pytest.mark.slow
 def test_crank_speed_agrees_with_exudyn_forward_dynamics_to_1e_6():
-    from tests.support.exudyn_crank_rocker import crank_omega
+    from tests.support.exudyn_model import driver_speed
 
     data = example_dict("crank_rocker_motor")
     rocker = data["loads"][0]
@@ -35,7 +35,7 @@ def test_crank_speed_agrees_with_exudyn_forward_dynamics_to_1e_6():
     data["simulate"]["samples"] = 301
     res = simulate(linkage_sym.load_scene(data))
     assert res.message is None
-    t, w = crank_omega(data, data["simulate"]["duration"], 5e-5)
+    t, w = driver_speed(data, data["simulate"]["duration"], 5e-5)
     assert t[-1] == pytest.approx(res.time[-1], abs=1e-9)
     theirs = np.interp(res.time, t, w)
     ours = res.analysis.drivers["A"]["qd"]
