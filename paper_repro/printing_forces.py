@@ -285,7 +285,7 @@ def items(samples=200, seed=0):
     rounding when inside the Monte-Carlo spread of ``samples`` seeded samples of the printed
     inputs (rounding_spread; 200 by default); else not reproducible.
     """
-    from items import NOT_REPRODUCIBLE, REPRODUCED, ROUNDING as ROUND, Item, half_unit
+    from items import NOT_REPRODUCIBLE, REPRODUCED, ROUNDING as ROUND, PRINTED, Item, half_unit
 
     spread, q, _ = rounding_spread(samples, seed)
     why_mc = (f"linkage_sym at the paper's disconnection, unknown at D; tolerance: the largest deviation over "
@@ -305,13 +305,13 @@ def items(samples=200, seed=0):
         where = "sec. 4, superposition at D"
         note = notes.get(key, "")
         if d <= half_unit(printed):
-            out.append(Item(1, where, name, printed, q[key], REPRODUCED, why=note or
+            out.append(Item(PRINTED, 1, where, name, printed, q[key], REPRODUCED, why=note or
                             "linkage_sym at the paper's disconnection, unknown at D"))
         elif d <= spread[key]:
-            out.append(Item(1, where, name, printed, q[key], ROUND, tol=spread[key],
+            out.append(Item(PRINTED, 1, where, name, printed, q[key], ROUND, tol=spread[key],
                             why=why_mc + ("; " + note if note else "")))
         else:
-            out.append(Item(1, where, name, printed, q[key], NOT_REPRODUCIBLE,
+            out.append(Item(PRINTED, 1, where, name, printed, q[key], NOT_REPRODUCIBLE,
                             why=f"off by {d:.3g}, beyond the rounding spread {spread[key]:.3g}"))
     return out
 

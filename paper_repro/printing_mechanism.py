@@ -575,6 +575,7 @@ def items(samples=200, seed=0):
     coefficients it starts from.
     """
     from items import ERRATUM, NOT_REPRODUCIBLE, REPRODUCED, ROUNDING as ROUND, Item
+    from items import PRINTED as PRINTED_ITEM
 
     pr = PRINTED
     val = kinematic_values()
@@ -589,11 +590,11 @@ def items(samples=200, seed=0):
         from items import half_unit
 
         if d <= half_unit(printed):
-            out.append(Item(1, where, name, printed, got, REPRODUCED, unit=unit, why=extra))
+            out.append(Item(PRINTED_ITEM, 1, where, name, printed, got, REPRODUCED, unit=unit, why=extra))
         elif d <= spread[key]:
-            out.append(Item(1, where, name, printed, got, ROUND, tol=spread[key], why=why_round, unit=unit))
+            out.append(Item(PRINTED_ITEM, 1, where, name, printed, got, ROUND, tol=spread[key], why=why_round, unit=unit))
         else:
-            out.append(Item(1, where, name, printed, got, NOT_REPRODUCIBLE, unit=unit,
+            out.append(Item(PRINTED_ITEM, 1, where, name, printed, got, NOT_REPRODUCIBLE, unit=unit,
                             why=f"off by {d:.3g}, {d / max(spread[key], 1e-300):.1f} times the {mc}" + extra))
 
     pts_text = {"B": ("0.1", "-0.1732"), "C": ("-0.8687", "-0.122"), "D": ("-0.8913", "-0.4152"),
@@ -619,37 +620,37 @@ def items(samples=200, seed=0):
                    f"{pr['inertia_printed'][key][i]:g}" if key != "F_S3" or ax != "y" else "13.40",
                    f"{key}{ax}", "N", extra=extra)
     f5_981 = abs((pr["results"]["R53n"] - val["F5x"] * G_ACC / 9.81) / math.cos(math.radians(20)))
-    out.append(Item(1, "sec. 4, 'F_S4x'", "|F'5| from R53n = F5x + F'5 cos 20 deg", "451", val["F'5"], REPRODUCED,
+    out.append(Item(PRINTED_ITEM, 1, "sec. 4, 'F_S4x'", "|F'5| from R53n = F5x + F'5 cos 20 deg", "451", val["F'5"], REPRODUCED,
                     unit="N", why=f"F5x = -m5 a5 = {val['F5x']:.3f} N with m5 = 1719.9/9.8 = 175.5 kg; with g = "
                                   f"9.81 it would be {f5_981:.2f} N"))
 
     # errata of the printed data, each shown by the reconstruction
     P = {k: np.array(v) for k, v in pr["points"].items()}
     ed, ae = float(np.linalg.norm(P["D"] - E)), float(np.linalg.norm(E - A))
-    out.append(Item(1, "sec. 4, lengths", "l_AE", "0.37", ae, ERRATUM, corrected="l_ED = 0.37",
+    out.append(Item(PRINTED_ITEM, 1, "sec. 4, lengths", "l_AE", "0.37", ae, ERRATUM, corrected="l_ED = 0.37",
                     holds=abs(ed - 0.37) < 1e-4 < 0.1 < abs(ae - 0.37), unit="m",
                     why=f"|AE| = {ae:.4f} from the printed E; |ED| = {ed:.5f} from the printed coordinates"))
     s3 = np.array(pr["S_printed"]["S3"])
     s3f = np.array([-s3[0], s3[1]])
     off = abs(cross(P["D"] - E, s3f - E)) / ed
     far = min(np.linalg.norm(s3 - p) for p in (*P.values(), E, A))
-    out.append(Item(1, "sec. 4, centres of mass", "x_S3", "0.7204", float(s3f[0]), ERRATUM, corrected="-0.7204",
+    out.append(Item(PRINTED_ITEM, 1, "sec. 4, centres of mass", "x_S3", "0.7204", float(s3f[0]), ERRATUM, corrected="-0.7204",
                     holds=off < 1e-4 and far > 0.5, unit="m",
                     why=f"(0.7204, -0.2813) is {far:.2f} m from the nearest joint, off every link; (-0.7204, -0.2813) lies on ED "
                         f"({off:.1e} m off the line): the rocker's centre"))
     mid_ok = abs(val["x_S1"] - (-0.3843)) < 1e-4 and abs(val["y_S1"] - (-0.1476)) < 1e-4
-    out.append(Item(1, "sec. 4, labels", "S1-S4, F_S1-F_S3, M_E1-M_E3",
+    out.append(Item(PRINTED_ITEM, 1, "sec. 4, labels", "S1-S4, F_S1-F_S3, M_E1-M_E3",
                     "link 1-4", "link 2-5", ERRATUM, corrected="S2-S5, F_S2-F_S4, M_E2-M_E4 (shifted by one link)",
                     holds=mid_ok and off < 1e-4,
                     why="printed S1 is the midpoint of BC (link 2), S2 = C is on the lever 3, S3 on the rocker 4, S4 "
                         "near the slider 5; the crank turns uniformly about its centre and has no inertia load"))
-    out.append(Item(1, "sec. 4, inertia forces", "F_S4x labelled an inertia force", "451", val["F5x"], ERRATUM,
+    out.append(Item(PRINTED_ITEM, 1, "sec. 4, inertia forces", "F_S4x labelled an inertia force", "451", val["F5x"], ERRATUM,
                     corrected="F'5 = 451 N, the printing force at 20 deg to the guide (eq. 12's F'5x cos 20)",
                     holds=abs(val["F'5"] - 451) <= 0.5 and abs(abs(val["F5x"]) - 451) > 100, unit="N",
                     why="the slider's inertia force is -m5 a5 (computed); 451 N at 20 deg closes eq. 12 with the "
                         "printed R53n"))
     for key in ("M_E1", "M_E2", "M_E3"):
-        out.append(Item(1, "sec. 4, inertia moments", key, f"{pr['inertia_printed'][key]:g}", "(input)",
+        out.append(Item(PRINTED_ITEM, 1, "sec. 4, inertia moments", key, f"{pr['inertia_printed'][key]:g}", "(input)",
                         NOT_REPRODUCIBLE, unit="N m",
                         why="the paper prints no moments of inertia: J = M/|alpha| is derived from these, so they "
                             "are inputs, not checks"))
@@ -662,10 +663,10 @@ def items(samples=200, seed=0):
     for i, (name, text) in enumerate((("(R53n)'", "63.69"), ("(R53t)'", "305.60"))):
         d = abs(base[i] - float(text))
         st = REPRODUCED if d <= 0.005 else ROUND
-        out.append(Item(1, "sec. 4, eqs. 13-14 solved", name, text, float(base[i]), st, unit="N",
+        out.append(Item(PRINTED_ITEM, 1, "sec. 4, eqs. 13-14 solved", name, text, float(base[i]), st, unit="N",
                         tol=None if st == REPRODUCED else float(bound[i]), why="" if st == REPRODUCED else why_c))
     fx = -res["R53n'"] + val["F5x"] + (-pr["inertia_printed"]["F_S4x"] * math.cos(math.radians(20)))
-    out.append(Item(1, "sec. 4, eq. 12", "F_x = -(R53n)' + F5x + F'5x cos 20", "-573.40", fx, REPRODUCED, unit="N",
+    out.append(Item(PRINTED_ITEM, 1, "sec. 4, eq. 12", "F_x = -(R53n)' + F5x + F'5x cos 20", "-573.40", fx, REPRODUCED, unit="N",
                     why="printed (R53n)' = 63.69, computed F5x (g = 9.8) and F'5 = 451 N"))
     th4 = math.radians(pr["theta_deg"][4])
     unit_note = (f"the printed pair is not a unit vector to its digits (x^2 + y^2 = {0.7872**2 + 0.6166**2:.5f}); "
@@ -673,11 +674,11 @@ def items(samples=200, seed=0):
                  f"coordinates D, E ({-(E - P['D'])[0] / ed:.5f}, {-(E - P['D'])[1] / ed:.5f})")
     graded("sec. 4, unit run", "R43t_x for R34t = 1 (-(E - D)/|ED|)", "-0.7872", "R43t_x", "")
     graded("sec. 4, unit run", "R43t_y for R34t = 1 (-(E - D)/|ED|)", "-0.6166", "R43t_y", "", why_round=mc + "; " + unit_note)
-    out.append(Item(1, "sec. 4, eq. 12", "R34t = -F_x / K", "934.03", -res["Fx_bar"] / res["K"], REPRODUCED,
+    out.append(Item(PRINTED_ITEM, 1, "sec. 4, eq. 12", "R34t = -F_x / K", "934.03", -res["Fx_bar"] / res["K"], REPRODUCED,
                     unit="N", why="printed F_x = -573.40 and K = 0.6139"))
-    out.append(Item(1, "sec. 4, eq. 7", "R53n = (R53n)' + (R53n)'' R34t", "-509.71",
+    out.append(Item(PRINTED_ITEM, 1, "sec. 4, eq. 7", "R53n = (R53n)' + (R53n)'' R34t", "-509.71",
                     res["R53n'"] + res["R53n''"] * res["R34t"], REPRODUCED, unit="N", why="printed intermediates"))
-    out.append(Item(1, "sec. 4, eq. 7", "R53t = (R53t)' + (R53t)'' R34t", "950.64",
+    out.append(Item(PRINTED_ITEM, 1, "sec. 4, eq. 7", "R53t = (R53t)' + (R53t)'' R34t", "950.64",
                     res["R53t'"] + res["R53t''"] * res["R34t"], REPRODUCED, unit="N", why="printed intermediates"))
     return out
 

@@ -7,9 +7,13 @@ Run from the repository root:
 
 For every source (README, "Sources" [1]-[4]) a table of each printed value, the computed one,
 their difference, the tolerance and the status (reproduced / within input rounding / erratum /
-not reproducible, with the reason below the row); see items.py for what each status means.
+not reproducible, with the reason below the row); then the self-checks, values no source prints
+(linkage_sym against an independent computation, which each row names); see items.py for the two
+kinds and what each status means.  The summary counts the two kinds apart, and so do the
+reports ``--json PATH`` and ``--markdown PATH`` write (report.py).
 The exit status is 1 if any item drifted (a reproduced or within-rounding item beyond its
-tolerance, or an erratum its derivation no longer shows), else 0.
+tolerance, an erratum its derivation no longer shows, a self-check whose two computations
+disagree), else 0.
 
 Each script contributes through ``items()`` (or, for a script that has none, the adapter of
 adapters.py); SCRIPTS lists them in the order they run.
@@ -31,7 +35,8 @@ for _p in (str(HERE), str(HERE.parent)):
         sys.path.insert(0, _p)
 
 from adapters import ADAPTERS  # noqa: E402
-from items import STATUSES, table  # noqa: E402
+from items import summary, table  # noqa: E402
+from report import to_json, to_markdown  # noqa: E402
 
 SCRIPTS = (
     "printing_mechanism",  # [1] geometry, inertia forces, printing force, the paper's arithmetic
@@ -65,16 +70,24 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m paper_repro", description=__doc__.split("\n\n")[0])
     ap.add_argument("--only", action="append", choices=SCRIPTS, help="run only this script (repeatable)")
     ap.add_argument("--samples", type=int, help="Monte-Carlo samples for the rounding spreads (default: each script's own)")
+    ap.add_argument("--json", metavar="PATH", type=pathlib.Path,
+                    help="also write the report as JSON (printed values and self-checks apart)")
+    ap.add_argument("--markdown", metavar="PATH", type=pathlib.Path,
+                    help="also write the report as a Markdown page (printed values and self-checks apart)")
     args = ap.parse_args(argv)
     timings = {}
     items = collect(tuple(args.only or SCRIPTS), args.samples, timings)
     print(table(items))
     drifted = [it for it in items if not it.ok]
-    counts = ", ".join(f"{sum(it.status == s for it in items)} {s}" for s in STATUSES)
-    print(f"{len(items)} items: {counts}; {len(drifted)} drifted"
+    print(f"{len(items)} items: {summary(items)}"
           f"  (scripts: {', '.join(f'{k} {v:.1f} s' for k, v in timings.items())})")
     for it in drifted:
-        print(f"DRIFTED: [{it.source}] {it.where}: {it.name}: printed {it.printed}, computed {it.computed}")
+        src = f"[{it.source}]" if it.source is not None else "self-check"
+        print(f"DRIFTED: {src} {it.where}: {it.name}: printed {it.printed}, computed {it.computed}")
+    if args.json:
+        args.json.write_text(to_json(items), encoding="utf-8")
+    if args.markdown:
+        args.markdown.write_text(to_markdown(items), encoding="utf-8")
     return 1 if drifted else 0
 
 

@@ -212,7 +212,7 @@ def items():
     tolerance: its rows th1 = 0 and 360, one position, print alpha4 = 0.29266 and 0.29267);
     th4 of rows 0 and 360 and the aE column are errata.
     """
-    from items import ERRATUM, REPRODUCED, ROUNDING, Item
+    from items import ERRATUM, PRINTED, REPRODUCED, ROUNDING, Item
 
     l6, l6p = 0.275, 0.575
     rows = {th1: row(th1, l6, l6p) for th1 in TABLE}
@@ -226,7 +226,7 @@ def items():
         for k, (col, d, unit) in enumerate(zip(COLUMNS, DECIMALS, UNITS)):
             got, p = float(rows[th1][k]), pr[k]
             text = f"{p:.5f}"
-            kw = dict(source=4, where=where, name=col, printed=text, computed=got, unit=unit)
+            kw = dict(kind=PRINTED, source=4, where=where, name=col, printed=text, computed=got, unit=unit)
             if col == "th4_deg" and th1 in (0, 360):
                 fixed = p - 1.0
                 out.append(Item(**kw, status=ERRATUM, corrected=f"{fixed:.4f}",

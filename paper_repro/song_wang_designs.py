@@ -546,7 +546,7 @@ def items():
     is fixed); 1e-7 of max |phi4''| for phi4'' + phi5'' (the same rounding, on accelerations);
     1e-12 N m for the identities eq. 18 and design 3's residual (sums of terms below 1 N m).
     """
-    from items import REPRODUCED, Item
+    from items import PRINTED, REPRODUCED, Item
 
     out = []
     for d in designs().values():
@@ -556,21 +556,21 @@ def items():
             where = f"design {d.name}, crank {lo:g}..{hi:g} deg" + (f" ({variant} kite)" if variant else "")
             branch_ok = r["branch_error"] < 1e-12 and r["status"] == ["ok"]
             if d.name in ("1", "2"):
-                out.append(Item(3, where, "peak |M_0| / reference", "0", r["moment_ratio"], REPRODUCED, tol=1e-8,
+                out.append(Item(PRINTED, 3, where, "peak |M_0| / reference", "0", r["moment_ratio"], REPRODUCED, tol=1e-8,
                                 holds=branch_ok, why="simulated with linkage_sym (inertia only); tolerance eps * cond^2 "
                                 "near the change points (cond about 3000 at 1 deg from them)"))
             else:
-                out.append(Item(3, where, "max |M_0 + (m3 K3 phi3'' + m5 K5 phi5'')|", "0", r["residual35_error"],
+                out.append(Item(PRINTED, 3, where, "max |M_0 + (m3 K3 phi3'' + m5 K5 phi5'')|", "0", r["residual35_error"],
                                 REPRODUCED, tol=1e-12, unit="N m", holds=branch_ok,
                                 why=f"the paper's residual moment; it peaks at {r['residual35_peak']:.3f} N m, "
                                     f"{r['moment_ratio']:.2f} times the unbalanced reference's moment"))
-            out.append(Item(3, where, "peak |F| / reference", "0", r["force_ratio"], REPRODUCED, tol=1e-12,
+            out.append(Item(PRINTED, 3, where, "peak |F| / reference", "0", r["force_ratio"], REPRODUCED, tol=1e-12,
                             holds=branch_ok, why="eq. 14 fixes the mass centre: rounding only"))
-            out.append(Item(3, where, "max |M_0 - eq. 18|", "0", r["eq18_error"], REPRODUCED, tol=1e-12, unit="N m",
+            out.append(Item(PRINTED, 3, where, "max |M_0 - eq. 18|", "0", r["eq18_error"], REPRODUCED, tol=1e-12, unit="N m",
                             holds=branch_ok, why="eq. 18 from the simulated phi'' against the simulated frame moment"))
             if d.name == "2":
                 rel = r["alpha45_error"] / r["peak_alpha"]["4"]
-                out.append(Item(3, where, "max |phi4'' + phi5''| / max |phi4''|", "0", rel, REPRODUCED, tol=1e-7,
+                out.append(Item(PRINTED, 3, where, "max |phi4'' + phi5''| / max |phi4''|", "0", rel, REPRODUCED, tol=1e-7,
                                 holds=branch_ok, why="the kite's symmetry; rounding as for the moment"))
     return out
 

@@ -340,16 +340,16 @@ def _s(e) -> str:
 
 def items():
     """Every checked equation of Song and Wang 1992 as a row (paper_repro/items.py)."""
-    from items import ERRATUM, REPRODUCED, Item
+    from items import ERRATUM, PRINTED, REPRODUCED, Item
 
     out = []
     W = "eq. "
 
     def ok(where, name, printed, computed, holds, why=""):
-        out.append(Item(3, where, name, printed, computed, REPRODUCED, holds=bool(holds), why=why))
+        out.append(Item(PRINTED, 3, where, name, printed, computed, REPRODUCED, holds=bool(holds), why=why))
 
     def err(where, name, printed, computed, corrected, holds, why):
-        out.append(Item(3, where, name, printed, computed, ERRATUM, corrected=corrected, holds=bool(holds), why=why))
+        out.append(Item(PRINTED, 3, where, name, printed, computed, ERRATUM, corrected=corrected, holds=bool(holds), why=why))
 
     ok(W + "3", "centre-of-mass acceleration", "eq. 2 differentiated twice", "same", eq3_check(),
        "SymPy: eq. 2 with joint coordinates as functions of time, differentiated twice")

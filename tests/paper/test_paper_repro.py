@@ -3,19 +3,24 @@
 Every row the runner prints for a value a source prints is named below: the source ([1]-[4] of
 the README's Sources), where it is printed, the quantity, the printed value, the status and the
 tolerance on |computed - printed|, with its reason when it is looser than the printed digits.
-``LAST`` is half a unit of the printed last digit (the value rounds to the printed one).  Rows
-for values a source does not print (the design by K on our numbers, the exercises without
-printed answers) compare two computations in the scripts and are asserted together
-(test_unprinted_rows_agree).  The runner is run once, with its default 200 Monte-Carlo
+``LAST`` is half a unit of the printed last digit (the value rounds to the printed one).  Values
+no source prints (the design by K on our numbers, the exercises without printed answers) are
+self-checks, another kind of row: they compare two computations in the scripts, claim no source,
+are counted apart and are asserted together (test_self_checks_agree); every row declares its kind
+consistently (test_every_row_declares_its_kind).  The runner is run once, with its default 200 Monte-Carlo
 samples (seed 0): about 5 s, so no reduced sample count is needed here.
 """
 
 import functools
+import json
 
 import pytest
 
 import run_all  # noqa: E402  (paper_repro/run_all.py)
-from items import ERRATUM, NOT_REPRODUCIBLE, REPRODUCED, ROUNDING, Item, half_unit  # noqa: E402
+from items import (  # noqa: E402
+    AGREES, ERRATUM, NONE, NOT_REPRODUCIBLE, PRINTED, REPRODUCED, ROUNDING, SELF_CHECK, SOURCES, Item, half_unit,
+    kind_problems,
+)
 
 LAST = "last digit"
 
@@ -236,20 +241,62 @@ def test_item(row):
 def test_every_printed_value_is_named_here():
     _, items = runner()
     named = {(r[0], r[1], r[2]) for r in EXPECTED}
-    printed = {(it.source, it.where, it.name) for it in items if it.printed != "(none)"}
+    printed = {(it.source, it.where, it.name) for it in items if it.kind == PRINTED}
     assert printed == named
-    assert len(items) == len({(it.source, it.where, it.name) for it in items}), "two rows share a key"
+    assert len(items) == len({(it.kind, it.source, it.where, it.name) for it in items}), "two rows share a key"
 
 
 @pytest.mark.slow
-def test_unprinted_rows_agree():
-    """Rows without a printed value: the scripts' two computations agree (1e-9 relative)."""
+def test_every_row_declares_its_kind():
+    """A printed row records its printed value and its source (author, title, year) and where the source
+    prints it; a self-check claims no source and no printed value and names what it is compared with."""
     _, items = runner()
-    rows = [it for it in items if it.printed == "(none)"]
-    assert {it.source for it in rows} == {2, 4}
-    assert len(rows) >= 40
+    for it in items:
+        assert kind_problems(it.kind, it.source, it.where, it.printed, it.status, it.against) == [], it
+        if it.kind == PRINTED:
+            assert it.printed.strip() and it.printed != NONE and it.where.strip() and not it.against
+            assert it.source in SOURCES and it.status != AGREES
+        else:
+            assert it.kind == SELF_CHECK and it.source is None and it.printed == NONE and it.against.strip()
+    # 154 printed values; the 49 rows the runner used to count among the 151 "reproduced" without a
+    # printed value are the self-checks: the design by K on our numbers and the unanswered exercises
+    assert sum(it.kind == PRINTED for it in items) == len(EXPECTED) == 154
+    checks = [it for it in items if it.kind == SELF_CHECK]
+    assert len(checks) == 49
+    assert sum(it.where.startswith("K design") for it in checks) == 8
+    assert sum(it.where.startswith("exercise 3-") for it in checks) == 41
+
+
+@pytest.mark.slow
+def test_self_checks_agree():
+    """Self-checks: the scripts' two computations agree (1e-9 relative)."""
+    _, items = runner()
+    rows = [it for it in items if it.kind == SELF_CHECK]
     for it in rows:
-        assert it.status == REPRODUCED and it.holds is True and it.ok, (it.where, it.name, it.why)
+        assert it.status == AGREES and it.holds is True and it.ok, (it.where, it.name, it.why)
+        assert "1e-09 relative" in it.why and it.against in it.why
+
+
+def test_an_item_refuses_a_wrong_declaration_of_its_kind():
+    """A printed item without its printed value or source, or a self-check that claims one, is refused."""
+    with pytest.raises(ValueError, match="records the printed value"):
+        Item(PRINTED, 4, "exercise 3-5", "omega2", NONE, 1.0, REPRODUCED, holds=True)
+    with pytest.raises(ValueError, match="names its source"):
+        Item(PRINTED, None, "Table 3-1", "sE", "0.10107", 0.1010686, REPRODUCED)
+    with pytest.raises(ValueError, match="says where"):
+        Item(PRINTED, 4, " ", "sE", "0.10107", 0.1010686, REPRODUCED)
+    with pytest.raises(ValueError, match="claims no source"):
+        Item(SELF_CHECK, 4, "exercise 3-5", "omega2", NONE, 1.0, AGREES, holds=True, against="a closed form")
+    with pytest.raises(ValueError, match="no printed value"):
+        Item(SELF_CHECK, None, "exercise 3-5", "omega2", "1.0", 1.0, AGREES, holds=True, against="a closed form")
+    with pytest.raises(ValueError, match="names the independent computation"):
+        Item(SELF_CHECK, None, "exercise 3-5", "omega2", NONE, 1.0, AGREES, holds=True)
+    with pytest.raises(ValueError, match="status is 'agrees'"):
+        Item(SELF_CHECK, None, "exercise 3-5", "omega2", NONE, 1.0, REPRODUCED, holds=True, against="a closed form")
+    with pytest.raises(ValueError, match="kind"):
+        Item("reproduced", 4, "Table 3-1", "sE", "0.10107", 0.1010686, REPRODUCED)
+    with pytest.raises(ValueError, match="verdict"):
+        Item(SELF_CHECK, None, "exercise 3-5", "omega2", NONE, 1.0, AGREES, against="a closed form")
 
 
 @pytest.mark.slow
@@ -280,10 +327,12 @@ def test_the_runner_prints_every_source_and_exits_zero(capsys):
 
 
 def test_a_drifted_item_makes_the_runner_fail(monkeypatch, capsys):
-    drifted = Item(1, "sec. 4", "R34t", "934.03", 936.0, REPRODUCED)
-    erratum_gone = Item(3, "eq. 6", "M_uv1", "m/a^2 - [...]", "m/a^2 [...]", ERRATUM, corrected="x", holds=False)
-    fine = Item(4, "Table 3-1", "sE", "0.10107", 0.1010686, REPRODUCED)
-    for bad in (drifted, erratum_gone):
+    drifted = Item(PRINTED, 1, "sec. 4", "R34t", "934.03", 936.0, REPRODUCED)
+    erratum_gone = Item(PRINTED, 3, "eq. 6", "M_uv1", "m/a^2 - [...]", "m/a^2 [...]", ERRATUM, corrected="x",
+                        holds=False)
+    parted = Item(SELF_CHECK, None, "exercise 3-5", "omega2", NONE, 1.0, AGREES, holds=False, against="a closed form")
+    fine = Item(PRINTED, 4, "Table 3-1", "sE", "0.10107", 0.1010686, REPRODUCED)
+    for bad in (drifted, erratum_gone, parted):
         monkeypatch.setattr(run_all, "collect", lambda *a, _b=bad, **k: [fine, _b])
         assert run_all.main([]) == 1
         assert "DRIFTED" in capsys.readouterr().out
@@ -293,9 +342,49 @@ def test_a_drifted_item_makes_the_runner_fail(monkeypatch, capsys):
 
 def test_an_item_refuses_an_incomplete_status():
     with pytest.raises(ValueError, match="spread"):
-        Item(1, "sec. 4", "R34t", "934.03", 934.4, ROUNDING)
+        Item(PRINTED, 1, "sec. 4", "R34t", "934.03", 934.4, ROUNDING)
     with pytest.raises(ValueError, match="verdict"):
-        Item(3, "eq. 6", "M_uv1", "a", "b", ERRATUM)
+        Item(PRINTED, 3, "eq. 6", "M_uv1", "a", "b", ERRATUM)
     with pytest.raises(ValueError, match="why"):
-        Item(1, "sec. 4", "M_E1", "0.2432", "(input)", NOT_REPRODUCIBLE)
+        Item(PRINTED, 1, "sec. 4", "M_E1", "0.2432", "(input)", NOT_REPRODUCIBLE)
     assert half_unit("934.03") == 0.005 and half_unit("451") == 0.5 and half_unit("-0.6139") == 0.00005
+
+
+def _two_kinds():
+    return [Item(PRINTED, 4, "Table 3-1, th1 = 0 deg", "sE", "0.10107", 0.1010686, REPRODUCED, unit="m"),
+            Item(PRINTED, 3, "eq. 4", "phi''", "(printed formula)", "(derived)", ERRATUM, corrected="x", holds=True,
+                 why="derivation"),
+            Item(SELF_CHECK, None, "exercise 3-5 (phi1 = 45 deg)", "omega2", NONE, -1.25, AGREES, holds=True,
+                 against="the closed form of the script", why="1e-09 relative")]
+
+
+def test_the_summary_and_the_reports_count_and_list_the_two_kinds_apart(monkeypatch, capsys, tmp_path):
+    monkeypatch.setattr(run_all, "collect", lambda *a, **k: _two_kinds())
+    js, md = tmp_path / "r.json", tmp_path / "r.md"
+    assert run_all.main(["--json", str(js), "--markdown", str(md)]) == 0
+    out = capsys.readouterr().out
+    assert ("3 items: 2 printed values (1 reproduced, 1 erratum); 1 self-checks (1 agree); 0 drifted" in out)
+    assert out.index("[4] Kinematic analysis") < out.index("Self-checks:") < out.index("exercise 3-5")
+    rep = json.loads(js.read_text(encoding="utf-8"))
+    assert rep["printed"]["count"] == 2 and rep["self_checks"]["count"] == 1 and rep["self_checks"]["agree"] == 1
+    assert rep["printed"]["by_status"] == {REPRODUCED: 1, ROUNDING: 0, ERRATUM: 1, NOT_REPRODUCIBLE: 0}
+    assert [r["name"] for r in rep["printed"]["items"]] == ["sE", "phi''"]
+    assert rep["printed"]["items"][0]["citation"] == SOURCES[4] and rep["printed"]["items"][0]["printed"] == "0.10107"
+    assert set(rep["printed"]["sources"]) == {"3", "4"}
+    (check,) = rep["self_checks"]["items"]
+    assert check["against"] == "the closed form of the script" and "source" not in check and "printed" not in check
+    assert rep["drifted"] == []
+    page = md.read_text(encoding="utf-8")
+    assert "## Printed values (2)" in page and "## Self-checks (1, 1 agree)" in page
+    assert page.index("## Printed values") < page.index("| Table 3-1, th1 = 0 deg | sE [m] | 0.10107 |")
+    assert page.index("## Self-checks") < page.index("| exercise 3-5 (phi1 = 45 deg) | omega2 | -1.25 | the closed form")
+
+
+def test_the_json_report_lists_a_drifted_self_check(monkeypatch, tmp_path):
+    rows = _two_kinds()[:2] + [Item(SELF_CHECK, None, "exercise 3-5", "omega2", NONE, 1.0, AGREES, holds=False,
+                                    against="a closed form")]
+    monkeypatch.setattr(run_all, "collect", lambda *a, **k: rows)
+    js = tmp_path / "r.json"
+    assert run_all.main(["--json", str(js)]) == 1
+    rep = json.loads(js.read_text(encoding="utf-8"))
+    assert rep["self_checks"]["agree"] == 0 and [r["name"] for r in rep["drifted"]] == ["omega2"]
