@@ -119,6 +119,7 @@ def curves(scene_dict, thetas, samples=361):
     -------
     full, motion : ndarray (k, 2)
     joints : dict of str to (float, float)
+        The joints' positions; a slider-crank's also ``guide``: its unit direction.
     """
     import linkage_sym
 
@@ -132,4 +133,8 @@ def curves(scene_dict, thetas, samples=361):
         out.append(P)
     joints = {j["name"]: tuple(j["at"]) for j in scene_dict["joints"]}
     joints["P"] = tuple(scene_dict["points"][0]["at"])
+    for j in scene_dict["joints"]:
+        if j["name"] == "C_guide":  # a slider-crank: the guide's direction
+            joints["guide"] = (math.cos(math.radians(j["axis_deg"])),
+                               math.sin(math.radians(j["axis_deg"])))
     return out[0], out[1], joints
