@@ -6,9 +6,9 @@ synthesize function (--function EXPR | --table F.csv) --phi-range A0,A1 --psi-ra
     A four-bar generating y = f(x) by Freudenstein's equation; the structural
     error measured by the solver over the range.
 synthesize path (--points PTS.json | --curve C.csv [--samples N]) [--crank-deg A1,A2,...]
-        [--starts N] [--keep K] [--min-transmission-deg DEG] [--grashof-crank]
-        [--random-state N] [-o DIR] [--csv T.csv] [--plot CURVES.png]
-    Four-bars whose coupler point passes through the points, best first.
+        [--type four-bar|slider-crank] [--starts N] [--keep K] [--min-transmission-deg DEG]
+        [--grashof-crank] [--random-state N] [-o DIR] [--csv T.csv] [--plot CURVES.png]
+    Four-bars (or slider-cranks) whose coupler point passes through the points, best first.
 """
 
 from __future__ import annotations
@@ -164,12 +164,15 @@ def cmd_path(args) -> int:
         designs = synthesize_path(T, _numbers("--crank-deg", args.crank_deg, 3), starts=args.starts,
                                   keep=args.keep, min_transmission_deg=args.min_transmission_deg,
                                   full_turn=args.grashof_crank, random_state=args.random_state,
-                                  name=args.name, steps=args.steps)
+                                  name=args.name, steps=args.steps, linkage=args.type)
     except SynthesisError as err:
         raise option_error(err) from err
     how = "exact (three points)" if len(T) == 3 else "optimisation"
-    print(f"path generation through {len(T)} points, {how}: {len(designs)} designs without a "
-          "defect (solver-checked)")
+    if args.type == "slider-crank":
+        how = ("exact" if designs and designs[0].exact else "best fit") + (
+            " (three points)" if len(T) == 3 else " (optimisation)")
+    print(f"{'' if args.type == 'four-bar' else args.type + ' '}path generation through "
+          f"{len(T)} points, {how}: {len(designs)} designs without a defect (solver-checked)")
     print("  " + "  ".join(f"{h:>12s}" for h in TABLE_HEAD[:5]))
     for r in _rows(designs):
         print(f"  {r[0]:>12s}  {r[1]:12.4g}  {r[2]:12.4g}  {r[3]:12.2f}  {r[4]:>12s}")
@@ -225,14 +228,18 @@ def add_kinds(kinds, sweep_options) -> None:
     fn.add_argument("-o", "--output", metavar="SCENE.json", help="scene file to write")
     sweep_options(fn)
     fn.set_defaults(name="function-generator", func=cmd_function)
-    pa = kinds.add_parser("path", help="four-bars whose coupler point passes through points")
+    pa = kinds.add_parser("path", help="four-bars (or slider-cranks) whose coupler point passes "
+                          "through points")
     src = pa.add_mutually_exclusive_group(required=True)
     src.add_argument("--points", metavar="PTS.json", help="JSON list of points [x, y] (m)")
     src.add_argument("--curve", metavar="C.csv", help="a drawn curve, rows x, y (resampled)")
     pa.add_argument("--samples", type=int, default=8, help="points taken along --curve (default 8)")
     pa.add_argument("--crank-deg", metavar="A1,A2,...", help="the crank's angle at each point "
                     "(deg; only differences count): prescribed timing")
-    pa.add_argument("--starts", type=int, default=4000, help="random four-bars (default 4000)")
+    pa.add_argument("--type", choices=("four-bar", "slider-crank"), default="four-bar",
+                    help="the linkage: four-bar (default) or slider-crank (offset and guide "
+                    "direction free)")
+    pa.add_argument("--starts", type=int, default=4000, help="random linkages (default 4000)")
     pa.add_argument("--keep", type=int, default=5, help="designs kept at most (default 5)")
     pa.add_argument("--min-transmission-deg", type=float, default=20.0,
                     help="smallest transmission angle between the points (deg, default 20)")

@@ -1,9 +1,11 @@
-"""``linkage-sym synthesize motion``: four-bars through four or five coupler poses (Burmester).
+"""``linkage-sym synthesize motion``: four-bars and slider-cranks through four or five coupler
+poses (Burmester).
 
 synthesize motion --poses P.json [--dyads N] [-o DIR] [--name NAME] [--steps N] [--speed W]
     P.json holds ``[[x, y, angle_deg], ...]`` (the coupler frame's origin, m, and
-    angle, degrees).  Every four-bar from pairs of Burmester dyads is driven
-    through the poses by the solver and classified; the table is printed, best
+    angle, degrees).  Every four-bar from pairs of Burmester dyads, and every
+    slider-crank from a dyad and a coupler point whose positions lie on a line,
+    is driven through the poses by the solver and classified; the table is printed, best
     first.  With -o: ``design-01.json`` ... (the coupler frame's origin the traced
     point P, the sweep from pose 1 to the last), ``designs.csv``, ``poses.png``
     (the best design in every pose) and ``burmester.png`` (the curves or points).
@@ -74,9 +76,13 @@ def cmd_motion(args) -> int:
     n = len(result.poses)
     found = "Burmester point pairs" if n == 5 else "dyads sampled on the centre-point curve"
     free = sum(r["defect_free"] for r in rows)
+    sliders = sum(r["linkage"] == "slider-crank" for r in rows)
+    k = len(result.sliders)
+    also = (f" and {sliders} slider-cranks (from {k} coupler point{'s' if k > 1 else ''} on a line)"
+            if result.sliders else "")
     print(f"motion generation through {n} poses: {len(result.dyads)} {found}, "
-          f"{len(rows)} four-bars ({free} without a defect), best first; error: the largest "
-          "distance of the solver's coupler pose from a pose, in coupler lengths")
+          f"{len(rows) - sliders} four-bars{also} ({free} without a defect), best first; error: "
+          "the largest distance of the solver's coupler pose from a pose, in coupler lengths")
     _print_table(rows)
     if args.output:
         out = Path(args.output)
@@ -97,7 +103,8 @@ def cmd_motion(args) -> int:
 
 def add_motion(kinds) -> None:
     """Add ``motion`` to the ``synthesize`` command's kinds (``kinds``: its subparsers)."""
-    p = kinds.add_parser("motion", help="four-bars through 4 or 5 coupler poses (Burmester)")
+    p = kinds.add_parser("motion", help="four-bars and slider-cranks through 4 or 5 coupler poses "
+                         "(Burmester)")
     p.add_argument("--poses", required=True, metavar="P.json",
                    help="JSON list of 4 or 5 poses [x, y, angle_deg]: the coupler frame's origin "
                         "(m) and angle (deg)")

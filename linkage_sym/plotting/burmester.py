@@ -1,4 +1,5 @@
-"""Pictures of a motion generation: the poses with a linkage in each, the Burmester curves.
+"""Pictures of a motion generation: the poses with a linkage in each, the Burmester curves
+(and the slider dyads' lines).
 
 Only the synthesis' results are read here (:class:`~linkage_sym.synthesis.motion.MotionSynthesis`):
 the linkage in pose ``j`` is its fixed pivots and its moving pivots carried by
@@ -51,20 +52,29 @@ def plot_poses(result, path, design: int = 0):
         The file written.
     """
     d = result.designs[design]
-    crank, rocker = result.dyads[d.crank], result.dyads[d.rocker]
+    slider = d.kind == "slider-crank"
+    crank = result.dyads[d.crank]
+    rocker = result.sliders[d.rocker] if slider else result.dyads[d.rocker]
     fig = style.new_figure(6.4, 5.4)
     ax = fig.add_subplot()
     size = 0.15 * _spread(result.poses)
-    A, D = crank.centre, rocker.centre
+    A = crank.centre
     for j, pose in enumerate(result.poses):
         color = style.PALETTE[j % len(style.PALETTE)]
         B, C = _at(pose, crank.local), _at(pose, rocker.local)
         ax.add_patch(Polygon([B, C, pose[:2]], closed=True, facecolor=color, alpha=0.15,
                              edgecolor=color))
-        ax.plot([A[0], B[0], C[0], D[0]], [A[1], B[1], C[1], D[1]], "-o", color=color, lw=1.2,
-                ms=3)
+        chain = [A, B, C] if slider else [A, B, C, rocker.centre]
+        ax.plot([p[0] for p in chain], [p[1] for p in chain], "-o", color=color, lw=1.2, ms=3)
+        if slider:
+            ax.plot(*C, "s", color=color, ms=8, mfc="none")
         _frame(ax, pose[0], pose[1], pose[2], size, color, f"pose {j + 1}")
-    ax.plot([A[0], D[0]], [A[1], D[1]], "^", color="k", ms=9, label="fixed pivots A, D")
+    if slider:
+        _guide(ax, rocker)
+        ax.plot(*A, "^", color="k", ms=9, label="fixed pivot A")
+    else:
+        D = rocker.centre
+        ax.plot([A[0], D[0]], [A[1], D[1]], "^", color="k", ms=9, label="fixed pivots A, D")
     c = d.check
     state = "no defect" if c.defect_free else "; ".join(n.split(":")[0] for n in c.notes)
     ax.set_title(f"{d.scene['name']}: {c.grashof}, min transmission angle "
@@ -75,6 +85,16 @@ def plot_poses(result, path, design: int = 0):
     ax.legend(loc="best", fontsize=8)
     ax.grid(True, lw=0.3)
     return style.save(fig, path)
+
+
+def _guide(ax, slider, label="slider's guide"):
+    """A slider dyad's line, over its pin's travel and a quarter of it either side."""
+    t = np.array(slider.travel)
+    lo, hi = t.min(), t.max()
+    pad = 0.25 * max(hi - lo, 1e-300)
+    u = np.array([math.cos(slider.angle), math.sin(slider.angle)])
+    ends = np.asarray(slider.circle) + np.outer([lo - pad, hi + pad], u)
+    ax.plot(ends[:, 0], ends[:, 1], "--", color="k", lw=1.0, label=label)
 
 
 def plot_curves(result, path):
@@ -110,8 +130,12 @@ def plot_curves(result, path):
                 label="centre points (fixed pivots)" if k == 0 else None)
         ax.plot([dy.circle[0]], [dy.circle[1]], "o", color="#d62728", ms=5,
                 label="circle points (moving pivots, pose 1)" if k == 0 else None)
+    for k, sl in enumerate(result.sliders):
+        _guide(ax, sl, "slider lines (centre points at infinity)" if k == 0 else None)
+        ax.plot([sl.circle[0]], [sl.circle[1]], "s", color="#2ca02c", ms=6,
+                label="slider pins (pose 1)" if k == 0 else None)
     pts = np.array([*result.poses[:, :2], *(dy.centre for dy in result.dyads),
-                    *(dy.circle for dy in result.dyads)])
+                    *(dy.circle for dy in result.dyads), *(sl.circle for sl in result.sliders)])
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     mid, half = 0.5 * (lo + hi), 0.55 * float(max(hi - lo))
     for j, pose in enumerate(result.poses):

@@ -39,7 +39,9 @@ def coupler_curves_figure(targets, designs, title: str):
     """Each design's coupler curve (full turn dotted, first to last target solid) and linkage
     at the first target, with the targets.
 
-    ``designs``: ``(label, curve_full (k, 2), curve_motion (m, 2), joints {A, B, C, D, P})``.
+    ``designs``: ``(label, curve_full (k, 2), curve_motion (m, 2), joints {A, B, C, D, P})``;
+    a slider-crank's joints ``{A, B, C, P, guide}`` (``guide``: the guide's unit direction,
+    drawn dashed through ``C`` over the span of the curves).
     """
     fig = style.new_figure(7.5, 7.0)
     ax = fig.add_subplot(1, 1, 1)
@@ -49,10 +51,7 @@ def coupler_curves_figure(targets, designs, title: str):
         ax.plot(full[:, 0], full[:, 1], ":", color=c, lw=0.9)
         ax.plot(motion[:, 0], motion[:, 1], "-", color=c, lw=1.8, label=label)
         if k == 0:
-            for a, b in (("A", "B"), ("B", "C"), ("C", "D"), ("B", "P"), ("C", "P")):
-                ax.plot([J[a][0], J[b][0]], [J[a][1], J[b][1]], "-", color="0.25", lw=1.4)
-            for n in ("A", "D"):
-                ax.plot(*J[n], "^", color="0.2", ms=9)
+            _linkage(ax, J, full)
     T = np.asarray(targets)
     ax.plot(T[:, 0], T[:, 1], "x", color="tab:red", ms=10, mew=2, label="targets")
     for i, (x, y) in enumerate(T):
@@ -64,6 +63,22 @@ def coupler_curves_figure(targets, designs, title: str):
     ax.grid(alpha=0.3)
     ax.legend(loc="best", fontsize=8)
     return fig
+
+
+def _linkage(ax, J, curve):
+    """The linkage at the first target: a four-bar's bars, or a slider-crank's and its guide."""
+    bars = (("A", "B"), ("B", "C"), ("C", "D"), ("B", "P"), ("C", "P"))
+    for a, b in (bars if "D" in J else bars[:2] + bars[3:]):
+        ax.plot([J[a][0], J[b][0]], [J[a][1], J[b][1]], "-", color="0.25", lw=1.4)
+    for n in ("A", "D") if "D" in J else ("A",):
+        ax.plot(*J[n], "^", color="0.2", ms=9)
+    if "guide" in J:
+        pts = np.array([J[n] for n in ("A", "B", "C", "P")] + [p for p in curve if np.isfinite(p).all()])
+        u = np.asarray(J["guide"])
+        s = (pts - np.asarray(J["C"])) @ u
+        line = np.asarray(J["C"]) + np.outer([s.min(), s.max()], u)
+        ax.plot(line[:, 0], line[:, 1], "--", color="0.2", lw=1.0, label="slider's guide")
+        ax.plot(*J["C"], "s", color="0.2", ms=9, mfc="none", mew=1.5)
 
 
 def save(fig, path) -> Path:

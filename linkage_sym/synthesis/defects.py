@@ -1,4 +1,8 @@
-"""Branch, order and dead-centre defects of a crank-driven four-bar, found by the solver.
+"""Branch, order and dead-centre defects of a crank-driven four-bar or slider-crank, by the solver.
+
+The one defect checker of the syntheses: motion generation (four or five
+poses, :mod:`~linkage_sym.synthesis.motion`) and path generation
+(:mod:`~linkage_sym.synthesis.path_check`) both call :func:`check_motion`.
 
 A synthesis meets its targets (coupler poses, output angles, path points) at
 given crank angles, each target on its own; whether one linkage, driven by
@@ -36,7 +40,16 @@ first target to the last.
 
 The scene is a four-bar as :mod:`~linkage_sym.synthesis.builders` writes
 them: joints ``A`` (ground-crank, driven), ``B``, ``C``, ``D``, links
-``crank``, ``coupler``, ``rocker``; its own sweep is not used.
+``crank``, ``coupler``, ``rocker``; or a slider-crank: joints ``A``, ``B``,
+``C`` (coupler-slider) and the slide ``C_guide`` (P, ground-slider, its
+``axis_deg`` the guide's direction), links ``crank``, ``coupler``, ``slider``.
+Its own sweep is not used.  A slider-crank's assembly modes are the slider
+on either side of the foot of the crank pin on the guide (the sign of
+``(C - B) . u``, ``u`` along the guide; the other mode is ``C`` reflected in
+the normal to the guide through ``B``); its transmission angle is the angle
+between the coupler and the normal to the guide; its crank turns fully when
+``crank + |offset| < coupler`` (class ``slider-crank``, else
+``slider-rocker``), and then its two modes are its two circuits.
 
 Examples
 --------
@@ -77,23 +90,26 @@ length of it (and a link's rotation within this many radians)."""
 
 @dataclass(frozen=True)
 class MotionCheck:
-    """What the solver finds when the crank drives a four-bar through its targets.
+    """What the solver finds when the crank drives a four-bar or slider-crank through its targets.
 
     Attributes
     ----------
     grashof : str
         The Grashof class (``crank-rocker``, ``double-crank``, ``double-rocker``,
-        ``triple-rocker``, ``change point``).
+        ``triple-rocker``, ``change point``; a slider-crank: ``slider-crank`` when
+        its crank turns fully, else ``slider-rocker``).
     branch : bool
-        A target is met only in the other assembly mode (see the module docstring).
+        A target is met only in the other assembly mode, or the mode changes between
+        two solved steps of the motion (see the module docstring).
     order : bool
-        The crank meets the targets out of order, turning either way.
+        The crank meets the targets out of order, turning either way (``unwrapped``:
+        the given angles are not monotone within one turn).
     dead_centre : bool
         The crank's motion from the first target to the last passes a dead centre.
     circuit : bool
         A target met only in the other assembly mode lies on the other circuit of
-        a Grashof four-bar (see the module docstring); False for one that is not
-        Grashof (it has one circuit).
+        a Grashof four-bar, or of a slider-crank whose crank turns fully (see the
+        module docstring); False for one with a single circuit.
     missed : tuple of int
         Targets (0-based) met in neither assembly mode at their crank angle.
     sense : int
@@ -110,6 +126,15 @@ class MotionCheck:
         motion.
     notes : tuple of str
         The defects in words.
+    kind : str
+        ``four-bar`` or ``slider-crank``.
+    coupler : float
+        The coupler's length ``|BC|`` (m).
+    full_turn : bool
+        The crank turns fully (a Grashof crank; a slider-crank's crank with
+        ``crank + |offset| < coupler``).
+    solved : bool
+        Every step of the motion (the targets' crank angles among them) solved.
     """
 
     grashof: str
@@ -123,6 +148,10 @@ class MotionCheck:
     errors: tuple
     gamma_min: float
     notes: tuple
+    kind: str = "four-bar"
+    coupler: float = math.nan
+    full_turn: bool = False
+    solved: bool = True
 
     @property
     def defect_free(self) -> bool:
@@ -134,12 +163,47 @@ def _joint(scene: dict, name: str) -> np.ndarray:
     for j in scene["joints"]:
         if j["name"] == name:
             return np.array(j["at"], dtype=float)
-    raise ValueError(f"the four-bar scene has no joint {name!r} (joints A, B, C, D are expected)")
+    raise ValueError(f"the scene has no joint {name!r} (joints A, B, C, D of a four-bar or "
+                     "A, B, C, C_guide of a slider-crank are expected)")
+
+
+def kind_of(scene: dict) -> str:
+    """``slider-crank`` when the scene has the slide ``C_guide``, else ``four-bar``.
+
+    Examples
+    --------
+    >>> from linkage_sym.synthesis.builders import slider_crank
+    >>> kind_of(slider_crank(0.05, 0.2, 0.01).scene)
+    'slider-crank'
+    """
+    return "slider-crank" if any(j["name"] == "C_guide" for j in scene["joints"]) else "four-bar"
+
+
+def guide_direction(scene: dict) -> np.ndarray:
+    """The unit vector along a slider-crank's guide (its slide ``C_guide``'s ``axis_deg``)."""
+    for j in scene["joints"]:
+        if j["name"] == "C_guide":
+            t = math.radians(float(j["axis_deg"]))
+            return np.array([math.cos(t), math.sin(t)])
+    raise ValueError("the slider-crank scene has no slide C_guide")
+
+
+def _other_c(scene: dict) -> np.ndarray:
+    """``C`` of the other assembly mode (see :func:`mirrored`)."""
+    B, C = _joint(scene, "B"), _joint(scene, "C")
+    r = C - B
+    if kind_of(scene) == "slider-crank":
+        u = guide_direction(scene)
+        return C - 2 * (r @ u) * u
+    D = _joint(scene, "D")
+    u = (D - B) / np.linalg.norm(D - B)
+    return B + 2 * (r @ u) * u - r
 
 
 def mirrored(scene: dict) -> dict:
     """The same four-bar assembled in the other mode: ``C`` reflected in the line ``BD``,
     the coupler's traced points turned with it about ``B`` (the coupler stays rigid).
+    A slider-crank: ``C`` (and its slide) reflected in the normal to the guide through ``B``.
 
     Examples
     --------
@@ -150,10 +214,9 @@ def mirrored(scene: dict) -> dict:
     >>> [round(v, 12) for v in m["joints"][2]["at"]], [round(v, 12) for v in m["points"][0]["at"]]
     ([0.4, -1.2], [0.4, -1.2])
     """
-    B, C, D = _joint(scene, "B"), _joint(scene, "C"), _joint(scene, "D")
-    u = (D - B) / np.linalg.norm(D - B)
+    B, C = _joint(scene, "B"), _joint(scene, "C")
     r = C - B
-    C2 = B + 2 * (r @ u) * u - r
+    C2 = _other_c(scene)
     turn = math.atan2(r[0] * (C2 - B)[1] - r[1] * (C2 - B)[0], r @ (C2 - B))
     rot = np.array([[math.cos(turn), -math.sin(turn)], [math.sin(turn), math.cos(turn)]])
 
@@ -161,8 +224,8 @@ def mirrored(scene: dict) -> dict:
         return [float(v) for v in B + rot @ (np.asarray(p, dtype=float) - B)]
 
     out = dict(scene)
-    out["joints"] = [dict(j, at=[float(v) for v in C2]) if j["name"] == "C" else dict(j)
-                     for j in scene["joints"]]
+    out["joints"] = [dict(j, at=[float(v) for v in C2]) if j["name"] in ("C", "C_guide")
+                     else dict(j) for j in scene["joints"]]
     if "points" in scene:
         out["points"] = [dict(p, at=moved(p["at"])) if p["link"] == "coupler" else dict(p)
                          for p in scene["points"]]
@@ -193,6 +256,16 @@ def _unwrap(crank_deg) -> tuple[int, list, bool]:
     return 1, [phi[0]] + [phi[0] + r for r in rel], True
 
 
+def _as_given(phi) -> tuple[int, list, bool]:
+    """``(sense, angles, order_defect)`` of crank angles (rad) taken as the motion itself: an
+    order defect unless they are monotone and within one turn."""
+    phi = [float(x) for x in phi]
+    steps = np.diff(phi)
+    monotone = bool(np.all(steps > 0) or np.all(steps < 0))
+    order = not (monotone and abs(phi[-1] - phi[0]) < 2 * math.pi)
+    return (-1 if phi[-1] < phi[0] else 1), phi, order
+
+
 def _grid(angles, steps_per_turn) -> tuple[np.ndarray, list]:
     """The crank angles of the motion (first target to the farthest) with every target's
     angle a step; the targets' indices in it."""
@@ -201,7 +274,7 @@ def _grid(angles, steps_per_turn) -> tuple[np.ndarray, list]:
     q = np.union1d(np.linspace(lo, hi, n), np.array(angles))
     if angles[-1] < angles[0]:
         q = q[::-1]
-    return q, [int(np.argmin(np.abs(q - a))) for a in angles]
+    return q, [int(np.flatnonzero(q == a)[0]) for a in angles]
 
 
 def _run(scene: dict, q: np.ndarray):
@@ -238,75 +311,69 @@ def _circuit(res, i, lengths) -> float:
     return float(np.sign(u[0] * v[1] - u[1] * v[0]))
 
 
-def _gamma_min(res) -> float:
+def _cross(u, v) -> np.ndarray:
+    return u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+
+
+def _geometry(res, kind, guide) -> tuple[np.ndarray, np.ndarray]:
+    """``(gamma, mode)`` at the solved steps: the transmission angle (rad, 0..pi/2) and the
+    assembly mode's sign (see the module docstring)."""
     ok = res.status == "ok"
-    if not ok.any():
-        return math.nan
-    B, C, D = (res.joints[n].position[ok] for n in "BCD")
+    B, C = (np.asarray(res.joints[n].position)[ok] for n in "BC")
+    r = C - B
+    if kind == "slider-crank":
+        normal = np.array([-guide[1], guide[0]])
+        g = np.arccos(np.clip(r @ normal / np.linalg.norm(r, axis=1), -1.0, 1.0))
+        return np.minimum(g, math.pi - g), np.sign(r @ guide)
+    D = np.asarray(res.joints["D"].position)[ok]
     u, v = B - C, D - C
     cos = np.einsum("ij,ij->i", u, v) / (np.linalg.norm(u, axis=1) * np.linalg.norm(v, axis=1))
     g = np.arccos(np.clip(cos, -1.0, 1.0))
-    return float(np.min(np.minimum(g, math.pi - g)))
+    return np.minimum(g, math.pi - g), np.sign(_cross(D - B, r))
 
 
-def check_motion(scene: dict, crank_deg, *, point=None, targets=None, link="coupler",
-                 rotations=None, tol=TOLERANCE, steps_per_turn=STEPS_PER_TURN) -> MotionCheck:
-    """Drive a four-bar by its crank through its targets with the solver; its defects.
-
-    Parameters
-    ----------
-    scene : dict
-        A four-bar scene (joints ``A B C D``, links ``crank coupler rocker``,
-        the driver on ``A``) assembled in target 1.
-    crank_deg : sequence of float
-        The crank angle (degrees, from ``+x``) at which each target is to be met,
-        in the order the targets are to be met; the first is the assembly's.
-    point : str, optional
-        A traced point of the scene that must pass through ``targets``.
-    targets : sequence of (x, y), optional
-        Its positions (m), one per crank angle.
-    link : str
-        The link whose rotation is checked against ``rotations``.
-    rotations : sequence of float, optional
-        That link's rotation from the assembly configuration at each target (rad).
-    tol : float
-        A target is met within ``tol`` times the coupler length.
-    steps_per_turn : int
-        Solver steps per crank turn between the targets.
-
-    Returns
-    -------
-    MotionCheck
-    """
+def _classify(scene: dict, kind: str) -> tuple[str, bool, list, float]:
+    """``(class, full_turn, loop lengths or [], coupler)`` of the scene's linkage."""
     from linkage_sym.structure.grashof import classify
 
-    A, B, C, D = (_joint(scene, n) for n in "ABCD")
-    a, b, c, d = (float(np.linalg.norm(p - q)) for p, q in ((A, B), (B, C), (C, D), (D, A)))
-    grashof = classify([d, a, b, c], fixed=0, names=["ground", "crank", "coupler", "rocker"]).name
-    sense, angles, order = _unwrap(crank_deg)
-    q, idx = _grid(angles, steps_per_turn)
-    res = _run(scene, q)
-    errs = _errors(res, idx, point, targets, link, rotations, b)
-    lo, hi = min(idx), max(idx)
-    dead = bool(np.any(res.status[lo:hi + 1] != "ok"))
-    bad = [k for k, e in enumerate(errs) if not e <= tol * b]
-    branch, circuit, missed = False, False, []
-    if bad:
-        other = mirrored(scene)
-        if rotations is not None:  # the other mode's assembly turns the coupler and the rocker
-            rotations = [r - _turn(scene, other, link) for r in rotations]
-        res_other = _run(other, q)
-        errs_other = _errors(res_other, idx, point, targets, link, rotations, b)
-        for k in bad:
-            if errs_other[k] <= tol * b:
-                branch = True
-                if grashof in ("crank-rocker", "double-crank", "double-rocker"):
-                    circuit |= (_circuit(res_other, idx[k], [d, a, b, c])
-                                != _circuit(res, idx[0], [d, a, b, c]))
-            elif math.isfinite(errs[k]) or math.isfinite(errs_other[k]):
-                missed.append(k)
-            else:
-                dead = True  # the crank cannot reach the target's angle at all
+    A, B, C = (_joint(scene, n) for n in "ABC")
+    a, b = float(np.linalg.norm(B - A)), float(np.linalg.norm(C - B))
+    if kind == "slider-crank":
+        u = guide_direction(scene)
+        offset = abs(float(_cross((A - C)[None], u[None])[0]))
+        full = a + offset < b
+        return ("slider-crank" if full else "slider-rocker"), full, [], b
+    D = _joint(scene, "D")
+    c, d = float(np.linalg.norm(C - D)), float(np.linalg.norm(D - A))
+    g = classify([d, a, b, c], fixed=0, names=["ground", "crank", "coupler", "rocker"])
+    full = g.name == "double-crank" or (g.name == "crank-rocker" and g.shortest == 1)
+    return g.name, full, [d, a, b, c], b
+
+
+def _other_mode(scene, q, idx, res, errs, bad, args, grashof, full, lengths) -> tuple:
+    """``(branch, circuit, missed, dead)`` of the targets ``bad`` missed in the solver's mode."""
+    point, targets, link, rotations, tol, b = args
+    other = mirrored(scene)
+    if rotations is not None:  # the other mode's assembly turns the coupler and the rocker
+        rotations = [r - _turn(scene, other, link) for r in rotations]
+    res_other = _run(other, q)
+    errs_other = _errors(res_other, idx, point, targets, link, rotations, b)
+    branch, circuit, missed, dead = False, False, [], False
+    for k in bad:
+        if errs_other[k] <= tol * b:
+            branch = True
+            if not lengths:  # a slider-crank: two circuits when its crank turns fully
+                circuit |= full
+            elif grashof in ("crank-rocker", "double-crank", "double-rocker"):
+                circuit |= (_circuit(res_other, idx[k], lengths) != _circuit(res, idx[0], lengths))
+        elif math.isfinite(errs[k]) or math.isfinite(errs_other[k]):
+            missed.append(k)
+        else:
+            dead = True  # the crank cannot reach the target's angle at all
+    return branch, circuit, missed, dead
+
+
+def _notes(order, branch, circuit, dead, missed) -> tuple:
     notes = []
     if order:
         notes.append("order defect: turning either way the crank meets the targets out of order")
@@ -318,8 +385,77 @@ def check_motion(scene: dict, crank_deg, *, point=None, targets=None, link="coup
                      "the last (coupler and rocker come in line)")
     if missed:
         notes.append(f"targets {[k + 1 for k in missed]} are missed in both assembly modes")
+    return tuple(notes)
+
+
+def check_motion(scene: dict, crank_deg, *, point=None, targets=None, link="coupler",
+                 rotations=None, tol=TOLERANCE, steps_per_turn=STEPS_PER_TURN,
+                 unwrapped=False, unit="deg") -> MotionCheck:
+    """Drive a four-bar or slider-crank by its crank through its targets with the solver; its defects.
+
+    Parameters
+    ----------
+    scene : dict
+        A four-bar scene (joints ``A B C D``, links ``crank coupler rocker``) or a
+        slider-crank scene (joints ``A B C C_guide``, links ``crank coupler
+        slider``), the driver on ``A``, assembled in target 1.
+    crank_deg : sequence of float
+        The crank angle (degrees, from ``+x``) at which each target is to be met,
+        in the order the targets are to be met; the first is the assembly's.
+    point : str, optional
+        A traced point of the scene that must pass through ``targets``.
+    targets : sequence of (x, y), optional
+        Its positions (m), one per crank angle.
+    link : str
+        The link whose rotation is checked against ``rotations``.
+    rotations : sequence of float, optional
+        That link's rotation from the assembly configuration at each target (rad).
+    tol : float or None
+        A target is met within ``tol`` times the coupler length; None: the
+        targets are not precision points (a fit) and a target is not looked
+        for in the other assembly mode (a branch defect is then a change of
+        mode along the motion only).
+    steps_per_turn : int
+        Solver steps per crank turn between the targets.
+    unwrapped : bool
+        Take ``crank_deg`` as the motion itself (the crank turns from the first
+        to the last through the others, no multiple of a turn added): an order
+        defect unless they are monotone within one turn.  By default each is
+        taken modulo a turn and either sense of turning is tried.
+    unit : str
+        ``deg`` (default) or ``rad`` (with ``unwrapped``: the angles used as given, to
+        the last bit): the unit of ``crank_deg``.
+
+    Returns
+    -------
+    MotionCheck
+    """
+    kind = kind_of(scene)
+    grashof, full, lengths, b = _classify(scene, kind)
+    if unit not in ("deg", "rad") or (unit == "rad" and not unwrapped):
+        raise ValueError(f"unit: 'deg', or 'rad' with unwrapped angles, is expected, got {unit!r}")
+    if unwrapped:
+        sense, angles, order = _as_given(np.radians(crank_deg) if unit == "deg" else crank_deg)
+    else:
+        sense, angles, order = _unwrap(crank_deg)
+    q, idx = _grid(angles, steps_per_turn)
+    res = _run(scene, q)
+    errs = _errors(res, idx, point, targets, link, rotations, b)
+    lo, hi = min(idx), max(idx)
+    dead = bool(np.any(res.status[lo:hi + 1] != "ok"))
+    guide = guide_direction(scene) if kind == "slider-crank" else None
+    gamma, modes = _geometry(res, kind, guide)
+    branch, circuit, missed = len(set(modes.tolist()) - {0.0}) > 1, False, []
+    bad = [] if tol is None else [k for k, e in enumerate(errs) if not e <= tol * b]
+    if bad:
+        other = _other_mode(scene, q, idx, res, errs, bad,
+                            (point, targets, link, rotations, tol, b), grashof, full, lengths)
+        branch, circuit, missed, dead = branch or other[0], other[1], other[2], dead or other[3]
     return MotionCheck(grashof, branch, order, dead, circuit, tuple(missed), sense, tuple(angles),
-                       tuple(errs), _gamma_min(res), tuple(notes))
+                       tuple(errs), float(np.min(gamma)) if len(gamma) else math.nan,
+                       _notes(order, branch, circuit, dead, missed), kind, b, full,
+                       bool(np.all(res.status == "ok")))
 
 
-__all__ = ["MotionCheck", "STEPS_PER_TURN", "TOLERANCE", "check_motion", "mirrored"]
+__all__ = ["MotionCheck", "STEPS_PER_TURN", "TOLERANCE", "check_motion", "guide_direction",
+           "kind_of", "mirrored"]

@@ -3,7 +3,10 @@
 The dyads come from Burmester theory (:mod:`~linkage_sym.synthesis.burmester`):
 for five poses every Burmester point pair, for four poses dyads sampled along
 the centre-point curve.  Every ordered pair of dyads (the first the crank,
-the second the rocker) is a four-bar candidate; each is written as a scene
+the second the rocker) is a four-bar candidate.  The slider dyads -- coupler
+points whose positions lie on a line, the centre point at infinity
+(:mod:`~linkage_sym.synthesis.burmester_slider`) -- each with every dyad as
+its crank, are slider-crank candidates (the guide that line).  Each is written as a scene
 (pivots in the poses' own coordinates, assembled in pose 1, the coupler frame's
 origin the traced point ``P``, the driver turning the crank from pose 1 to
 the last pose through the others) and driven through the poses by the
@@ -29,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkage_sym.synthesis.burmester import Curves, Dyad, burmester_curves, burmester_points, read_poses
+from linkage_sym.synthesis.burmester_slider import SliderDyad, slider_points
 from linkage_sym.synthesis.common import SynthesisError, scene_name, sweep_options
 from linkage_sym.synthesis.defects import MotionCheck, check_motion
 
@@ -43,18 +47,22 @@ APART = 1e-6
 
 @dataclass(frozen=True)
 class MotionDesign:
-    """A four-bar candidate through the poses, as the solver found it.
+    """A four-bar or slider-crank candidate through the poses, as the solver found it.
 
     Attributes
     ----------
     scene : dict
         The scene (``linkage_sym.load_scene`` reads it).
     crank, rocker : int
-        Indices of its dyads in :attr:`MotionSynthesis.dyads`.
+        Indices of its dyads in :attr:`MotionSynthesis.dyads`; a slider-crank's
+        ``rocker`` indexes :attr:`MotionSynthesis.sliders`.
     lengths : dict of str to float
-        ``crank``, ``coupler``, ``rocker``, ``ground`` (m).
+        ``crank``, ``coupler``, ``rocker``, ``ground`` (m; a slider-crank's
+        ``rocker`` and ``ground`` NaN).
     check : MotionCheck
         The solver's findings (defects, Grashof class, transmission angle, errors).
+    kind : str
+        ``four-bar`` or ``slider-crank``.
     """
 
     scene: dict
@@ -62,6 +70,7 @@ class MotionDesign:
     rocker: int
     lengths: dict
     check: MotionCheck
+    kind: str = "four-bar"
 
 
 @dataclass(frozen=True)
@@ -79,7 +88,9 @@ class MotionSynthesis:
     designs : list of MotionDesign
         Defect-free designs first, then by decreasing minimum transmission angle.
     skipped : int
-        Pairs of dyads that make no four-bar (a shared pivot).
+        Pairs of dyads that make no linkage (a shared pivot).
+    sliders : list of SliderDyad
+        The slider dyads (coupler points on a line) combined with the dyads.
     """
 
     poses: np.ndarray
@@ -87,6 +98,7 @@ class MotionSynthesis:
     curves: Curves | None
     designs: list
     skipped: int
+    sliders: list = ()
 
 
 def _sample(curves: Curves, count: int, poses: np.ndarray) -> list[Dyad]:
@@ -122,13 +134,31 @@ def _scene(name, crank: Dyad, rocker: Dyad, poses, steps, speed) -> dict:
     }
 
 
-def _design(name, dyads, k, l, poses, steps, speed) -> MotionDesign | None:
-    crank, rocker = dyads[k], dyads[l]
+def _slider_scene(name, crank: Dyad, slider: SliderDyad, poses, steps, speed) -> dict:
+    """A slider-crank: the crank ``A B`` of ``crank``, the slider's pin ``C`` and its guide."""
+    scene = _scene(name, crank, crank, poses, steps, speed)
+    C = [float(v) for v in slider.circle]
+    scene["links"][2] = {"name": "slider"}
+    scene["joints"][2] = {"name": "C", "type": "R", "links": ["coupler", "slider"], "at": C}
+    scene["joints"][3] = {"name": "C_guide", "type": "P", "links": ["ground", "slider"], "at": C,
+                          "axis_deg": math.degrees(slider.angle)}
+    return scene
+
+
+def _design(name, dyads, k, l, poses, steps, speed, sliders=None) -> MotionDesign | None:
+    """The four-bar of dyads ``k`` and ``l`` or, with ``sliders``, the slider-crank of dyad
+    ``k`` and slider ``sliders[l]``; None where two of its pivots coincide."""
+    crank = dyads[k]
     spread = float(np.max(np.hypot(*(poses[:, :2] - poses[0, :2]).T)))
-    pts = (crank.centre, crank.circle, rocker.circle, rocker.centre)
+    if sliders is None:
+        rocker = dyads[l]
+        pts = (crank.centre, crank.circle, rocker.circle, rocker.centre)
+        scene = _scene(name, crank, rocker, poses, steps, speed)
+    else:
+        pts = (crank.centre, crank.circle, sliders[l].circle)
+        scene = _slider_scene(name, crank, sliders[l], poses, steps, speed)
     if min(math.dist(p, q) for i, p in enumerate(pts) for q in pts[i + 1:]) <= APART * spread:
         return None
-    scene = _scene(name, crank, rocker, poses, steps, speed)
     W = complex(*crank.circle) - complex(*crank.centre)
     phi = [math.degrees(cmath.phase(W) + bj) for bj in crank.beta]
     check = check_motion(scene, phi, point="P", targets=poses[:, :2].tolist(),
@@ -136,8 +166,10 @@ def _design(name, dyads, k, l, poses, steps, speed) -> MotionDesign | None:
     drv = scene["drivers"][0]
     drv["stop_deg"] = drv["start_deg"] + math.degrees(check.crank_angles[-1] - check.crank_angles[0])
     lengths = {"crank": math.dist(pts[0], pts[1]), "coupler": math.dist(pts[1], pts[2]),
-               "rocker": math.dist(pts[2], pts[3]), "ground": math.dist(pts[3], pts[0])}
-    return MotionDesign(scene, k, l, lengths, check)
+               "rocker": math.nan, "ground": math.nan}
+    if sliders is None:
+        lengths.update(rocker=math.dist(pts[2], pts[3]), ground=math.dist(pts[3], pts[0]))
+    return MotionDesign(scene, k, l, lengths, check, check.kind)
 
 
 def motion_synthesis(poses, *, dyads: int = 12, samples: int = 720, name: str = "motion",
@@ -175,28 +207,40 @@ def motion_synthesis(poses, *, dyads: int = 12, samples: int = 720, name: str = 
     if isinstance(dyads, bool) or not isinstance(dyads, int) or dyads < 2:
         raise SynthesisError("dyads", f"an integer >= 2 is expected, got {dyads!r}")
     curves = None
+    sliders = slider_points(poses)
     if len(P) == 5:
         found = burmester_points(poses)
-        if len(found) < 2:
+        if len(found) < 2 and not (found and sliders):
             raise SynthesisError("poses", f"the five poses have {len(found)} real Burmester point "
-                                          "pairs: no four-bar meets them (move a pose, or give four)")
+                                          f"pairs and {len(sliders)} slider dyads: no four-bar or "
+                                          "slider-crank meets them (move a pose, or give four)")
     else:
         curves = burmester_curves(poses, samples)
         found = _sample(curves, dyads, P)
     designs, skipped = [], 0
-    for k in range(len(found)):
-        for l in range(len(found)):
-            if k == l:
-                continue
-            d = _design(name, found, k, l, P, steps, speed)
-            if d is None:
-                skipped += 1
-            else:
-                designs.append(d)
+    pairs = [(k, l, None) for k in range(len(found)) for l in range(len(found)) if k != l]
+    pairs += [(k, l, sliders) for k in range(len(found)) for l in range(len(sliders))]
+    for k, l, with_sliders in pairs:
+        d = _design(name, found, k, l, P, steps, speed, with_sliders)
+        if d is None:
+            skipped += 1
+        else:
+            designs.append(d)
     designs.sort(key=lambda d: (not d.check.defect_free, -np.nan_to_num(d.check.gamma_min, nan=-1)))
     for i, d in enumerate(designs, 1):
         d.scene["name"] = f"{name}-{i:02d}"
-    return MotionSynthesis(P, found, curves, designs, skipped)
+    return MotionSynthesis(P, found, curves, designs, skipped, sliders)
+
+
+def _guide(scene) -> tuple:
+    """``(offset, guide_deg)`` of a slider-crank scene (the guide's signed distance from ``A``,
+    m, and direction), NaN for a four-bar."""
+    j = {x["name"]: x for x in scene["joints"]}
+    if "C_guide" not in j:
+        return math.nan, math.nan
+    t = math.radians(j["C_guide"]["axis_deg"])
+    A, C = j["A"]["at"], j["C_guide"]["at"]
+    return math.cos(t) * (C[1] - A[1]) - math.sin(t) * (C[0] - A[0]), j["C_guide"]["axis_deg"]
 
 
 def table(result: MotionSynthesis) -> list[dict]:
@@ -213,13 +257,16 @@ def table(result: MotionSynthesis) -> list[dict]:
         j = {x["name"]: x["at"] for x in d.scene["joints"]}
         c = d.check
         finite = [e for e in c.errors if math.isfinite(e)]
+        D = j.get("D", (math.nan, math.nan))  # a slider-crank has no pivot D
+        offset, guide_deg = _guide(d.scene)
         rows.append({
-            "design": f"design-{i:02d}", "Ax": j["A"][0], "Ay": j["A"][1], "Dx": j["D"][0],
-            "Dy": j["D"][1], **d.lengths, "grashof": c.grashof, "branch": c.branch,
+            "design": f"design-{i:02d}", "Ax": j["A"][0], "Ay": j["A"][1], "Dx": D[0],
+            "Dy": D[1], **d.lengths, "grashof": c.grashof, "branch": c.branch,
             "circuit": c.circuit, "order": c.order, "dead_centre": c.dead_centre,
             "defect_free": c.defect_free,
             "gamma_min_deg": math.degrees(c.gamma_min) if math.isfinite(c.gamma_min) else math.nan,
             "error": max(finite) / d.lengths["coupler"] if finite else math.inf,
+            "linkage": d.kind, "offset": offset, "guide_deg": guide_deg,
         })
     return rows
 

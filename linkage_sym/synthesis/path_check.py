@@ -1,4 +1,5 @@
-"""A path-generation design as a scene, and its check by the solver.
+"""A path-generation design as a scene, and its check by the solver (the defects by
+:func:`linkage_sym.synthesis.defects.check_motion`, the one checker of the syntheses).
 
 The scene puts the design at the first target's crank angle; its driver turns
 the crank through the targets' crank angles, first to last; the coupler point
@@ -89,37 +90,24 @@ class Check:
 
 
 def check(scene_dict, targets, thetas) -> Check:
-    """Analyse the scene by the solver against the targets at the crank angles ``thetas`` (rad)."""
-    import linkage_sym
-    from linkage_sym.structure.grashof import classify
+    """Analyse the scene by the solver against the targets at the crank angles ``thetas`` (rad).
 
-    scene = linkage_sym.load_scene(scene_dict)
-    plan = linkage_sym.compile_plan(scene)
+    The defects are :func:`linkage_sym.synthesis.defects.check_motion`'s, the crank angles
+    taken as the motion itself (``unwrapped``) and the targets as a fit (no precision
+    points: ``tol=None``); a four-bar or a slider-crank scene.
+    """
+    from linkage_sym.synthesis.defects import check_motion
+
     thetas = np.asarray(thetas, dtype=float)
-    q = np.concatenate([np.linspace(thetas[0], thetas[-1], CHECK_STEPS), thetas])
-    n = len(q)
-    res = plan.run(q={"A": q}, qd={"A": np.ones(n)}, qdd={"A": np.zeros(n)})
-    ok = res.status == "ok"
-    P = res.points["P"].position
     T = np.asarray(targets, dtype=float)
-    errors = np.hypot(*(P[CHECK_STEPS:] - T).T)
-    J = {k: res.joints[k].position for k in "ABCD"}
-    sweep = slice(0, CHECK_STEPS)
-    BD, BC = J["D"][sweep] - J["B"][sweep], J["C"][sweep] - J["B"][sweep]
-    modes = np.sign(BD[:, 0] * BC[:, 1] - BD[:, 1] * BC[:, 0])
-    branch = bool(ok[sweep].all() and len(set(modes.tolist())) == 1)
-    steps = np.diff(thetas)
-    order = bool((np.all(steps > 0) or np.all(steps < 0)) and abs(thetas[-1] - thetas[0]) < 2 * np.pi)
-    gam = np.asarray(res.transmission_angles["C"])[sweep]
-    gam = np.minimum(gam, np.pi - gam)
-    lengths = {k: float(np.hypot(*(J[p][0] - J[r][0]))) for k, p, r in
-               (("a", "A", "B"), ("b", "B", "C"), ("c", "C", "D"), ("d", "A", "D"))}
-    g = classify([lengths["d"], lengths["a"], lengths["b"], lengths["c"]], fixed=0,
-                 names=["ground", "crank", "coupler", "rocker"])
-    full = g.name == "double-crank" or (g.name == "crank-rocker" and g.shortest == 1)
-    return Check(float(np.max(errors)) if ok[CHECK_STEPS:].all() else math.inf, errors,
-                 lengths["b"], bool(ok.all()), branch, order,
-                 float(np.degrees(np.nanmin(gam))) if ok.all() else 0.0, g.name, full)
+    span = abs(float(thetas[-1] - thetas[0])) / (2 * np.pi)
+    m = check_motion(scene_dict, thetas, point="P", targets=T, tol=None,
+                     steps_per_turn=max(2, int(math.ceil((CHECK_STEPS - 1) / max(span, 1e-12)))),
+                     unwrapped=True, unit="rad")
+    errors = np.array(m.errors, dtype=float)
+    return Check(float(np.max(errors)), errors, m.coupler, m.solved and not m.dead_centre,
+                 m.solved and not m.branch, not m.order,
+                 float(np.degrees(m.gamma_min)) if m.solved else 0.0, m.grashof, m.full_turn)
 
 
 def curves(scene_dict, thetas, samples=361):
@@ -131,6 +119,7 @@ def curves(scene_dict, thetas, samples=361):
     -------
     full, motion : ndarray (k, 2)
     joints : dict of str to (float, float)
+        The joints' positions; a slider-crank's also ``guide``: its unit direction.
     """
     import linkage_sym
 
@@ -144,4 +133,8 @@ def curves(scene_dict, thetas, samples=361):
         out.append(P)
     joints = {j["name"]: tuple(j["at"]) for j in scene_dict["joints"]}
     joints["P"] = tuple(scene_dict["points"][0]["at"])
+    for j in scene_dict["joints"]:
+        if j["name"] == "C_guide":  # a slider-crank: the guide's direction
+            joints["guide"] = (math.cos(math.radians(j["axis_deg"])),
+                               math.sin(math.radians(j["axis_deg"])))
     return out[0], out[1], joints

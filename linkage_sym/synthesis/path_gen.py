@@ -1,4 +1,4 @@
-"""Path generation: a four-bar whose coupler point passes through given points.
+"""Path generation: a four-bar or a slider-crank whose coupler point passes through given points.
 
 Targets ``P_1 .. P_n`` (m), with or without the crank's rotations ``beta_j``
 from the first target (prescribed timing).
@@ -20,6 +20,15 @@ from the first target (prescribed timing).
   ``scipy.optimize.least_squares`` on the closed forms of
   :mod:`~linkage_sym.synthesis.path_model`.
 
+**Slider-crank** (``linkage="slider-crank"``, :mod:`~linkage_sym.synthesis.path_slider`):
+the offset and the guide's direction are design variables.  Three points:
+exact as above (the slider's pin on a line of a drawn direction).  More:
+random slider-cranks solved at once by the batched solver, refined by
+``least_squares`` alike; up to eight points (eight parameters and one crank
+angle per point: as many unknowns as equations or more) the designs that
+meet every point to ``1e-9`` of the coupler length are reported alone
+(``exact``) when there are any.
+
 **Constraints.**  A design is kept only if the crank meets the targets in
 order turning one way within one turn, in one assembly mode, without a dead
 centre between the first and the last, with a transmission angle of at least
@@ -36,9 +45,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from linkage_sym.synthesis import path_model, path_slider
 from linkage_sym.synthesis.common import SynthesisError, number
 from linkage_sym.synthesis.path_check import Check, check, scene_of
-from linkage_sym.synthesis.path_model import grashof_crank, pins, transmission
+
+LINKAGES = ("four-bar", "slider-crank")
+"""The linkages path generation designs."""
+
+EXACT_POINTS = {"four-bar": 3, "slider-crank": 8}
+"""Most points a design can meet exactly by the optimisation's count of unknowns (a
+slider-crank: 8 parameters and one crank angle per point, two equations per point);
+the four-bar's optimisation reports best fits beyond its exact three-point solutions."""
 
 __all__ = ["PathDesign", "read_targets", "resample", "synthesize_path"]
 
@@ -57,9 +74,11 @@ EXACT_DRAWS = 20000
 class PathDesign:
     """A path-generation design: parameters, the scene, the solver's check.
 
-    ``z``: ``Ax, Ay, Dx, Dy, a, b, c, u, v``; ``sigma``: the assembly mode;
+    ``z``: ``Ax, Ay, Dx, Dy, a, b, c, u, v`` (a slider-crank: ``Ax, Ay, a, b, e, g, u, v``,
+    :mod:`~linkage_sym.synthesis.path_slider`); ``sigma``: the assembly mode;
     ``thetas``: the crank angles (rad) at the targets; ``exact``: from the
-    three-point solution (else the optimisation).
+    three-point solution or, a slider-crank, meeting every point to ``1e-9`` of the
+    coupler (else the optimisation's best fit).
     """
 
     z: np.ndarray
@@ -221,8 +240,9 @@ def _match(Pc, T, q, betas):
     return q[k][..., None] + np.concatenate([[0.0], betas]), cost
 
 
-def refine(z0, sigma, th0, T, betas):
-    """``least_squares`` from one start: ``(z, thetas, rms error)`` (closed forms)."""
+def refine(z0, sigma, th0, T, betas, model=path_model):
+    """``least_squares`` from one start: ``(z, thetas, rms error)`` (closed forms of ``model``,
+    :mod:`~linkage_sym.synthesis.path_model` or :mod:`~linkage_sym.synthesis.path_slider`)."""
     from scipy.optimize import least_squares
 
     L = _size(T)
@@ -230,19 +250,22 @@ def refine(z0, sigma, th0, T, betas):
     free = betas is None
     shift = None if free else np.concatenate([[0.0], betas])
 
+    k = model.NPAR
+
     def unpack(x):
-        return x[:9], (x[9:] if free else x[9] + shift)
+        return x[:k], (x[k:] if free else x[k] + shift)
 
     def res(x):
         z, th = unpack(x)
-        _, _, P, h2 = pins(z[None], th[None], sigma)
+        _, _, P, h2 = model.pins(z[None], th[None], sigma)
         r = (P[0] - Pt) / L
         return np.concatenate([r.real, r.imag, 10.0 * np.maximum(0.0, -h2[0]) / L ** 2])
 
     x0 = np.concatenate([z0, th0 if free else th0[:1]])
     lo = np.full(len(x0), -np.inf)
-    lo[4:7] = 1e-3 * L
-    x0[4:7] = np.maximum(x0[4:7], 2e-3 * L)
+    lengths = list(model.LENGTHS)
+    lo[lengths] = 1e-3 * L
+    x0[lengths] = np.maximum(x0[lengths], 2e-3 * L)
     with np.errstate(all="ignore"):
         sol = least_squares(res, x0, bounds=(lo, np.inf), method="trf", xtol=1e-15, ftol=1e-15,
                             gtol=1e-15, max_nfev=MAX_NFEV)
@@ -250,7 +273,7 @@ def refine(z0, sigma, th0, T, betas):
     return z, np.asarray(th, dtype=float), float(np.sqrt(np.mean(sol.fun[:2 * len(T)] ** 2)) * L)
 
 
-def screen(z, sigma, thetas, min_gamma_deg, full_turn):
+def screen(z, sigma, thetas, min_gamma_deg, full_turn, model=path_model):
     """Which candidates meet the constraints by the closed forms, and their minimum transmission
     angle (deg) over the motion from the first target to the last."""
     z = np.atleast_2d(z)
@@ -258,17 +281,17 @@ def screen(z, sigma, thetas, min_gamma_deg, full_turn):
     s = np.linspace(0.0, 1.0, MOTION_SAMPLES)
     th = thetas[:, :1] + s[None] * (thetas[:, -1:] - thetas[:, :1])
     th = np.concatenate([th, thetas], axis=1)
-    _, _, _, h2 = pins(z, th, sigma)
-    short = np.minimum(z[:, 5], z[:, 6])
+    _, _, _, h2 = model.pins(z, th, sigma)
+    short = model.short(z)
     solved = (h2 > (1e-6 * short[:, None]) ** 2).all(axis=1)
     steps = np.diff(thetas, axis=1)
     order = (((steps > 0).all(axis=1) | (steps < 0).all(axis=1))
              & (np.abs(thetas[:, -1] - thetas[:, 0]) < 2 * np.pi))
     with np.errstate(all="ignore"):
-        gam = np.degrees(np.nanmin(transmission(z, th, sigma), axis=1))
+        gam = np.degrees(np.nanmin(model.transmission(z, th, sigma), axis=1))
     ok = solved & order & (gam >= min_gamma_deg) & np.isfinite(z).all(axis=1)
     if full_turn:
-        ok &= grashof_crank(z)
+        ok &= model.grashof_crank(z)
     return ok, gam
 
 
@@ -293,8 +316,8 @@ def _betas(crank_deg, n):
 
 def synthesize_path(points, crank_deg=None, *, starts=4000, refine_best=20, keep=5,
                     min_transmission_deg=20.0, full_turn=False, random_state=0,
-                    name="path-generator", steps=181):
-    """Four-bars whose coupler point passes through the points, best first.
+                    name="path-generator", steps=181, linkage="four-bar"):
+    """Four-bars or slider-cranks whose coupler point passes through the points, best first.
 
     Parameters
     ----------
@@ -304,7 +327,7 @@ def synthesize_path(points, crank_deg=None, *, starts=4000, refine_best=20, keep
         The crank's angle at each point (deg; only the differences count:
         prescribed timing).
     starts : int
-        Random four-bars solved at once for the optimisation (4 points or more).
+        Random linkages solved at once for the optimisation (4 points or more).
     refine_best : int
         Starts refined by the local method.
     keep : int
@@ -312,11 +335,14 @@ def synthesize_path(points, crank_deg=None, *, starts=4000, refine_best=20, keep
     min_transmission_deg : float
         Smallest transmission angle allowed between the first point and the last.
     full_turn : bool
-        Only designs whose crank turns fully (Grashof crank).
+        Only designs whose crank turns fully (Grashof crank; a slider-crank's
+        ``crank + |offset| < coupler``).
     random_state : int
         The generator's state: the same value gives the same designs.
     name, steps
         The scenes' name and sweep steps (first point to last).
+    linkage : str
+        ``four-bar`` or ``slider-crank`` (offset and guide direction free).
 
     Returns
     -------
@@ -325,10 +351,15 @@ def synthesize_path(points, crank_deg=None, *, starts=4000, refine_best=20, keep
         error, then largest transmission angle) first.  Empty if none meets the
         constraints.
     """
+    if linkage not in LINKAGES:
+        raise SynthesisError("linkage", f"one of {', '.join(LINKAGES)} is expected, got {linkage!r}")
     T = read_targets(points)
     betas = _betas(crank_deg, len(T))
     gmin = number("min_transmission_deg", min_transmission_deg)
     rng = np.random.default_rng(random_state)
+    if linkage == "slider-crank":
+        return _slider_path(T, betas, rng, (starts, refine_best, keep, gmin, full_turn),
+                            name, steps)
     L = _size(T)
     if len(T) == 3:
         z, sig, th = exact_three(T, betas, rng)
@@ -349,7 +380,38 @@ def synthesize_path(points, crank_deg=None, *, starts=4000, refine_best=20, keep
     return _checked(cands, T, keep, exact, name, steps, gmin)
 
 
-def _checked(cands, T, keep, exact, name, steps, gmin):
+def _slider_path(T, betas, rng, opts, name, steps):
+    """:func:`synthesize_path` for the slider-crank: ``opts`` = ``(starts, refine_best, keep,
+    min transmission (deg), full turn)``."""
+    starts, refine_best, keep, gmin, full_turn = opts
+    model = path_slider
+    if len(T) == 3:
+        z, sig, th = path_slider.exact_three(T, betas, rng)
+        ok, gam = screen(z, sig, th, gmin, full_turn, model)
+        idx = np.flatnonzero(ok)[np.argsort(-gam[ok])]
+        cands = [(z[i], sig[i], th[i], 0.0) for i in idx[_unique(z[idx], _size(T))][:4 * keep]]
+        return _checked(cands, T, keep, True, name, steps, gmin, path_slider.scene_of)
+    parts = [(z, sig, *_match(c, T, q, betas)) for z, sig, c, q in
+             path_slider.batched_curves(T, starts, rng)]
+    z, sig = (np.concatenate([p[i] for p in parts]) for i in (0, 1))
+    th = np.concatenate([p[2].reshape(len(p[0]), -1) for p in parts])
+    cost = np.concatenate([p[3].ravel() for p in parts])
+    cands = []
+    for i in np.argsort(cost)[:refine_best]:
+        zi, ti, err = refine(z[i], sig[i], th[i], T, betas, model)
+        if screen(zi[None], sig[i], ti[None], gmin, full_turn, model)[0][0]:
+            cands.append((zi, sig[i], ti, err))
+    cands.sort(key=lambda c: c[3])
+    out = []
+    if len(T) <= EXACT_POINTS["slider-crank"]:  # the exact ones alone when there are any
+        near = [c for c in cands if c[3] <= 1e-10 * _size(T)]
+        out = _checked(near, T, keep, True, name, steps, gmin, path_slider.scene_of)
+    if not out:
+        out = _checked(cands, T, keep, False, name, steps, gmin, path_slider.scene_of)
+    return out
+
+
+def _checked(cands, T, keep, exact, name, steps, gmin, scene_of=scene_of):
     """The candidates the solver finds without a defect, at most ``keep``."""
     out, seen = [], set()
     L = _size(T)

@@ -19,6 +19,16 @@ import numpy as np
 NPAR = 9
 """``Ax, Ay, Dx, Dy, a, b, c, u, v``."""
 
+LENGTHS = (4, 5, 6)
+"""The positive lengths among the parameters: crank ``a``, coupler ``b``, rocker ``c``."""
+
+KIND = "four-bar"
+
+
+def short(z) -> np.ndarray:
+    """The shorter of coupler and rocker: the scale of the closed forms' reach test."""
+    return np.minimum(z[..., 5], z[..., 6])
+
 
 def pins(z, theta, sigma):
     """``B, C, P`` (complex) and the squared half-chord ``h2`` at crank angles ``theta``.

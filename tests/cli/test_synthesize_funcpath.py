@@ -54,6 +54,35 @@ def test_path_writes_designs_table_and_plot(tmp_path, capsys):
     assert png.stat().st_size > 0
 
 
+def test_path_slider_crank_scenes_sweep_through_the_targets(tmp_path, capsys):
+    from tests.support.slider_reference import coupler_points as slider_points
+    from tests.support.slider_reference import random_slider_crank
+
+    known = random_slider_crank(np.random.default_rng(3))
+    th = np.radians(known["drivers"][0]["start_deg"] + np.array([0.0, 60.0, 130.0, 190.0]))
+    T = slider_points(known, th)
+    pts = tmp_path / "p.json"
+    pts.write_text(json.dumps(T.tolist()))
+    folder, table, png = tmp_path / "out", tmp_path / "t.csv", tmp_path / "c.png"
+    assert main(["synthesize", "path", "--points", str(pts), "--type", "slider-crank", "--keep",
+                 "2", "--starts", "1000", "-o", str(folder), "--csv", str(table), "--plot",
+                 str(png)]) == 0
+    assert "slider-crank path generation through 4 points, exact (optimisation)" in \
+        capsys.readouterr().out
+    with table.open() as fh:
+        rows = list(csv.DictReader(fh))
+    assert len(rows) == 2 and all(r["defects"] == "none" and r["exact"] == "True" for r in rows)
+    for k, row in enumerate(rows):
+        scene = linkage_sym.load_scene(folder / f"design-{k + 1:02d}.json")
+        res = linkage_sym.analyze(scene)  # the scene's own sweep, first target to last
+        assert (res.status == "ok").all()
+        P = res.points["P"].position
+        b = float(np.hypot(*np.subtract(scene.joint("C").at, scene.joint("B").at)))
+        assert np.hypot(*(P[[0, -1]] - T[[0, -1]]).T).max() <= 1e-9 * b
+        assert row["grashof"] in ("slider-crank", "slider-rocker")
+    assert png.stat().st_size > 0
+
+
 @pytest.mark.parametrize("args,option", [
     (["function", "--function", "os.system(1)", "--x-range", "0,1", "--phi-range", "0,90",
       "--psi-range", "90,180"], "--function"),

@@ -104,3 +104,36 @@ def test_branch_defect_with_rotations_of_the_coupler():
     targets = [s["points"][0]["at"] for s in scenes]
     r = check_motion(scenes[0], degs, point="P", targets=targets, rotations=rotations)
     assert r.branch and not r.missed
+
+
+def _slider(deg, branch="right"):
+    from linkage_sym.synthesis.builders import slider_crank
+
+    sc = slider_crank(1.0, 3.0, 0.5, crank_deg=deg, branch=branch).scene
+    B, C = sc["joints"][1]["at"], sc["joints"][2]["at"]
+    sc["points"] = [{"name": "P", "link": "coupler",
+                     "at": [0.5 * (B[0] + C[0]) - 0.5 * (C[1] - B[1]),
+                            0.5 * (B[1] + C[1]) + 0.5 * (C[0] - B[0])]}]
+    return sc
+
+
+def test_slider_crank_defect_free_and_branch_defect_on_its_other_circuit():
+    degs = [30, 100, 170, 250]
+    targets = [_slider(x)["points"][0]["at"] for x in degs]
+    r = check_motion(_slider(30), degs, point="P", targets=targets)
+    assert r.defect_free and r.kind == "slider-crank" and r.grashof == "slider-crank"
+    assert max(r.errors) < 1e-12 * 3.0
+    # the builder's closed form: the smallest transmission angle acos((a + |e|) / b)
+    assert r.gamma_min >= math.acos(1.5 / 3.0) - 1e-12
+    targets[2] = _slider(170, branch="left")["points"][0]["at"]
+    r = check_motion(_slider(30), degs, point="P", targets=targets)
+    assert r.branch and r.circuit and not r.order and not r.dead_centre and not r.missed
+
+
+def test_slider_rocker_dead_centre_between_targets():
+    from linkage_sym.synthesis.builders import slider_crank
+
+    # crank + |offset| = 1.5 > rod 1.2: the rod reaches the guide for 0.5 - 1.2 <= sin(phi)
+    sc = slider_crank(1.0, 1.2, 0.5, crank_deg=0.0).scene
+    r = check_motion(sc, [0.0, -30.0, -60.0])
+    assert r.dead_centre and r.grashof == "slider-rocker" and not r.full_turn
