@@ -219,3 +219,22 @@ def test_the_flywheel_takes_one_driver():
     with pytest.raises(SceneError) as err:
         flywheel(linkage_sym.load_scene(uncoupled_data()), 0.05)
     assert err.value.problems[0].startswith("drivers: ")
+
+
+def test_with_friction_in_every_joint_the_motors_efforts_move_the_mechanism_as_integrated():
+    data = copy.deepcopy(example_dict("fivebar_motors"))
+    for joint in data["joints"]:
+        joint["friction"] = {"coefficient": 0.1, "radius": 0.005}
+    data["effects"]["friction"] = True
+    data["simulate"].update(duration=0.03, samples=7, start_speed=[5.0, 3.0])
+    scene = linkage_sym.load_scene(data)
+    res = simulate(scene)
+    assert res.trajectory.end == "duration"
+    d = res.analysis.drivers
+    again = linkage_sym.compile_plan(scene).run(
+        {j: d[j]["q"] for j in "AE"}, {j: d[j]["qd"] for j in "AE"},
+        {j: d[j]["qdd"] for j in "AE"}, method="global")  # its own nonlinear friction solve
+    assert again.ok.all()
+    scale = max(np.max(np.abs(m)) for m in res.motor.values())
+    for j in "AE":
+        assert np.max(np.abs(again.forces.driving[j] - res.motor[j])) <= 1e-8 * scale
