@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import sys
 
-__all__ = ["cmd_simulate", "register", "summary"]
+__all__ = ["cmd_simulate", "register", "several_summary", "summary"]
 
 
 def register(sub) -> None:
@@ -57,7 +57,10 @@ def register(sub) -> None:
 
 
 def summary(scene, res) -> list[str]:
-    """The console's lines for a :class:`~linkage_sym.motion.simulate.SimulationResult`."""
+    """The console's lines for a :class:`~linkage_sym.motion.simulate.SimulationResult` (or,
+    several drivers, a :class:`~linkage_sym.motion.multi_simulate.SeveralSimulationResult`)."""
+    if len(scene.drivers) > 1:
+        return several_summary(scene, res)
     d = scene.drivers[0]
     unit = "rad/s" if d.kind == "R" else "m/s"
     qd = res.analysis.drivers[d.joint]["qd"]
@@ -77,6 +80,29 @@ def summary(scene, res) -> list[str]:
                      f"{unit}, speed fluctuation {m['speed_fluctuation']:.6g} "
                      f"(from {m['min_speed']:.6g} to {m['max_speed']:.6g} {unit})")
     lines.append(f"  the solver's effort at the integrated states equals the motor's to "
+                 f"{res.effort_error:.1e} (relative)")
+    return lines
+
+
+def several_summary(scene, res) -> list[str]:
+    """The console's lines for several drivers: each driver's speed and last full turn."""
+    traj = res.trajectory
+    lines = [f"simulated {scene.name}: {len(res.time)} samples over {res.time[-1]:.6g} s, "
+             f"{len(scene.drivers)} motors ({traj.method}, rtol {traj.rtol:g}: {traj.steps} "
+             f"steps, {traj.evaluations} evaluations of the equations)"]
+    if res.message:
+        lines.append(f"  ended early: {res.message}")
+    for d in scene.drivers:
+        unit = "rad/s" if d.kind == "R" else "m/s"
+        qd = res.analysis.drivers[d.joint]["qd"]
+        turn = res.motion["drivers"][d.joint]
+        last = (f"last full turn: period {turn['period']:.6g} s, mean speed "
+                f"{turn['mean_speed']:.6g} {unit}, speed fluctuation "
+                f"{turn['speed_fluctuation']:.6g}" if "reason" not in turn else turn["reason"])
+        lines.append(f"  driver {d.joint}: speed {qd[0]:.6g} -> {qd[-1]:.6g} {unit}, largest "
+                     f"{max(qd.max(), -qd.min()):.6g} {unit}; {last}")
+    lines.append("  no periodic regime sought: several drivers")
+    lines.append(f"  the solver's efforts at the integrated states equal the motors' to "
                  f"{res.effort_error:.1e} (relative)")
     return lines
 
@@ -115,7 +141,10 @@ def cmd_simulate(args) -> int:
     if args.plots:
         from pathlib import Path
 
-        from linkage_sym.plotting.dynamics import plot_simulation
+        if len(scene.drivers) > 1:
+            from linkage_sym.plotting.dynamics_several import plot_several as plot_simulation
+        else:
+            from linkage_sym.plotting.dynamics import plot_simulation
 
         for path in plot_simulation(scene, res, Path(args.plots), stem(scene)):
             print(f"wrote {path}", file=notes)

@@ -159,11 +159,13 @@ class Motor:
 class Simulation:
     """The ``simulate`` section: integrate the motion from ``start`` (radians or
     metres, the driver's coordinate) at ``start_speed`` over ``duration`` seconds,
-    reporting ``samples`` equally spaced times."""
+    reporting ``samples`` equally spaced times.  With several drivers (several motors)
+    ``start`` and ``start_speed`` are tuples with one entry per driver, in the order of
+    the scene's drivers."""
 
     duration: float
-    start: float
-    start_speed: float
+    start: float | tuple[float, ...]
+    start_speed: float | tuple[float, ...]
     samples: int
 
 

@@ -86,16 +86,19 @@ def motor_effort(motor, speed):
     return np.interp(speed, motor.speeds, motor.efforts)
 
 
-def check_simulation_scene(scene: Scene, require_simulate: bool = True) -> None:
+def check_simulation_scene(scene: Scene, require_simulate: bool = True,
+                           several: bool = False) -> None:
     """Refuse, naming the field, a scene that cannot be simulated (``require_simulate``:
-    its ``simulate`` section too)."""
+    its ``simulate`` section too; ``several``: several drivers allowed, each with a motor,
+    :mod:`~linkage_sym.motion.multi`)."""
     problems = []
     if scene.simulate is None and require_simulate:
         problems.append("simulate: required to simulate the machine's motion (duration, "
                         "samples, the start and its speed)")
-    if len(scene.drivers) != 1:
-        problems.append(f"drivers: simulating several motors (here {len(scene.drivers)} "
-                        "drivers) is not implemented yet; one driver of one degree of freedom is")
+    if len(scene.drivers) != 1 and not several:
+        problems.append(f"drivers: the equation of motion of one degree of freedom (and the "
+                        f"flywheel's design) takes one driver; the scene has "
+                        f"{len(scene.drivers)}")
     for i, d in enumerate(scene.drivers):
         if d.motor is None:
             key = "torque" if d.kind == "R" else "force"

@@ -19,10 +19,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from linkage_sym.errors import SceneError
 from linkage_sym.model import Scene
 from linkage_sym.motion.equations import MotionEquations, motor_effort
 from linkage_sym.motion.integrate import RTOL, Trajectory, integrate_motion
+from linkage_sym.motion.memory import check_memory
 from linkage_sym.motion.periodic import periodic_motion
 
 __all__ = ["SimulationResult", "simulate"]
@@ -91,13 +91,15 @@ class SimulationResult:
 
 def simulate(scene: Scene, *, method: str = "LSODA", rtol: float = RTOL,
              progress=None) -> SimulationResult:
-    """Simulate the motion of a scene's machine driven by its motor.
+    """Simulate the motion of a scene's machine driven by its motor (or motors).
 
     Parameters
     ----------
     scene : Scene
-        A scene with a ``simulate`` section, one driver with a ``motor`` and
-        ``effects.inertia`` true (each refused by name otherwise).
+        A scene with a ``simulate`` section, a ``motor`` on every driver and
+        ``effects.inertia`` true (each refused by name otherwise).  Several drivers (a
+        mechanism of as many degrees of freedom) are simulated by
+        :func:`~linkage_sym.motion.multi_simulate.simulate_several`.
     method : {"LSODA", "Radau", "BDF"}
         The stiff-capable SciPy solver.
     rtol : float
@@ -108,6 +110,8 @@ def simulate(scene: Scene, *, method: str = "LSODA", rtol: float = RTOL,
     Returns
     -------
     SimulationResult
+        A :class:`~linkage_sym.motion.multi_simulate.SeveralSimulationResult` for several
+        drivers (the same layout, each driver's motor and the mass matrix).
 
     Raises
     ------
@@ -116,10 +120,14 @@ def simulate(scene: Scene, *, method: str = "LSODA", rtol: float = RTOL,
     """
     from linkage_sym.numeric.plan import compile_plan
 
+    if len(scene.drivers) > 1:  # several motors: the mass matrix's equations
+        from linkage_sym.motion.multi_simulate import simulate_several
+
+        return simulate_several(scene, method=method, rtol=rtol, progress=progress)
     eq = MotionEquations(scene)
     sim = scene.simulate
     plan = compile_plan(scene)
-    _check_memory(plan, sim.samples)
+    check_memory(plan, sim.samples)
     traj = integrate_motion(eq, 0.0, (sim.start, sim.start_speed), sim.duration,
                             method=method, rtol=rtol, progress=progress)
     times = np.linspace(0.0, sim.duration, sim.samples)
@@ -130,19 +138,6 @@ def simulate(scene: Scene, *, method: str = "LSODA", rtol: float = RTOL,
     analysis = plan.run({j: y[0]}, {j: y[1]}, {j: qdd})
     motion = periodic_motion(traj, eq.driver.kind, sim.start, eq.period)
     return SimulationResult(analysis, times, motor_effort(eq.motor, y[1]), J, traj, motion, j)
-
-
-def _check_memory(plan, samples: int) -> None:
-    """Refuse ``simulate.samples`` the result of which would not fit in memory."""
-    from linkage_sym.numeric.engine.block import WARM_FACTOR
-    from linkage_sym.numeric.engine.heap import available_memory, gib
-
-    need = int(WARM_FACTOR["numeric"][1] * 8 * plan.layout.n_rows * samples)
-    available = available_memory() if need > 2**28 else None
-    if available is not None and need > available:
-        raise SceneError([f"simulate.samples: {samples} samples do not fit in memory: their "
-                          f"analysis takes about {gib(need)} and this process can take "
-                          f"{gib(available)} more; give fewer samples"])
 
 
 def with_inertia(scene: Scene, link: str, added: float) -> Scene:

@@ -263,6 +263,16 @@ def _dump_simulation(scene: Scene) -> dict[str, Any]:
     """The ``simulate`` section in the file layout (the start in the driver's units)."""
     sim = scene.simulate
     out: dict[str, Any] = {"duration": sim.duration}
+    if isinstance(sim.start, tuple):  # several drivers: lists over them, null for the other kind
+        out["start_deg"] = [_degrees(v) if d.kind == "R" else None
+                            for d, v in zip(scene.drivers, sim.start)]
+        out["start"] = [v if d.kind == "P" else None for d, v in zip(scene.drivers, sim.start)]
+        for key in ("start_deg", "start"):
+            if all(v is None for v in out[key]):
+                del out[key]
+        out["start_speed"] = list(sim.start_speed)
+        out["samples"] = sim.samples
+        return out
     if scene.drivers and scene.drivers[0].kind == "R":
         out["start_deg"] = _degrees(sim.start)
     else:

@@ -111,12 +111,15 @@ def read_simulation(reader: FieldReader, data: Mapping[str, Any],
         reader.add("simulate.samples", f"{samples} samples are too many for memory: each is a "
                    f"step of the result, analysed as analyze analyses a step (a few hundred "
                    f"numbers each); at most {MAX_SAMPLES} are allowed")
+    if n_drivers > 1:  # several motors: the starts are lists over the drivers (an extension)
+        if len(drivers) != n_drivers:  # a driver has a problem of its own
+            return None
+        starts = _several_starts(reader, sim, drivers)
+        if len(reader.problems) > before or starts is None:
+            return None
+        assert duration is not None and samples is not None
+        return Simulation(duration, starts[0], starts[1], samples)
     start_speed = reader.number(sim, "start_speed", "simulate", default=0.0)
-    if n_drivers != 1:
-        reader.add("simulate", f"the scene has {n_drivers} drivers; simulating several motors "
-                   "(a mechanism of several degrees of freedom) is not implemented yet: "
-                   "simulate drives a mechanism of one degree of freedom by one motor")
-        return None
     if not drivers:  # the driver has a problem of its own
         return None
     driver = drivers[0]
@@ -133,3 +136,60 @@ def read_simulation(reader: FieldReader, data: Mapping[str, Any],
         return None
     assert duration is not None and samples is not None and start_speed is not None
     return Simulation(duration, start, start_speed, samples)
+
+
+def _several_starts(reader: FieldReader, sim: Mapping[str, Any],
+                    drivers: tuple[Driver, ...]) -> tuple[tuple, tuple] | None:
+    """The starts ``(values, speeds)`` of several drivers: ``start_deg`` (the ``R`` drivers'),
+    ``start`` (the ``P`` drivers') and ``start_speed``, each a list with one entry per driver
+    in the order of ``drivers``, ``null`` where a driver keeps its default (its sweep's
+    start; a speed of 0) or where the entry is the other kind's."""
+    n = len(drivers)
+    lists = {}
+    for key in ("start_deg", "start", "start_speed"):
+        if key not in sim:
+            lists[key] = [None] * n
+            continue
+        value = sim[key]
+        if not isinstance(value, (list, tuple)) or len(value) != n:
+            reader.add(f"simulate.{key}", f"with {n} drivers, must be a list of {n} entries, "
+                       f"one per driver in the order of drivers (null for the default), got "
+                       f"{show_value(value)}")
+            return None
+        lists[key] = list(value)
+    values, speeds, ok = [], [], True
+    for i, d in enumerate(drivers):
+        key, other = ("start_deg", "start") if d.kind == "R" else ("start", "start_deg")
+        if lists[other][i] is not None:
+            unit = "start_deg, degrees" if d.kind == "R" else "start, metres"
+            reader.add(f"simulate.{other}[{i}]", f"must be null: driver {i} is an {d.kind} "
+                       f"driver (its start goes in {unit})")
+            ok = False
+        got = _entry(reader, lists[key][i], f"simulate.{key}[{i}]",
+                     ANGLE if d.kind == "R" else {})
+        speed = _entry(reader, lists["start_speed"][i], f"simulate.start_speed[{i}]", {})
+        ok = ok and got is not False and speed is not False
+        if got is None or got is False:
+            values.append(d.start)
+        elif d.kind == "R":
+            values.append(math.radians(got))
+        else:
+            values.append(got)
+            reader.slides.append((f"simulate.start[{i}]", got))  # type: ignore[attr-defined]
+        speeds.append(speed if isinstance(speed, float) else 0.0)
+    return (tuple(values), tuple(speeds)) if ok else None
+
+
+def _entry(reader: FieldReader, value: Any, field: str, limits: dict) -> float | bool | None:
+    """One list entry at ``field``: its number, ``None`` for ``null``, ``False`` (the problem
+    reported) for anything else."""
+    if value is None:
+        return None
+    before = len(reader.problems)
+    got = reader.number({"v": value}, "v", "", **limits)
+    if got is None or len(reader.problems) > before:
+        problem = reader.problems[before].split(": ", 1)[1]
+        del reader.problems[before:]
+        reader.add(field, problem)
+        return False
+    return float(got)

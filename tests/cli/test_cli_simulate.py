@@ -53,3 +53,37 @@ def test_flywheel_refuses_a_fluctuation_out_of_range(tmp_path, capsys):
     code = main(["flywheel", str(short_scene(tmp_path)), "--fluctuation", "0"])
     assert code == 2
     assert "--fluctuation" in capsys.readouterr().err
+
+
+def two_motor_scene(tmp_path, drop_motor=False):
+    data = copy.deepcopy(example_dict("fivebar_motors"))
+    data["simulate"].update(duration=0.05, samples=6)
+    if drop_motor:
+        del data["drivers"][1]["motor"]
+    path = tmp_path / "fivebar.json"
+    path.write_text(json.dumps(data))
+    return path
+
+
+@pytest.mark.slow
+def test_simulate_with_two_motors_summarises_each_and_plots_their_speeds(tmp_path, capsys):
+    out = tmp_path / "result.json"
+    pics = tmp_path / "pics"
+    assert main(["simulate", str(two_motor_scene(tmp_path)), "-o", str(out), "--plots",
+                 str(pics)]) == 0
+    printed = capsys.readouterr().out
+    assert "simulated fivebar-motors: 6 samples over 0.05 s, 2 motors" in printed
+    assert "  driver A: speed 0 ->" in printed and "  driver E: speed 0 ->" in printed
+    assert sorted(p.name for p in pics.iterdir()) == ["fivebar-motors_speed.png",
+                                                       "fivebar-motors_torque_balance.png"]
+    got = json.loads(out.read_text())
+    assert set(got["steps"][2]["drivers"]) == {"A", "E"}
+    assert set(got["motion"]["drivers"]) == {"A", "E"}
+
+
+def test_simulate_refuses_a_driver_without_a_motor_and_writes_nothing(tmp_path, capsys):
+    out = tmp_path / "result.json"
+    code = main(["simulate", str(two_motor_scene(tmp_path, drop_motor=True)), "-o", str(out)])
+    assert code == 2
+    assert "drivers[1].motor: required to simulate" in capsys.readouterr().err
+    assert not out.exists()

@@ -37,6 +37,7 @@ EXPECTED = [
     "crank_rocker_spring",
     "engine_four_stroke",
     "fivebar",
+    "fivebar_motors",
     "gear_linkage",
     "guide_bar_quick_return",
     "hydraulic_boom",
