@@ -57,14 +57,14 @@ _GREEK = {
     "dy": r"\Delta y",
     "cphi": r"\cos\varphi",
     "sphi": r"\sin\varphi",
-    # a link's centre of mass in its frame: the parameters p_<link>, q_<link> print as
+    # a link's centre of mass in its frame: the parameters xG_<link>, yG_<link> print as
     # x^G, y^G, so that q means only a driver coordinate (q_A) in the equations
-    "p": r"x^{G}",
-    "q": r"y^{G}",
+    "xG": r"x^{G}",
+    "yG": r"y^{G}",
     "xQ": r"x^{Q}",
     "yQ": r"y^{Q}",
 }
-_LINK_PREFIXES = {"theta0", "theta", "omega", "alpha", "m", "I", "p", "q"}
+_LINK_PREFIXES = {"theta0", "theta", "omega", "alpha", "m", "I", "xG", "yG"}
 """Parameter prefixes followed by a link name (always upright)."""
 
 MAX_MATRIX = 8

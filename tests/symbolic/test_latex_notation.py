@@ -63,4 +63,4 @@ def test_q_is_only_a_driver_coordinate(crank_rocker):
     assert not any(s.startswith("$p_") for s in meanings), meanings
     assert meanings[r"$x^{G}_{\mathrm{coupler}}$"].startswith("centre of mass of link coupler")
     assert len(set(meanings)) == len(table.splitlines()[1:])  # no symbol printed twice
-    assert {"p_coupler", "q_coupler"} <= {s.name for s in eqs.parameters}  # the names kept
+    assert {"xG_coupler", "yG_coupler"} <= {s.name for s in eqs.parameters}  # the text's names
