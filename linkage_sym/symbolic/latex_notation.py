@@ -203,9 +203,12 @@ class Namer:
             if s in springs:  # a spring's tension T or torque tau (contract part two)
                 head = r"\tau" if s.name.startswith("tau_") else "T"
                 names[s] = rf"{head}_{{{_sub(ident(springs[s]), upright=True)}}}"
-                continue
-            comp, link = s.name[2], s.name[4:]
-            names[s] = rf"a^{{G}}_{{{_sub(link, upright=True)},{comp}}}"
+            elif s.name.startswith(("aGx_", "aGy_")):
+                comp, link = s.name[2], s.name[4:]
+                names[s] = rf"a^{{G}}_{{{_sub(link, upright=True)},{comp}}}"
+            else:  # a spring's named length L_k and its components dx_k, dy_k
+                pre, _, spring = s.name.partition("_")
+                names[s] = rf"{_GREEK.get(pre, pre)}_{{{_sub(spring, upright=True)}}}"
         for s, _ in eqs.intermediates:
             base = s.name.rstrip("'")
             names[s] = self.param(base) + "'" * (len(s.name) - len(base))
