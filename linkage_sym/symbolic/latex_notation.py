@@ -24,6 +24,7 @@ from __future__ import annotations
 import re
 
 import sympy as sp
+from sympy.printing.latex import LatexPrinter
 
 from linkage_sym.symbolic.mechanism import MechanismEquations
 from linkage_sym.structure.parameters import ident
@@ -150,6 +151,25 @@ def _label(s: str) -> str:
     return re.sub(r"[^A-Za-z0-9:.-]", "-", s)
 
 
+class _WrittenOrder(LatexPrinter):
+    """SymPy's LaTeX with every sum, also inside a product, a fraction or a function, written
+    positive terms first, as a person writes it (``x_D - x_B``, not ``-x_B + x_D``); the
+    terms keep SymPy's order otherwise.
+
+    Examples
+    --------
+    >>> xb, xd, y = sp.symbols("x_B x_D y")
+    >>> print(_WrittenOrder().doprint(sp.atan2(y, xd - xb) * (xd - xb - y)))
+    \\left(x_{D} - x_{B} - y\\right) \\operatorname{atan}_{2}{\\left(y,x_{D} - x_{B} \\right)}
+    """
+
+    def _as_ordered_terms(self, expr, order=None):
+        terms = super()._as_ordered_terms(expr, order=order)
+        if not isinstance(expr, sp.Add):
+            return terms
+        return sorted(terms, key=lambda t: t.could_extract_minus_sign())  # stable
+
+
 class Namer:
     """``symbol_names`` for :func:`sympy.latex`, from the equations' structure."""
 
@@ -230,7 +250,7 @@ class Namer:
         for s in getattr(expr, "free_symbols", ()):
             if s not in self.names:  # pragma: no cover - every symbol is named above
                 self.names[s] = self.param(s.name)
-        return sp.latex(expr, symbol_names=self.names).replace(
+        return _WrittenOrder({"symbol_names": self.names}).doprint(expr).replace(
             r"\operatorname{atan}_{2}", r"\operatorname{atan2}")
 
     def terms(self, expr) -> list:
