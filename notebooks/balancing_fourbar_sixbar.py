@@ -56,6 +56,8 @@ assert check_identity(mod)
 # ## The four-bar
 # The crank-rocker example: its assembled moment (eq. 12 form), the force
 # conditions, and the moment left once the force is balanced (eq. 18 form).
+# A link's centre of mass in its frame is `xG_<link>, yG_<link>` (Song and Wang's `p, q`;
+# `linkage-sym derive --latex` prints it $x^G, y^G$), its length `a_<link>`.
 
 # %%
 fourbar = linkage_sym.load_example("crank_rocker")

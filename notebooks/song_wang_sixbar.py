@@ -45,7 +45,7 @@ import song_wang_errata as errata  # noqa: E402  (paper_repro/song_wang_errata.p
 
 
 def latex(expr):
-    """LaTeX with the accelerations' symbols as dots: xdd_u as x''_u, phidd_2 as phi''_2."""
+    """LaTeX with the accelerations' symbols as dots: xdd_u as x''_u, phidd_2 as phi''_2 (xG_2 as x^G_2)."""
     names = {}
     for s in expr.free_symbols:
         head, _, sub = s.name.partition("_")
@@ -53,6 +53,8 @@ def latex(expr):
             names[s] = rf"\ddot {head[0]}_{{{sub}}}"
         elif head == "phidd":
             names[s] = rf"\ddot\varphi_{{{sub}}}"
+        elif head in ("xG", "yG"):  # the centre of mass in the link frame
+            names[s] = rf"{head[0]}^{{G}}_{{{sub}}}"
     return sp.latex(expr, symbol_names=names)
 
 
@@ -63,7 +65,8 @@ def show(lhs, rhs, note=""):
 
 
 def paper(expr):
-    """linkage_sym's symbols M_AB_1, D_AB_4 under the paper's names M_AB1, D_AB4."""
+    """linkage_sym's symbols M_AB_1, D_AB_4, xG_2, yG_2 under the paper's names M_AB1, D_AB4,
+    p_2, q_2 (linkage_sym names the centre of mass xG, yG: its q is a driver coordinate)."""
     return expr.xreplace({s: sp.Symbol(errata.paper_name(s.name)) for s in expr.free_symbols})
 
 

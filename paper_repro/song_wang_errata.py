@@ -208,7 +208,7 @@ def eq13():
     _, sm, _ = sixbar()
     derived = sm.mass_parameters["M_CE_3"]
     sy = symbols_of(derived)
-    printed = sy["m_4"] * sy["q_4"] / sp.Symbol("a_2", positive=True)
+    printed = sy["m_4"] * sy["yG_4"] / sp.Symbol("a_2", positive=True)  # the paper's q_4 is yG_4
     return printed, derived
 
 
@@ -276,6 +276,7 @@ def eq14_matches_linkage_sym() -> bool:
     sy = {}
     for e in got.values():
         sy.update(symbols_of(e))
+    sy = {paper_name(n): s for n, s in sy.items()}  # the paper's p_j, q_j are xG_j, yG_j
     rep = {s: sy[s.name] for group in (m, a, p, q) for s in group if s.name in sy}
     order = ["Im_1", "Im_5", "Im_3", "Re_1", "Re_3", "Re_5"]
     return all(same(pr.xreplace(rep), got[k]) for pr, k in zip(printed, order))
@@ -327,8 +328,11 @@ def designs():
 
 # --------------------------------------------------------------------------- items
 def paper_name(name: str) -> str:
-    """linkage_sym's ``D_AB_4`` as the paper's ``D_AB4``."""
+    """linkage_sym's ``D_AB_4`` as the paper's ``D_AB4``, its centre of mass ``xG_4, yG_4`` as
+    the paper's ``p_4, q_4``."""
     head, _, i = name.rpartition("_")
+    if head in ("xG", "yG"):
+        return f"{'p' if head == 'xG' else 'q'}_{i}"
     return head + i if i.isdigit() and head[:2] in ("D_", "M_") else name
 
 

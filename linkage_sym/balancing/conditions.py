@@ -4,15 +4,16 @@ Song and Wang's (1992) reasoning (eqs. 12-18), carried out for any hinged linkag
 
 1. *Normal offsets.*  A link whose ``D_3`` does not vanish (both its pins
    move, or one is a fixed pivot away from the origin) contributes
-   ``(m q / a) D_3``; Song and Wang cancel it with ``q = 0`` (its eq. 13 for the
+   ``(m yG / a) D_3``; Song and Wang cancel it with ``yG = 0`` (its eq. 13 for the
    couplers 2 and 4).
 2. *Force balance.*  The force conditions (:mod:`~.force`) are solved for
-   the centre of mass ``(p, q)`` of every independent link.
+   the centre of mass ``(xG, yG)`` (Song and Wang's ``(p, q)``) of every
+   independent link.
 3. *Remaining moment.*  With 1 and 2 substituted, the regrouped moment
    (:mod:`~.assembly`) becomes ``-sum_j X_j phi''_j - sum_P C_P D_P``;
    when every pin share ``C_P`` cancels (as in the four-bar and Song and Wang's
-   six-bar) this is eq. 18, ``M_0 = -sum_j m_j (p_j^2 + k_j^2 - a_j p_j) phi''_j``.
-4. *Moment conditions.*  ``q_j = 0`` from step 1; ``C_P = 0`` for every pin
+   six-bar) this is eq. 18, ``M_0 = -sum_j m_j (xG_j^2 + k_j^2 - a_j xG_j) phi''_j``.
+4. *Moment conditions.*  ``yG_j = 0`` from step 1; ``C_P = 0`` for every pin
    share that force balance does not cancel; and ``X_j = 0`` for every link
    whose angular acceleration is not identically zero -- the input link of a
    driver at constant speed needs none.
@@ -26,9 +27,9 @@ Examples
 >>> from linkage_sym.examples import load_example
 >>> b = derive_balance(load_example("crank_rocker"))
 >>> b.remaining
-m_coupler*phidd_coupler*(a_coupler*p_coupler - k_coupler**2 - p_coupler**2) + m_crank*phidd_crank*(a_crank*p_crank - k_crank**2 - p_crank**2) + m_rocker*phidd_rocker*(a_rocker*p_rocker - k_rocker**2 - p_rocker**2)
+m_coupler*phidd_coupler*(a_coupler*xG_coupler - k_coupler**2 - xG_coupler**2) + m_crank*phidd_crank*(a_crank*xG_crank - k_crank**2 - xG_crank**2) + m_rocker*phidd_rocker*(a_rocker*xG_rocker - k_rocker**2 - xG_rocker**2)
 >>> [c.name for c in b.moment_conditions]
-['q_coupler', 'q_rocker', 'X_coupler', 'X_rocker']
+['yG_coupler', 'yG_rocker', 'X_coupler', 'X_rocker']
 """
 
 from __future__ import annotations
@@ -65,7 +66,7 @@ class Balance:
     normal_links : tuple of str
         Links whose ``D_3`` does not vanish (step 1).
     force_solution : dict
-        ``{p_k or q_k symbol: expression}`` solving the force conditions.
+        ``{xG_k or yG_k symbol: expression}`` solving the force conditions.
     pin_residuals : dict
         ``C_P`` that force balance leaves non-zero (empty: eq. 18 holds).
     remaining : sympy.Expr
@@ -153,9 +154,9 @@ def derive_balance(scene: Scene) -> Balance:
     steady = constant_speed_links(scene)
     conditions = [
         MomentCondition(
-            f"q_{tag(link)}", model.link_symbols(link)[3],
-            f"cancels (m q/a) D_3 of link {link}, whose pins are not a fixed pivot at the origin"
-            + (" (implied by force balance once the other q vanish: Song and Wang 1992, eq. 15)"
+            f"yG_{tag(link)}", model.link_symbols(link)[3],
+            f"cancels (m yG/a) D_3 of link {link}, whose pins are not a fixed pivot at the origin"
+            + (" (implied by force balance once the other yG vanish: Song and Wang 1992, eq. 15)"
                if link in implied else " (Song and Wang 1992, eq. 13)"))
         for link in normal
     ]
@@ -169,6 +170,6 @@ def derive_balance(scene: Scene) -> Balance:
         X = sp.factor(sm.X[link].xreplace(zero_q))
         conditions.append(MomentCondition(
             f"X_{tag(link)}", X,
-            f"cancels m (p^2 + q^2 + k^2 - a p) phi'' of link {link} (Song and Wang 1992, eq. 18)"))
+            f"cancels m (xG^2 + yG^2 + k^2 - a xG) phi'' of link {link} (Song and Wang 1992, eq. 18)"))
     seconds["moment_conditions"] = time.perf_counter() - t0
     return Balance(model, sm, fb, normal, solution, residuals, remaining, steady, conditions, seconds)

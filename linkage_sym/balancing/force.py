@@ -23,10 +23,10 @@ Examples
 (('crank', 'rocker'), ('coupler',))
 >>> for c in fb.conditions:
 ...     print(c.name, "=", c.expr, "= 0")
-Re_crank = m_coupler + m_crank*p_crank/a_crank - m_coupler*p_coupler/a_coupler = 0
-Im_crank = m_crank*q_crank/a_crank - m_coupler*q_coupler/a_coupler = 0
-Re_rocker = -m_rocker + m_rocker*p_rocker/a_rocker - m_coupler*p_coupler/a_coupler = 0
-Im_rocker = m_rocker*q_rocker/a_rocker - m_coupler*q_coupler/a_coupler = 0
+Re_crank = m_coupler + m_crank*xG_crank/a_crank - m_coupler*xG_coupler/a_coupler = 0
+Im_crank = m_crank*yG_crank/a_crank - m_coupler*yG_coupler/a_coupler = 0
+Re_rocker = -m_rocker + m_rocker*xG_rocker/a_rocker - m_coupler*xG_coupler/a_coupler = 0
+Im_rocker = m_rocker*yG_rocker/a_rocker - m_coupler*yG_coupler/a_coupler = 0
 """
 
 from __future__ import annotations

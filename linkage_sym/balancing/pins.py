@@ -5,8 +5,8 @@ Names (the issue's and Song and Wang's (1992) notation, ``<link>`` the link's na
 =========================  ==================================================
 ``m_<link>``               mass
 ``a_<link>``               length ``|uv|`` between the frame's joints
-``p_<link>, q_<link>``     centre of mass in the link frame (origin ``u``,
-                           x-axis toward ``v``)
+``xG_<link>, yG_<link>``   centre of mass in the link frame (origin ``u``,
+                           x-axis toward ``v``): Song and Wang's ``p, q``
 ``k_<link>``               radius of gyration about the centre of mass
 ``xi_<link>_<P>``,         a third pin ``P`` of the link in its frame
 ``eta_<link>_<P>``
@@ -202,8 +202,8 @@ class BalanceModel:
         return (
             self.sym(f"m_{t}", f"mass of link {link}", positive=True),
             self.sym(f"a_{t}", f"length of link {link}, from joint {u} to joint {v}", positive=True),
-            self.sym(f"p_{t}", f"centre of mass of link {link}: coordinate along {u}->{v}", real=True),
-            self.sym(f"q_{t}", f"centre of mass of link {link}: coordinate normal to {u}->{v}", real=True),
+            self.sym(f"xG_{t}", f"centre of mass of link {link}: coordinate along {u}->{v}", real=True),
+            self.sym(f"yG_{t}", f"centre of mass of link {link}: coordinate normal to {u}->{v}", real=True),
             self.sym(f"k_{t}", f"radius of gyration of link {link} about its centre of mass", nonnegative=True),
         )
 
@@ -263,7 +263,7 @@ class BalanceModel:
             out[f"m_{t}"] = L.mass
             out[f"a_{t}"] = math.dist(self.pins[u].at, self.pins[v].at)
             p, q = local(L.com) if L.com is not None else (0.0, 0.0)
-            out[f"p_{t}"], out[f"q_{t}"] = p, q
+            out[f"xG_{t}"], out[f"yG_{t}"] = p, q
             out[f"k_{t}"] = math.sqrt(L.inertia / L.mass) if L.mass > 0 else 0.0
             for pin in self.link_pins(link)[2:]:
                 xi, eta = local(self.pins[pin].at)

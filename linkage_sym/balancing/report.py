@@ -47,7 +47,8 @@ from linkage_sym.model import Scene
 
 
 def latex_names(symbols) -> dict:
-    """LaTeX for the balancing symbols: ``M_{AB1}``, ``\\ddot{x}_{B}``, ``\\ddot{\\varphi}_{2}``."""
+    """LaTeX for the balancing symbols: ``M_{AB1}``, ``\\ddot{x}_{B}``, ``\\ddot{\\varphi}_{2}``,
+    the centre of mass ``x^{G}_{2}, y^{G}_{2}`` (as ``linkage-sym derive --latex`` prints it)."""
     out = {}
     for s in symbols:
         n = s.name
@@ -58,6 +59,9 @@ def latex_names(symbols) -> dict:
             out[s] = rf"\ddot{{{head[0]}}}_{{{rest}}}"
         elif head == "phidd":
             out[s] = rf"\ddot{{\varphi}}_{{{rest}}}"
+        elif head in ("xG", "yG") and rest:
+            sub = rest.replace("_", r"\_")
+            out[s] = f"{head[0]}^{{G}}_{{{sub}}}"
         elif head in ("xi", "eta"):
             out[s] = rf"\{head}_{{{rest.replace('_', ',')}}}"
         elif rest:

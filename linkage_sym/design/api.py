@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from linkage_sym.design.aliases import current_name, current_names
 from linkage_sym.design.errors import SweepError
 from linkage_sym.design.execute import TARGET_ENTRIES, Execution, Spec, compiled_state, run_chunks
 from linkage_sym.design.metrics import DEFAULT_METRICS, MetricPlan, check_choices, refuse_meshes
@@ -210,19 +211,23 @@ def default_metrics(scene, output=None) -> list:
 
 
 def _designs(scene, parameters) -> Designs:
-    """The designs ``parameters`` stands for (see :func:`sweep`)."""
+    """The designs ``parameters`` stands for (see :func:`sweep`), former parameter names
+    read as the current ones (:mod:`linkage_sym.design.aliases`)."""
     if isinstance(parameters, Designs):
-        return parameters
+        return current_names(parameters, scene)
     if isinstance(parameters, Mapping):
-        return grid(parameters)
+        return current_names(grid(parameters), scene)
     if isinstance(parameters, (str, os.PathLike)):
-        return read_samples(parameters)
+        return current_names(read_samples(parameters), scene)
     if not isinstance(parameters, MonteCarlo):
         raise SweepError("parameters", "a mapping of names to values (a grid), Designs, "
                                        "MonteCarlo or the path of a CSV file is expected, got "
                                        f"{type(parameters).__name__}")
     model, _ = compiled_state(Spec(scene, (), ("assemblable",), forces=True))
     base = {n: v for n, v in zip(model.names, model.params)}
+    if isinstance(parameters.tolerance, Mapping):
+        tolerance = {current_name(n, scene): v for n, v in parameters.tolerance.items()}
+        parameters = dataclasses.replace(parameters, tolerance=tolerance)
     for n in (parameters.tolerance or {}):
         if n not in base or n.startswith("theta0_"):
             check_names(Designs((n,), np.zeros((1, 1)), "monte-carlo"), model.names, "tolerance")

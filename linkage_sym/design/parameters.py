@@ -428,7 +428,7 @@ def _meaning(table, name: str) -> str:
         elif kind in ("m", "I"):
             for link in scene.link_names:
                 table.mass(link)
-        elif kind in ("p", "q"):
+        elif kind in ("xG", "yG"):
             for link in scene.links:
                 if link.com is not None:
                     table.com(link.name)

@@ -26,7 +26,7 @@ __all__ = ["column_label", "column_unit", "sweep_plots"]
 
 _PARAMETER_UNITS = {
     # the parameters' names (linkage_sym.structure.parameters): their prefix gives the unit
-    "l": "m", "x": "m", "y": "m", "p": "m", "q": "m", "xi": "m", "eta": "m", "r": "m",
+    "l": "m", "x": "m", "y": "m", "xG": "m", "yG": "m", "xi": "m", "eta": "m", "r": "m",
     "beta": "rad", "gamma": "rad", "delta": "rad", "phi": "rad", "epsilon": "rad",
     "theta0": "rad", "m": "kg", "I": "kg·m²", "g": "m/s²", "F": "N", "T": "N·m",
 }

@@ -13,7 +13,7 @@ the same topology through the same recipes, without SymPy.
 ``gamma_<J>``       slide direction of ``P`` joint ``J`` from the x-axis of ``links[0]``
 ``theta0_<link>``   angle of the link's x-axis ``u -> v`` in the assembly configuration
 ``delta_<J><T>``    angle of a driver's ``J -> toward`` from the x-axis of its link
-``m_<link>``        mass; ``p_<link>, q_<link>``: centre of mass in the link frame
+``m_<link>``        mass; ``xG_<link>, yG_<link>``: centre of mass in the link frame
 ``I_<link>``        moment of inertia about the centre of mass
 ``g_x, g_y``        gravity
 ``F_<i>x, F_<i>y``  force of load ``i`` (global components) at ``xi_<i>, eta_<i>``
@@ -209,8 +209,8 @@ class ParameterTable:
     def com(self, link: str):
         n = ident(link)
         return (
-            self._register(f"p_{n}", ("p", link), f"centre of mass of link {link}: x in the link frame", "length"),
-            self._register(f"q_{n}", ("q", link), f"centre of mass of link {link}: y in the link frame", "length"),
+            self._register(f"xG_{n}", ("p", link), f"centre of mass of link {link}: x in the link frame", "length"),
+            self._register(f"yG_{n}", ("q", link), f"centre of mass of link {link}: y in the link frame", "length"),
         )
 
     def gravity(self):

@@ -58,7 +58,8 @@ class ForceEquations:
     accelerations (``com_kin``) and the groups of the class that inherits it, and
     sets ``F``, ``E``, ``force_intermediates``, ``friction_laws`` (joint friction, where
     ``with_friction``: :mod:`linkage_sym.symbolic.friction`), ``spring_efforts`` (the
-    acting springs: :mod:`linkage_sym.symbolic.springs`), ``link_equations``,
+    acting springs: :mod:`linkage_sym.symbolic.springs`; ``spring_steps``: their named
+    quantities, a spring's length among them), ``link_equations``,
     ``force_blocks``, ``readable_force_blocks``, ``all_forces``, ``frame`` and
     ``readable_frame``.
     """
@@ -81,12 +82,13 @@ class ForceEquations:
             for i, v in enumerate((fx, fy, mz)):
                 ground[i] += v
 
-        self.spring_efforts = spring_loads(
+        self.spring_efforts, self.spring_steps = spring_loads(
             self, lambda link, f=None, lever=None, couple=0: _add(acc, link, f, lever, couple),
             on_ground)
-        self.force_intermediates += [(sym, e, f"{kind} of spring {name}")
-                                     for name, sym, e, kind, _ in self.spring_efforts]
-        named = {sym: e for sym, e, _ in self.force_intermediates}
+        self.force_intermediates += self.spring_steps
+        named: dict = {}  # each in the coordinates, rates and parameters alone
+        for sym, e, _ in self.force_intermediates:
+            named[sym] = e.xreplace(named)
         self.link_equations = {n: [e.xreplace(named) for e in row] for n, row in acc.items()}
         self._group_blocks(acc, named)
         # the frame with the springs' efforts named (a reader's form), and substituted

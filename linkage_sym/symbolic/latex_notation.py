@@ -24,6 +24,7 @@ from __future__ import annotations
 import re
 
 import sympy as sp
+from sympy.printing.latex import LatexPrinter
 
 from linkage_sym.symbolic.mechanism import MechanismEquations
 from linkage_sym.structure.parameters import ident
@@ -57,14 +58,14 @@ _GREEK = {
     "dy": r"\Delta y",
     "cphi": r"\cos\varphi",
     "sphi": r"\sin\varphi",
-    # a link's centre of mass in its frame: the parameters p_<link>, q_<link> print as
+    # a link's centre of mass in its frame: the parameters xG_<link>, yG_<link> print as
     # x^G, y^G, so that q means only a driver coordinate (q_A) in the equations
-    "p": r"x^{G}",
-    "q": r"y^{G}",
+    "xG": r"x^{G}",
+    "yG": r"y^{G}",
     "xQ": r"x^{Q}",
     "yQ": r"y^{Q}",
 }
-_LINK_PREFIXES = {"theta0", "theta", "omega", "alpha", "m", "I", "p", "q"}
+_LINK_PREFIXES = {"theta0", "theta", "omega", "alpha", "m", "I", "xG", "yG"}
 """Parameter prefixes followed by a link name (always upright)."""
 
 MAX_MATRIX = 8
@@ -150,6 +151,25 @@ def _label(s: str) -> str:
     return re.sub(r"[^A-Za-z0-9:.-]", "-", s)
 
 
+class _WrittenOrder(LatexPrinter):
+    """SymPy's LaTeX with every sum, also inside a product, a fraction or a function, written
+    positive terms first, as a person writes it (``x_D - x_B``, not ``-x_B + x_D``); the
+    terms keep SymPy's order otherwise.
+
+    Examples
+    --------
+    >>> xb, xd, y = sp.symbols("x_B x_D y")
+    >>> print(_WrittenOrder().doprint(sp.atan2(y, xd - xb) * (xd - xb - y)))
+    \\left(x_{D} - x_{B} - y\\right) \\operatorname{atan}_{2}{\\left(y,x_{D} - x_{B} \\right)}
+    """
+
+    def _as_ordered_terms(self, expr, order=None):
+        terms = super()._as_ordered_terms(expr, order=order)
+        if not isinstance(expr, sp.Add):
+            return terms
+        return sorted(terms, key=lambda t: t.could_extract_minus_sign())  # stable
+
+
 class Namer:
     """``symbol_names`` for :func:`sympy.latex`, from the equations' structure."""
 
@@ -203,9 +223,12 @@ class Namer:
             if s in springs:  # a spring's tension T or torque tau (contract part two)
                 head = r"\tau" if s.name.startswith("tau_") else "T"
                 names[s] = rf"{head}_{{{_sub(ident(springs[s]), upright=True)}}}"
-                continue
-            comp, link = s.name[2], s.name[4:]
-            names[s] = rf"a^{{G}}_{{{_sub(link, upright=True)},{comp}}}"
+            elif s.name.startswith(("aGx_", "aGy_")):
+                comp, link = s.name[2], s.name[4:]
+                names[s] = rf"a^{{G}}_{{{_sub(link, upright=True)},{comp}}}"
+            else:  # a spring's named length L_k and its components dx_k, dy_k
+                pre, _, spring = s.name.partition("_")
+                names[s] = rf"{_GREEK.get(pre, pre)}_{{{_sub(spring, upright=True)}}}"
         for s, _ in eqs.intermediates:
             base = s.name.rstrip("'")
             names[s] = self.param(base) + "'" * (len(s.name) - len(base))
@@ -227,7 +250,7 @@ class Namer:
         for s in getattr(expr, "free_symbols", ()):
             if s not in self.names:  # pragma: no cover - every symbol is named above
                 self.names[s] = self.param(s.name)
-        return sp.latex(expr, symbol_names=self.names).replace(
+        return _WrittenOrder({"symbol_names": self.names}).doprint(expr).replace(
             r"\operatorname{atan}_{2}", r"\operatorname{atan2}")
 
     def terms(self, expr) -> list:

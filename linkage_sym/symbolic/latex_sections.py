@@ -46,6 +46,8 @@ def _unit_of_intermediate(sym) -> str:
         return "1"
     if pre in ("aGx", "aGy"):
         return r"m/s$^2$"
+    if pre in ("T", "tau"):  # a spring's tension or torque
+        return "N" if pre == "T" else r"N\,m"
     return "m"
 
 
@@ -331,8 +333,10 @@ def _forces(doc, nm, eqs) -> None:
             r"The d'Alembert forces use the accelerations $a^{G}$ of the centres of mass, "
             "from the positions and rates above:" if not eqs.spring_efforts else
             r"The d'Alembert forces use the accelerations $a^{G}$ of the centres of mass, "
-            r"and the springs and dampers pull with the tensions $T$ (a joint spring: the "
-            r"torque $\tau$ on its joint's second link), from the positions and rates above:"
+            r"and the springs and dampers pull with the tensions $T$ along their lengths $L$ "
+            r"(each named once from its components $\Delta x, \Delta y$, as a dyad's $d$; a "
+            r"joint spring: the torque $\tau$ on its joint's second link), from the positions "
+            r"and rates above:"
         )
         rows, keys = [], []
         for sym, e, _ in eqs.force_intermediates:

@@ -122,7 +122,7 @@ def _forces(eqs, w: int) -> list[str]:
     if getattr(eqs, "spring_efforts", None):  # contract part two: known loads of the rates
         out += [""] + wrap("## springs and dampers ", "(T_k: a spring's tension; tau_k: a joint "
                            "spring's torque on its joint's links[1])", w)
-        for _, sym, e, _, _ in eqs.spring_efforts:
+        for sym, e, _ in eqs.spring_steps:  # a spring's length named, as a dyad's d is
             out += wrap(f"{sym} = ", str(e), w)
     out += ["", "## frame force x, y and moment about the origin"]
     for name, e in zip(("F_frame_x", "F_frame_y", "M_frame"), eqs.readable_frame):

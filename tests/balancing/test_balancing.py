@@ -148,11 +148,11 @@ def _linear_rows(conditions, links, values):
     """Coefficient rows of conditions that are linear in (m_j, m_j p_j, m_j q_j)."""
     subs, unknowns = {}, []
     for l in links:
-        m, p, q = sp.symbols(f"m_{l} p_{l} q_{l}", real=True)
+        m, p, q = sp.symbols(f"m_{l} xG_{l} yG_{l}", real=True)
         S, T = sp.symbols(f"S_{l} T_{l}")
         mm = sp.Symbol(f"m_{l}", positive=True)
-        subs.update({p: S / m, q: T / m, sp.Symbol(f"p_{l}", real=True): S / mm,
-                     sp.Symbol(f"q_{l}", real=True): T / mm})
+        subs.update({p: S / m, q: T / m, sp.Symbol(f"xG_{l}", real=True): S / mm,
+                     sp.Symbol(f"yG_{l}", real=True): T / mm})
         unknowns += [mm, S, T]
     rows = []
     for c in conditions:
@@ -191,7 +191,7 @@ def test_fourbar_conditions_are_berkof_lowen():
     fb = force_balance(load_scene(FOURBAR))
     a1, a2, a3 = sp.symbols("a_1 a_2 a_3", positive=True)
     m1, m2, m3 = sp.symbols("m_1 m_2 m_3", positive=True)
-    p1, q1, p2, q2, p3, q3 = sp.symbols("p_1 q_1 p_2 q_2 p_3 q_3", real=True)
+    p1, q1, p2, q2, p3, q3 = sp.symbols("xG_1 yG_1 xG_2 yG_2 xG_3 yG_3", real=True)
     bl = [m1 * p1 - m2 * a1 / a2 * (p2 - a2), m1 * q1 - m2 * a1 / a2 * q2,
           m3 * p3 + m2 * a3 / a2 * p2, m3 * q3 + m2 * a3 / a2 * q2]
     vals = {a1: sp.Rational(3, 7), a2: sp.Rational(11, 5), a3: sp.Rational(13, 9)}
@@ -205,8 +205,8 @@ def test_song_wang_sixbar_conditions_are_its_eq14():
     fb = force_balance(load_example("song_wang_sixbar"))
     m = {i: sp.Symbol(f"m_{i}", positive=True) for i in range(1, 6)}
     a = {i: sp.Symbol(f"a_{i}", positive=True) for i in range(1, 6)}
-    p = {i: sp.Symbol(f"p_{i}", real=True) for i in range(1, 6)}
-    q = {i: sp.Symbol(f"q_{i}", real=True) for i in range(1, 6)}
+    p = {i: sp.Symbol(f"xG_{i}", real=True) for i in range(1, 6)}  # the paper's p_i, q_i
+    q = {i: sp.Symbol(f"yG_{i}", real=True) for i in range(1, 6)}
     eq14 = [
         m[1] * q[1] / a[1] - m[2] * q[2] / a[2],
         m[4] * q[4] / a[4] + m[5] * q[5] / a[5],
@@ -278,16 +278,16 @@ def test_song_wang_conditions_reproduce_eq13_15_18():
     assert dict(b.moment.merged) == {"D_AB_4": ("D_BC_1",), "D_BC_4": ("D_DC_4", "D_CE_1"),
                                      "D_CE_4": ("D_FE_4",)}
     names = [c.name for c in b.moment_conditions]
-    assert {"q_2", "q_4"} <= set(names)  # eq. 13
+    assert {"yG_2", "yG_4"} <= set(names)  # eq. 13 (the paper's q_2 = q_4 = 0)
     assert not b.pin_residuals  # force balance cancels every pin share: eq. 18 holds
-    X = {i: sp.Symbol(f"m_{i}", positive=True) * (sp.Symbol(f"p_{i}", real=True) ** 2
+    X = {i: sp.Symbol(f"m_{i}", positive=True) * (sp.Symbol(f"xG_{i}", real=True) ** 2
          + sp.Symbol(f"k_{i}", nonnegative=True) ** 2
-         - sp.Symbol(f"a_{i}", positive=True) * sp.Symbol(f"p_{i}", real=True)) for i in range(1, 6)}
+         - sp.Symbol(f"a_{i}", positive=True) * sp.Symbol(f"xG_{i}", real=True)) for i in range(1, 6)}
     eq18 = -sum(X[i] * sp.Symbol(f"phidd_{i}", real=True) for i in range(1, 6))
     assert sp.expand(b.remaining - eq18) == 0
     # eq. 15: with q2 = q4 = 0 the force conditions give q1 = q3 = q5 = 0
     for i in (1, 3, 5):
-        assert b.force_solution[sp.Symbol(f"q_{i}", real=True)] == 0
+        assert b.force_solution[sp.Symbol(f"yG_{i}", real=True)] == 0
     # the input crank turns at constant speed: no X condition for it
     assert "X_1" not in names and {"X_2", "X_3", "X_4", "X_5"} <= set(names)
 
@@ -328,7 +328,7 @@ def test_cli_balance_json(tmp_path):
                 "force_balance_conditions", "moment_balance_conditions", "series", "latex"):
         assert key in d
     assert d["link_frames"]["3"] == {"u": "D", "v": "C"} and d["link_frames"]["4"]["u"] == "C2"
-    for s in ("m_1", "p_1", "q_1", "k_1", "a_1"):
+    for s in ("m_1", "xG_1", "yG_1", "k_1", "a_1"):
         assert s in d["symbols"]
     exprs = (d["force_balance_conditions"] + d["moment_balance_conditions"]
              + list(d["mass_parameters"].values()) + [d["shaking_moment"]["assembled"],

@@ -202,8 +202,8 @@ def test_balance_prints_a_summary_not_the_json(tmp_path, capsys):
     assert len(out) < 3000 and '"symbols"' not in out
     lines = out.splitlines()
     assert f"wrote {bal}" in lines and "force balance conditions (each = 0):" in lines
-    assert "  Re_crank: m_coupler + m_crank*p_crank/a_crank - m_coupler*p_coupler/a_coupler" in lines
-    assert any(line.startswith("  q_coupler: cancels") for line in lines)
+    assert "  Re_crank: m_coupler + m_crank*xG_crank/a_crank - m_coupler*xG_coupler/a_coupler" in lines
+    assert any(line.startswith("  yG_coupler: cancels") for line in lines)
     cw = next(line for line in lines if line.startswith("counterweights balancing the force: "))
     written = json.loads(bal.read_text())
     for link in ("crank", "rocker"):

@@ -20,7 +20,7 @@ CRANK = str(example_path("crank_rocker"))
 def test_list_prints_names_values_and_meanings(capsys):
     assert main(["sweep", CRANK, "--list"]) == 0
     out = capsys.readouterr().out
-    assert "l_AB        0.024" in out and "distance from joint A to B on link crank" in out
+    assert "l_AB         0.024" in out and "distance from joint A to B on link crank" in out
     assert "m_coupler" in out and "theta0" not in out
 
 

@@ -208,7 +208,8 @@ def test_the_four_bar_has_no_equation_longer_than_250_characters(documents):
                   r"x_{C} &= x_{B} +", r"a^{G}_{\mathrm{coupler},x} &="):
         assert piece in doc, piece
     # the square root of the half-chord is written once, not in every angle
-    assert doc.count(r"\sqrt{\left(- d_{2}") == 1
+    # (Heron's factor written positive terms first: l_BC + l_CD - d_2, not -d_2 + l_BC + l_CD)
+    assert doc.count(r"\sqrt{\left(l_{BC} + l_{CD} - d_{2}\right)") == 1
 
 
 @pytest.mark.slow

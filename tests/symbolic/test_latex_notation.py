@@ -63,4 +63,61 @@ def test_q_is_only_a_driver_coordinate(crank_rocker):
     assert not any(s.startswith("$p_") for s in meanings), meanings
     assert meanings[r"$x^{G}_{\mathrm{coupler}}$"].startswith("centre of mass of link coupler")
     assert len(set(meanings)) == len(table.splitlines()[1:])  # no symbol printed twice
-    assert {"p_coupler", "q_coupler"} <= {s.name for s in eqs.parameters}  # the names kept
+    assert {"xG_coupler", "yG_coupler"} <= {s.name for s in eqs.parameters}  # the text's names
+
+
+def _groups(tex: str):
+    """The text inside every ``{...}`` and ``\\left( ... \\right)`` of ``tex``."""
+    opens = []
+    i = 0
+    while i < len(tex):
+        if tex.startswith(r"\left(", i):
+            opens.append(i + len(r"\left("))
+            i += len(r"\left(")
+        elif tex.startswith(r"\right)", i):
+            yield tex[opens.pop():i]
+            i += len(r"\right)")
+        elif tex[i] == "{" and tex[i - 1] != "\\":
+            opens.append(i + 1)
+            i += 1
+        elif tex[i] == "}" and tex[i - 1] != "\\":
+            yield tex[opens.pop():i]
+            i += 1
+        else:
+            i += 1
+
+
+def _top_level_terms(group: str) -> list[list[str]]:
+    """Each comma-separated argument of ``group`` split at its top-level ``+`` and ``-``."""
+    args, terms, depth, cur = [], [], 0, ""
+    for tok in re.split(r"(\\left\(|\\right\)|[{}]| [+-] |,)", group):
+        if tok in (r"\left(", "{"):
+            depth += 1
+        elif tok in (r"\right)", "}"):
+            depth -= 1
+        elif depth == 0 and tok in (" + ", " - "):
+            terms.append(cur)
+            cur = tok.strip()
+            continue
+        elif depth == 0 and tok == ",":
+            args.append(terms + [cur])
+            terms, cur = [], ""
+            continue
+        cur += tok
+    return args + [terms + [cur]]
+
+
+@pytest.mark.parametrize("name", ["crank_rocker", "slider_crank_offset", "watt_sixbar"])
+def test_an_inner_sum_is_written_positive_terms_first(name):
+    """Inside a product, a fraction, a root or a function too: ``x_C - x_B``, not
+    ``-x_B + x_C`` (no sum at any depth starts with a minus and goes on with a plus)."""
+    doc = latex_document(derive(load_example(name), forces=True))
+    assert r"\operatorname{atan2}{\left(y_{C} - y_{B},x_{C} - x_{B} \right)}" in doc or name != "crank_rocker"
+    wrong = []
+    for block in re.findall(r"\\begin\{(?:align\*?|equation)\}(.*?)\\end\{", doc, re.S):
+        for group in _groups(block):
+            for terms in _top_level_terms(group):
+                first = terms[0].strip()
+                if first.startswith("-") and any(t.startswith("+") for t in terms[1:]):
+                    wrong.append(group[:120])
+    assert not wrong, wrong[:5]

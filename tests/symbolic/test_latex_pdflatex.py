@@ -25,13 +25,10 @@ PDFLATEX = shutil.which("pdflatex")
 TOLERANCE_PT = 1.0
 """The largest overfull box allowed, in TeX points (TeX's own \\hfuzz is 0.1 pt)."""
 
-KNOWN_WIDE = {
-    # left to do: merged with springs in the symbolic layer just before the deadline
-    "crank_rocker_spring": "a spring's length is one square root of a long sum, a single term "
-                           "the rows cannot break; it should be a named intermediate, as a "
-                           "dyad's distance d is",
-}
-"""Examples known to overflow, and why: their overfull boxes are reported, not failed."""
+KNOWN_WIDE: dict[str, str] = {}
+"""Examples known to overflow, and why: their overfull boxes are reported, not failed (none:
+crank_rocker_spring's spring length, once one unbreakable square root of a long sum, is named
+``L_k1`` as a dyad's distance ``d`` is)."""
 
 OVERFULL = re.compile(r"^Overfull \\([hv])box \(([0-9.]+)pt too (?:wide|high)\)(.*)$", re.M)
 

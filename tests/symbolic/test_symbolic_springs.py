@@ -66,10 +66,14 @@ def test_derive_prints_the_springs():
     text = _plain_text(eqs)
     assert "## springs and dampers" in text
     assert "\ntau_k2 = -k_k2*(theta0_rocker - theta_f_k2 - theta_rocker)\n" in text
-    assert "\nT_k1 = c_k1*(" in text
+    # the spring's length named once, as a dyad's d is, then used (issue 31)
+    assert "\nL_k1 = sqrt(dx_k1**2 + dy_k1**2)\n" in text
+    assert "\nT_k1 = k_k1*(-L0_k1 + L_k1) + c_k1*(" in text
     tex = latex_document(eqs, symbols=True)
     assert r"\tau_{\mathrm{k2}} &= - k_{k2} \left(\theta^{0}_{\mathrm{rocker}} - " in tex
     assert r"T_{\mathrm{k1}} &= " in tex
+    assert tex.count(r"L_{\mathrm{k1}} &= \sqrt{\Delta x_{\mathrm{k1}}^{2} + \Delta y_{\mathrm{k1}}^{2}}") == 1
+    assert tex.count(r"\sqrt") == 3  # the spring's length, the dyad's d and h: each once
     assert r"$k_{k1}$ & stiffness of spring k1" in tex
     assert tex.count(r"\begin{align}") == tex.count(r"\end{align}")
     names = [s.name for s in eqs.parameters]
