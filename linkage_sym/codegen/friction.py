@@ -82,10 +82,13 @@ class NumpyOps:
 
     tol = 1e-12
     nan = np.nan
-    sqrt, abs, sign, where = staticmethod(np.sqrt), staticmethod(np.abs), staticmethod(np.sign), \
-        staticmethod(np.where)
-    and_, or_, not_ = staticmethod(np.logical_and), staticmethod(np.logical_or), \
-        staticmethod(np.logical_not)
+    sqrt = staticmethod(np.sqrt)
+    abs = staticmethod(np.abs)
+    sign = staticmethod(np.sign)
+    where = staticmethod(np.where)
+    and_ = staticmethod(np.logical_and)
+    or_ = staticmethod(np.logical_or)
+    not_ = staticmethod(np.logical_not)
     finite = staticmethod(np.isfinite)
 
     @staticmethod
@@ -219,10 +222,26 @@ def _reaction_columns(ev, f) -> list:
 
 def solve_with_friction(ev, pts, take, P, ops) -> FrictionSolution:
     """Reactions, efforts and frictions of every group, from the last one back (see the
-    module docstring): ``ev`` an evaluator, ``pts`` its ``points`` outputs, ``take`` the
-    entries' selection of each, ``P`` the parameters they were evaluated with (the
-    frictions' coefficients and pin radii are read there), ``ops`` the backend's
-    arithmetic."""
+    module docstring).
+
+    Parameters
+    ----------
+    ev : Evaluator
+        The generated functions and their backend (:meth:`dense_solve`, :meth:`force_zeros`).
+    pts : list
+        Its ``points`` outputs.
+    take : callable
+        The entries' selection of each output (the steps solved).
+    P : list
+        The parameters the outputs were evaluated with: the frictions' coefficients and pin
+        radii are read there (per entry in a design sweep).
+    ops : NumpyOps or the mpmath backend's
+        The arithmetic.
+
+    Returns
+    -------
+    FrictionSolution
+    """
     art = ev.art
     sol = FrictionSolution(F=[])
     signs = _signs(ev, pts, take, ops, sol)
