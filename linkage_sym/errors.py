@@ -134,9 +134,10 @@ def refuse_symbolic_unsupported(scene, friction_derived: bool = False) -> None:
 
     The symbolic method (derived equations, their compiled and arbitrary-precision
     runs, and what builds on them: LaTeX, balancing conditions, design sweeps)
-    does not support cam contacts yet (issue 20), nor joint friction (issue 29: a
-    joint's ``friction`` when ``effects.friction`` is true; :func:`linkage_sym.symbolic.derive`
-    writes its terms out, the compiled runtime does not solve them); the numeric methods do.
+    does not support cam contacts yet (issue 20); the numeric methods do.  Joint friction
+    (issue 29: a joint's ``friction`` when ``effects.friction`` is true) is refused only
+    where a caller does not write its terms out: :func:`linkage_sym.symbolic.derive` does,
+    and the compiled runtime solves its laws (:mod:`linkage_sym.codegen.friction`).
     Every such joint is named (springs and dampers are derived:
     :mod:`linkage_sym.symbolic.springs`).
     ``friction_derived``: the caller writes the friction's terms out

@@ -45,7 +45,7 @@ import numpy as np
 
 from linkage_sym.structure.recipes import Recipe
 
-__all__ = ["Artifact", "ClosedStep", "ForceBlock", "Group", "NewtonStep", "NamedParameter",
+__all__ = ["Artifact", "ClosedStep", "ForceBlock", "FrictionJoint", "Group", "NewtonStep", "NamedParameter",
            "Step"]
 
 
@@ -157,6 +157,24 @@ class ForceBlock:
 
 
 @dataclass(frozen=True)
+class FrictionJoint:
+    """A joint whose friction acts (contract part two): ``kind`` ``"R"`` or ``"P"``,
+    ``force`` the index of its friction (``Mf_<J>``, ``Ff_<J>``) among the force names,
+    ``coefficient`` and ``radius`` (``None`` for a ``P`` joint) the indices of its
+    coefficient and pin radius in ``P`` (:mod:`linkage_sym.codegen.friction`)."""
+
+    joint: str
+    kind: str
+    force: int
+    coefficient: int
+    radius: int | None
+
+    def to_dict(self) -> dict:
+        return {"joint": self.joint, "kind": self.kind, "force": self.force,
+                "coefficient": self.coefficient, "radius": self.radius}
+
+
+@dataclass(frozen=True)
 class NamedParameter:
     """An entry of the ``P`` argument: its symbol's name and its recipe."""
 
@@ -177,6 +195,9 @@ class Artifact:
     :attr:`flanks`.  ``layout`` maps a key (``"joint:<name>:<level>"``, ``"origin:..."``,
     ``"com:..."``, ``"slide:<joint>"``, ``"mesh:<joint>"``, ``"A:<group>"``, ``"b:..."``,
     ``"C:..."``) to its rows ``[a, b)`` of the ``points`` function's outputs.
+    ``friction``: the joints whose friction acts (:class:`FrictionJoint`), whose
+    frictions follow the reactions and efforts in :attr:`force_names` (and in the force
+    blocks' ``C``); their relative rates are the ``points`` outputs under ``"frate:<joint>"``.
     """
 
     scene: str
@@ -197,6 +218,7 @@ class Artifact:
     functions: dict
     key: str | None = None
     signature: dict | None = None
+    friction: tuple = ()
     _derived: dict = field(default_factory=dict, repr=False, compare=False)
 
     # -- the cache's edge ----------------------------------------------------------------
@@ -223,7 +245,8 @@ class Artifact:
             forces=tuple(ForceBlock(tuple(f["unknowns"]), _pairs(f["A"]), _pairs(f["C"]))
                          for f in d["forces"]),
             force_names=tuple(d["force_names"]), functions=dict(d["functions"]),
-            key=d.get("key"), signature=d.get("signature"))
+            key=d.get("key"), signature=d.get("signature"),
+            friction=tuple(FrictionJoint(**f) for f in d.get("friction", ())))
 
     def to_dict(self) -> dict:
         """The JSON the cache stores (:meth:`from_dict` reads it back)."""
@@ -240,6 +263,8 @@ class Artifact:
             "forces": [f.to_dict() for f in self.forces],
             "force_names": list(self.force_names), "functions": dict(self.functions),
         }
+        if self.friction:  # only where friction acts: other artifacts keep their JSON
+            out["friction"] = [f.to_dict() for f in self.friction]
         if self.key is not None:
             out["key"] = self.key
         if self.signature is not None:

@@ -112,7 +112,16 @@ def signature(scene: Scene) -> dict:
         "springs": [[k.name, list(k.links or ()), k.joint, k.damping != 0.0]
                     for k in scene.active_springs],
         "outputs": sorted(scene.outputs),
+        **_friction_signature(scene),
     }
+
+
+def _friction_signature(scene: Scene) -> dict:
+    """The joints whose friction acts (contract part two), where any does: their friction
+    enters the force blocks; a scene without it keeps the signature it had."""
+    names = [j.name for j in scene.joints if scene.effects.friction and j.friction is not None
+             and j.friction.coefficient > 0]
+    return {"friction": names} if names else {}
 
 
 def key_of(sig: dict) -> str:

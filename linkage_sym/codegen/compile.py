@@ -30,7 +30,7 @@ import keyword
 import sympy as sp
 
 from linkage_sym.codegen import cache
-from linkage_sym.codegen.artifact import Artifact
+from linkage_sym.codegen.artifact import Artifact, FrictionJoint
 from linkage_sym.codegen.runtime import CompiledMechanism, load_compiled
 from linkage_sym.errors import refuse_symbolic_unsupported
 from linkage_sym.model import Scene
@@ -208,9 +208,19 @@ class _Builder:
         self.scene, self.printer = scene, printer
         self.stages = needed_stages(scene)
         self.forces = "forces" in self.stages
-        self.eqs = eqs = MechanismEquations(scene, symbolic=True, forces=self.forces)
+        # joint friction (contract part two): its terms derived (where it acts and forces are
+        # asked for), its laws solved at run time (codegen.friction)
+        self.eqs = eqs = MechanismEquations(scene, symbolic=True, forces=self.forces,
+                                            friction=True)
+        laws = eqs.friction_laws
+        arms = [[eqs.sym(n) for n in eqs.table.friction(law.joint) if n is not None]
+                for law in laws]  # each joint's coefficient (and pin radius) in P
         self.p_syms = eqs.parameters + eqs.sigmas + eqs.flanks
-        self.F = eqs.all_forces if self.forces else []
+        self.F = (eqs.all_forces + [law.friction for law in laws]) if self.forces else []
+        self.friction = [FrictionJoint(law.joint, law.kind, self.F.index(law.friction),
+                                       self.p_syms.index(a[0]),
+                                       self.p_syms.index(a[1]) if len(a) > 1 else None)
+                         for law, a in zip(laws, arms)]
         cx = [sp.Symbol("cos_" + s.name, real=True) for s in eqs.x]
         sx = [sp.Symbol("sin_" + s.name, real=True) for s in eqs.x]
         self.args = [eqs.x, eqs.xd, eqs.xdd, eqs.q, eqs.qd, eqs.qdd, self.F, self.p_syms, cx, sx]
@@ -361,7 +371,11 @@ class _Builder:
         force_layout = []
         if self.forces:
             fi = {s: i for i, s in enumerate(self.F)}
+            mus = [self.F[f.force] for f in self.friction]
             for ge, (Ag, bg, Cg, later) in zip(eqs.groups, eqs.force_blocks):
+                if mus:  # the frictions as known forces: b_g - C_g F_later - Cf_g mu
+                    Cg, later = Cg.row_join(-bg.jacobian(mus)), list(later) + mus
+                    bg = bg.xreplace({m: 0 for m in mus})
                 pa, pc = _pattern(Ag), _pattern(Cg)
                 k = ge.index
                 put(f"A:{k}", [Ag[i, j] for i, j in pa])
@@ -369,6 +383,8 @@ class _Builder:
                 put(f"C:{k}", [Cg[i, j] for i, j in pc])
                 force_layout.append({"unknowns": [fi[s] for s in ge.forces], "A": pa,
                                      "C": [(i, fi[later[j]]) for i, j in pc]})
+            for f in self.friction:  # the relative rates that give each friction its sign
+                put(f"frate:{f.joint}", friction_rates(eqs, f))
             for name, _, effort, _, value in eqs.spring_efforts:  # each spring's record
                 put(f"spring:{name}", [value, effort])
             self.add("frame", list(eqs.frame), "frame force x, y and moment about the origin", True)
@@ -400,9 +416,31 @@ class _Builder:
             "forces": force_layout,
             "force_names": _names(self.F),
             "functions": self.funcs,
+            "friction": [f.to_dict() for f in self.friction],
             "key": key,
             "signature": signature,
         })
+
+
+def friction_rates(eqs, f) -> list:
+    """The ``points`` outputs ``"frate:<joint>"`` of friction joint ``f``: for every moving
+    link in scene order, its angular velocity and acceleration (an ``R`` joint), or the
+    velocity and acceleration ``vx, vy, ax, ay`` of its point at the joint (a ``P``
+    joint): the relative motion and the sizes it is compared with
+    (:mod:`linkage_sym.codegen.friction`)."""
+    out = []
+    p = eqs.joint_kin[f.joint][0]
+    for n in eqs.scene.link_names:
+        c = eqs.x.index(eqs.th[n])
+        w, al = eqs.xd[c], eqs.xdd[c]
+        if f.kind == "R":
+            out += [w, al]
+            continue
+        o, vo, ao = eqs.origin_kin[n]
+        rx, ry = p[0] - o[0], p[1] - o[1]
+        out += [vo[0] - w * ry, vo[1] + w * rx,
+                ao[0] - al * ry - w * w * rx, ao[1] + al * rx - w * w * ry]
+    return out
 
 
 def _jsonable(recipe):
@@ -420,7 +458,7 @@ def compile_mechanism(scene: Scene, use_cache: bool = True) -> CompiledMechanism
     >>> round(float(result.forces.driving["A"][0]), 4)  # as the numeric solver
     -0.0755
     """
-    refuse_symbolic_unsupported(scene)
+    refuse_symbolic_unsupported(scene, friction_derived=True)  # friction: solved at run time
     if use_cache:
         got = load_compiled(scene)
         if got is not None:

@@ -35,6 +35,7 @@ import numpy as np
 
 from linkage_sym.codegen.artifact import Artifact
 from linkage_sym.codegen.blocks import BlockSystem, full
+from linkage_sym.codegen.friction import NumpyOps, solve_with_friction
 from linkage_sym.numeric.forces.loads import load_factor
 from linkage_sym.numeric.kinematics.loci import Size, clamp_tangent
 from linkage_sym.structure.parameters import ident
@@ -147,6 +148,21 @@ class Evaluator(ABC):
             for u, s in zip(blk.unknowns, self.dense_solve(blk.A, A, b)):
                 F[u] = s
         return F
+
+    def forces_and_friction(self, pts, take=lambda v: v, P=None):
+        """:meth:`solve_forces` with the joints' friction where it acts: ``(F, friction)``,
+        ``friction`` the :class:`~linkage_sym.codegen.friction.FrictionSolution` (``None``
+        without friction); ``P`` the parameters (:attr:`params` unless given) from which
+        the frictions' coefficients and pin radii are read."""
+        if not self.art.friction:
+            return self.solve_forces(pts, take), None
+        sol = solve_with_friction(self, pts, take, self.params if P is None else P,
+                                  self.friction_ops())
+        return sol.F, sol
+
+    def friction_ops(self):
+        """The arithmetic of the friction's solve on this backend's numbers."""
+        return NumpyOps
 
     def pulling(self, F) -> list:
         """The gear meshes (indices into ``art.flanks``) whose tooth load pulls: ``Fn < 0``

@@ -19,7 +19,7 @@ import numpy as np
 from linkage_sym.numeric.forces.loads import load_factor
 from linkage_sym.structure.recipes import Numbers
 
-__all__ = ["DOUBLE", "MAX_DIGITS", "MIN_DIGITS", "MpBlocks", "MpNumbers", "NotReal",
+__all__ = ["DOUBLE", "MAX_DIGITS", "MIN_DIGITS", "MpBlocks", "MpNumbers", "MpOps", "NotReal",
            "driver_numbers", "driver_step_mp", "factor_mp", "mp_namespace", "parse_precision",
            "real", "real_sqrt"]
 
@@ -215,3 +215,67 @@ class MpBlocks:
             for j in range(c1 - c0):
                 x[c0 + j] = sol[j]
         return x
+
+
+class MpOps:
+    """The arithmetic of the joints' friction solve (:mod:`linkage_sym.codegen.friction`) in
+    mpmath: one step, its numbers ``mpf`` and its masks booleans; Newton carried to the
+    working precision (a step below ``10^(2 - digits)`` of the frictions' size)."""
+
+    nan = mp.nan
+    sqrt, sign, finite = staticmethod(mp.sqrt), staticmethod(mp.sign), staticmethod(mp.isfinite)
+    abs = staticmethod(abs)
+
+    def __init__(self, digits: int):
+        self.tol = mp.mpf(10) ** (2 - digits)
+
+    @staticmethod
+    def where(mask, a, b):
+        return a if mask else b
+
+    @staticmethod
+    def and_(a, b) -> bool:
+        return bool(a) and bool(b)
+
+    @staticmethod
+    def or_(a, b) -> bool:
+        return bool(a) or bool(b)
+
+    @staticmethod
+    def not_(a) -> bool:
+        return not a
+
+    @staticmethod
+    def const(value, like):
+        return value
+
+    @staticmethod
+    def any(mask) -> bool:
+        return bool(mask)
+
+    @staticmethod
+    def maximum(values):
+        return max(values)
+
+    @staticmethod
+    def ratio(a, b):
+        """``a / b`` where ``b > 0``, else 0."""
+        return a / b if b > 0 else mp.mpf(0)
+
+    @staticmethod
+    def step(J, g, live):
+        """``(det J > 0, -J^-1 g)`` (the step 0 where not ``live`` or not positive)."""
+        M = mp.matrix(J)
+        good = bool(mp.det(M) > 0)
+        if not (good and live):
+            return good, [mp.mpf(0)] * len(g)
+        d = mp.lu_solve(M, mp.matrix(g))
+        return good, [-d[i] for i in range(len(g))]
+
+    @staticmethod
+    def null_joints(J, locked) -> dict:
+        """``{0: indices of the frictions in the singular direction of J}`` where locked."""
+        if not locked:
+            return {}
+        v = np.abs(np.linalg.svd(np.array([[float(x) for x in row] for row in J]))[2][-1])
+        return {0: [k for k, x in enumerate(v) if x >= 0.1 * v.max()]}

@@ -67,6 +67,7 @@ from linkage_sym.codegen import cache
 from linkage_sym.codegen.artifact import Artifact
 from linkage_sym.codegen.compile import build_artifact, compile_mechanism
 from linkage_sym.codegen.evaluator import Evaluator, frame_motion, load_functions, rigid_point
+from linkage_sym.codegen.precise_friction import friction_record, friction_targets
 from linkage_sym.codegen.runtime import CompiledMechanism
 from linkage_sym.model import Scene
 from linkage_sym.numeric.results import accuracy
@@ -79,6 +80,7 @@ from linkage_sym.codegen.mp_numbers import (
     NotReal,
     driver_numbers,
     driver_step_mp,
+    MpOps,
     factor_mp,
     mp_namespace,
     parse_precision,
@@ -282,6 +284,9 @@ class PreciseMechanism(Evaluator):
     def force_zeros(self, like):
         return [mp.mpf(0)] * len(self.art.force_names)
 
+    def friction_ops(self):
+        return MpOps(self.digits)
+
     def positions(self, Q, x_float):
         """Coordinates (list of mpf) at driver values ``Q`` (mpf), near ``x_float``."""
         return self.walk([None] * self.m, _StepContext(self.params, Q, x_float))
@@ -327,7 +332,7 @@ class PreciseMechanism(Evaluator):
         pts = self.call("points", P, X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
         rec = {"x": X, "xd": XD, "xdd": XDD, "pts": pts, "ratio": ratio}
         if rates and "forces" in stages:
-            F = self.solve_forces(pts)
+            F, fric = self.forces_and_friction(pts)  # with the joints' friction where it acts
             # a gear mesh's tooth load must press: the other flank where it pulls, as the
             # float64 runtime does (CompiledMechanism._forces)
             at, n = self.art.flank_at, len(self.art.flanks)
@@ -337,8 +342,10 @@ class PreciseMechanism(Evaluator):
                     break
                 P = self.with_flanks(P, [-f if p else f for f, p in zip(P[at:at + n], pull)])
                 pts = self.call("points", P, X=X, XD=XD, XDD=XDD, Q=Q, QD=QD, QDD=QDD, CS=CS)
-                F = self.solve_forces(pts)
+                F, fric = self.forces_and_friction(pts)
             rec["pts"], rec["F"] = pts, F
+            if fric is not None:  # and the efforts with the friction left out
+                rec["friction"], rec["ideal"] = fric, self.solve_forces(pts)
             rec["frame"] = self.call("frame", P, X=X, XD=XD, F=F, CS=CS)
         return rec
 
@@ -475,6 +482,9 @@ class PreciseMechanism(Evaluator):
             # each acting spring's length or angle and its effort (symbolic.springs)
             rec["springs"] = {k.name: tuple(art.rows(pts, f"spring:{k.name}"))
                               for k in scene.active_springs}
+            if scene.effects.friction:
+                rec.update(friction_record(self, s.get("friction"), s.get("ideal", s["F"]),
+                                           driving))
         return rec
 
     def _round_into(self, res, records, stages):
@@ -497,6 +507,7 @@ class PreciseMechanism(Evaluator):
             targets += [(arr, lambda r, n=name, i=i: r["springs"][n][i], True)
                         for name, rec in fo.springs.items()
                         for i, arr in enumerate(rec.values())]
+            targets += friction_targets(fo)
         for arr, get, rate in targets:
             if not arr.flags.writeable:
                 continue  # pragma: no cover - results own their arrays

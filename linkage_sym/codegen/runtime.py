@@ -38,6 +38,8 @@ from linkage_sym.codegen import cache
 from linkage_sym.codegen.artifact import Artifact, ClosedStep
 from linkage_sym.codegen.blocks import full
 from linkage_sym.codegen.evaluator import NumpyEvaluator, frame_motion, load_functions, rigid_point
+from linkage_sym.codegen.force_records import force_records
+from linkage_sym.codegen.friction import mark_locked
 from linkage_sym.codegen.path import GroupPathProblem, PathContext
 from linkage_sym.errors import SceneError
 from linkage_sym.numeric.results import accuracy
@@ -48,9 +50,8 @@ from linkage_sym.numeric.kinematics.constraints import jacobian
 from linkage_sym.numeric.kinematics.joint_rows import scene_constraints
 from linkage_sym.numeric.kinematics.gears import pulling_note
 from linkage_sym.numeric.kinematics.state import LinkState
-from linkage_sym.numeric.forces.springs import record_keys
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric.results.result import OK, Analysis, Forces, GroupForces
+from linkage_sym.numeric.results.result import OK, Analysis
 from linkage_sym.numeric.engine.run import (
     unwrap_angles,
     Calibration,
@@ -433,6 +434,7 @@ class CompiledMechanism(NumpyEvaluator):
         forces = None
         if "forces" in stages:
             forces = self._forces(pts, points, Xk, XD, CS, rate_ok, idx, N)
+            mark_locked(status, messages, forces)  # joint friction: self-locking steps
         res = self._analysis(X, XD, XDD, CS, pts, idx, status, messages, condition, forces,
                              q, qd, qdd)
         if self._decomposition is None:  # for the transmission angles, made once
@@ -460,8 +462,8 @@ class CompiledMechanism(NumpyEvaluator):
         ok_idx = idx[sel]
         flank = np.ones((len(self.flanks), len(sel)))
         solves = 1 + 2 * len(self.flanks)
-        for _ in range(solves):
-            Fv = self.solve_forces(pts, lambda v: v[sel])
+        for _ in range(solves):  # with the joints' friction where it acts (codegen.friction)
+            Fv, fric = self.forces_and_friction(pts, lambda v: v[sel])
             pulling = {}
             for m, (name, neg) in enumerate(zip(self.flanks, self.pulling(Fv))):
                 if neg.any():
@@ -474,43 +476,8 @@ class CompiledMechanism(NumpyEvaluator):
         P = None
         if len(self.flanks):  # the frame's mesh forces on the flanks settled on
             P = self.with_flanks(None, [f[sel] for f in flank])
-        return self._force_records(pts, Fv, (Xk, XD), CS, sel, ok_idx, N, notes, P)
-
-    def _force_records(self, pts, Fv, XkD, CS, sel, ok_idx, N, notes, P):
-        art = self.art
-        Xk, XD = XkD  # the coordinates and their rates (a damper's pull on the frame)
-        Kk = len(ok_idx)
-        fx, fy, mz = (
-            np.broadcast_to(np.asarray(v, float), (Kk,))
-            for v in self.call("frame", P, X=list(Xk[:, sel]), XD=[v[sel] for v in XD], F=list(Fv),
-                               CS=(list(CS[0][:, sel]), list(CS[1][:, sel])))
-        )
-        def spread(v):
-            out = np.full(N, np.nan)
-            out[ok_idx] = v
-            return out
-
-        joint_forces, efforts = self.reactions(
-            self.scene, Fv, lambda key: [v[sel] for v in art.rows(pts, key)], np.zeros(Kk))
-        reactions, moments = {}, {}
-        for name, (rx, ry, mm) in joint_forces.items():
-            reactions[name] = np.stack([spread(rx), spread(ry)], axis=-1)
-            moments[name] = spread(mm)
-        driving = {name: spread(v) for name, v in efforts.items()}
-        springs = {k.name: dict(zip(record_keys(k), (spread(full(v, len(sel))[sel])
-                                                       for v in art.rows(pts, f"spring:{k.name}"))))
-                   for k in self.scene.active_springs}
-        return Forces(
-            method="symbolic",
-            reactions=reactions,
-            reaction_moments=moments,
-            driving=driving,
-            frame_force=np.stack([spread(fx), spread(fy)], axis=-1),
-            frame_moment=spread(mz),
-            groups=[GroupForces(tuple(g.links), "symbolic") for g in art.groups],
-            notes=notes,
-            springs=springs,
-        )
+        ideal = self.solve_forces(pts, lambda v: v[sel]) if fric is not None else None
+        return force_records(self, pts, (Fv, fric, ideal), (Xk, XD), CS, sel, ok_idx, N, notes, P)
 
     def _analysis(self, X, XD, XDD, CS, pts, idx, status, messages, condition, forces, q, qd, qdd):
         """Write the results into a result block (:class:`ResultLayout`, as the numeric

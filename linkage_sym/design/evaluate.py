@@ -523,7 +523,7 @@ class Model(NumpyEvaluator):
                                    [r[bad] for r in tiles["Q"]], C.reshape(m, E)[:, bad],
                                    S.reshape(m, E)[:, bad])
         if "forces" in need:
-            sol.forces = self._spread_rows(np.array(self.solve_forces(pts)), idx, n)
+            sol.forces = self._spread_rows(np.array(self.forces_and_friction(pts, P=Pf)[0]), idx, n)
         return sol
 
     def _positions_at(self, sol, where, X, P, Q, C, S):

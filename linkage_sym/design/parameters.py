@@ -299,6 +299,10 @@ def _field(scene, name: str, recipe: tuple):
         return f"{name} in degrees", ANGLE_RULE, "angle"
     if kind == "radius":
         return f"joints[{joints[recipe[1]]}].radius", None, "length"
+    if kind in ("mu", "rpin"):  # a joint's friction (contract part two)
+        field = "coefficient" if kind == "mu" else "radius"
+        return (f"joints[{joints[recipe[1]]}].friction.{field}", MASS_RULE,
+                "length" if kind == "rpin" else "")
     if kind in SPRING_FIELDS:  # a spring's (the contract's springs and dampers)
         from linkage_sym.scene.springs import RULE
 
@@ -434,6 +438,10 @@ def _meaning(table, name: str) -> str:
                     table.com(link.name)
         elif kind == "g":
             table.gravity()
+        elif kind in ("mu", "rpin"):  # a joint's friction: its coefficient, a pin's radius
+            for j in scene.joints:
+                if j.friction is not None and j.type in ("R", "P"):
+                    table.friction(j.name)
         else:
             for i in range(len(scene.loads)):
                 table.load(i)

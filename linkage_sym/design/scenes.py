@@ -93,7 +93,13 @@ def design_scene(model, P, X0, joints0, d: int, name: str):
             base = 0.0 if a == GROUND else frames[a].theta0
             gamma = value(("gamma", j.name), j.axis - base)
             axis = math.atan2(math.sin(gamma + theta[a]), math.cos(gamma + theta[a]))
-        joints.append(dataclasses.replace(j, at=at, axis=axis))
+        kw = {}
+        if j.friction is not None:  # the design's coefficient and pin radius (contract part two)
+            kw["friction"] = dataclasses.replace(
+                j.friction, coefficient=value(("mu", j.name), j.friction.coefficient),
+                radius=(None if j.friction.radius is None
+                        else value(("rpin", j.name), j.friction.radius)))
+        joints.append(dataclasses.replace(j, at=at, axis=axis, **kw))
     links = []
     for lk in scene.links:
         com = lk.com

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkage_sym.numeric.engine.run import WARN_COND, cancelling_warning, ill_conditioned_warning, run_warnings
+from linkage_sym.numeric.results.efficiency import driver_work
 from linkage_sym.numeric.results.result import OK, UNASSEMBLABLE, Analysis
 from linkage_sym.numeric.results.strict_json import LeftOut
 from linkage_sym.numeric.results.wording import driver_number
@@ -207,11 +208,8 @@ class DriverWork:
         a = max(skip - 1, 0)
         q = np.asarray(res.drivers[name]["q"], float)[a:]
         ok = (res.status == OK)[a:]
-        pair = ok[1:] & ok[:-1]
-        dq = np.diff(q)[pair]
         for key, e in (("work_in", f.driving[name][a:]), ("work_out", f.driving_ideal[name][a:])):
-            mid = 0.5 * (e[1:] + e[:-1])
-            setattr(self, key, getattr(self, key) + float(np.sum(mid[pair] * dq)))
+            setattr(self, key, getattr(self, key) + driver_work(q, ok, e))
         self.friction_peak.add(f.friction_power[skip:], offset, res, skip)
 
     def efficiency(self) -> float | None:
@@ -356,8 +354,9 @@ class SweepStats:
 
     def tail(self) -> dict:
         """The result's keys after ``steps`` for the whole sweep."""
+        work = None if self.work is None else (self.work.work_in, self.work.work_out)
         return self.template.tail(warnings=self.warnings, dropped=self.left_out,
-                                  steps_per_choice=self._choices)
+                                  steps_per_choice=self._choices, work=work)
 
     def meta(self) -> dict:
         """The result's keys but ``steps`` (the metadata of the columnar formats)."""

@@ -22,6 +22,8 @@ the same topology through the same recipes, without SymPy.
 ``phi_<J>``         pressure angle of mesh ``J``
 ``epsilon_<J>``     angle of the line of centres of mesh ``J`` (gear ``a`` toward gear
                     ``b``) from the x-axis of its carrier
+``mu_<J>``          friction coefficient of joint ``J``; ``rpin_<J>``: an ``R`` joint's
+                    pin radius (registered by the compiled runtime where friction acts)
 ==================  ===================================================
 
 Link frames (as Song and Wang 1992 define them, in the notation of the
@@ -261,6 +263,20 @@ class ParameterTable:
             for i, link in enumerate(k.links)
             for kind in ("coordinate" if link == GROUND else "length",))
         return out
+
+    def friction(self, joint: str):
+        """Names of joint ``joint``'s friction (``joints[i].friction``): ``(mu, rpin)``, its
+        coefficient ``mu_<J>`` and an ``R`` joint's pin radius ``rpin_<J>`` (``None`` for a
+        ``P`` joint)."""
+        j = self.scene.joint(joint)
+        n = ident(joint)
+        mu = self._register(f"mu_{n}", ("mu", joint), f"friction coefficient of joint {joint}",
+                            "friction")
+        if j.type != "R":
+            return mu, None
+        return mu, self._register(f"rpin_{n}", ("rpin", joint),
+                                  f"pin radius of joint {joint} (its friction circle: mu r)",
+                                  "length")
 
     def mesh(self, joint: str):
         """Names ``(r_a, r_b, phi, epsilon)`` of gear mesh ``joint`` (see the module docstring)."""

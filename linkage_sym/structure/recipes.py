@@ -284,7 +284,19 @@ class SpringValue(Recipe):
         return ctx.num.number(value)
 
 
+class FrictionValue(Recipe):
+    """``mu``: a joint's friction coefficient; ``rpin``: an ``R`` joint's pin radius (m)
+    (``joints[i].friction``, contract part two).  Args ``(joint name,)``."""
+
+    tags = ("mu", "rpin")
+
+    def read(self, ctx):
+        f = ctx.scene.joint(self.args[0]).friction
+        return ctx.num.number(f.coefficient if self.tag == "mu" else f.radius)
+
+
 RECIPES = {tag: kind for kind in (PointDistance, GroundPoint, AssemblyAngle, SlideDirection,
-                                  DriverDirection, Inertia, Gravity, Mesh, Load, SpringValue)
+                                  DriverDirection, Inertia, Gravity, Mesh, Load, SpringValue,
+                                  FrictionValue)
            for tag in kind.tags}
 """Every recipe kind by its tag."""

@@ -14,8 +14,8 @@ with ``nu_J`` the sign of the joint's relative motion (+1, -1; 0 where neither i
 relative velocity nor its acceleration has one).  A group's block
 ``A_g F_g = b_g - C_g F_later`` then carries the frictions in ``b_g``, and the laws
 close the system: nonlinear in the reactions, solved by the numeric methods
-(:mod:`linkage_sym.numeric.forces.friction`).  The compiled symbolic runtime does not
-solve them and refuses such a scene (:func:`linkage_sym.errors.refuse_symbolic_unsupported`).
+(:mod:`linkage_sym.numeric.forces.friction`) and, on the generated force blocks, by the
+compiled symbolic runtime (:mod:`linkage_sym.codegen.friction`).
 
 Examples
 --------

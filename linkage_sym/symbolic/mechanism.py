@@ -137,7 +137,7 @@ class MechanismEquations(ClosedForms, ForceEquations):
         outs = set(scene.outputs)
         want = bool(outs & {"reactions", "driving", "frame"}) if forces is None else forces
         # cams not derived yet; joint friction only where asked (derive(): its terms and laws
-        # written out; the compiled runtime does not solve them): refused by name, never wrong
+        # written out; the compiled runtime: its laws solved at run time, codegen.friction)
         refuse_symbolic_unsupported(scene, friction_derived=friction)
         self.with_friction = friction
         self.friction_laws: list = []

@@ -26,6 +26,8 @@ import linkage_sym
 from linkage_sym.examples import example_dict
 from linkage_sym.numeric.plan import compile_plan
 from tests.support.force_checks import max_rel, power_residual, reaction_scale
+from tests.support.friction_scenes import inclined_slider as _inclined_slider
+from tests.support.friction_scenes import with_friction as _with_friction
 
 PRESS = "slider_crank_press_friction"
 TOL = 1e-9
@@ -186,32 +188,6 @@ def test_coefficient_zero_is_the_frictionless_result_exactly():
         assert np.all(a.efficiency[ok] == 1.0) and ok.sum() >= len(ok) - 4
 
 
-def _inclined_slider(f, start_deg=4.0, stop_deg=40.0, steps=181):
-    """A block on a vertical guide (friction ``f``), pushed up through a massless rod by a
-    pusher sliding horizontally towards the guide (driven).  The rod's angle above the
-    horizontal, theta, runs from ``start_deg`` to about ``stop_deg``."""
-    l = 0.1
-    xb0 = l * math.cos(math.radians(start_deg))
-    yc0 = l * math.sin(math.radians(start_deg))
-    travel = xb0 - l * math.cos(math.radians(stop_deg))
-    return {
-        "name": "inclined-slider",
-        "links": [{"name": "pusher"}, {"name": "rod"},
-                  {"name": "block", "mass": 2.0, "com": [0.0, yc0]}],
-        "joints": [
-            {"name": "A", "type": "P", "links": ["ground", "pusher"], "at": [xb0, 0.0],
-             "axis_deg": 180},
-            {"name": "B", "type": "R", "links": ["pusher", "rod"], "at": [xb0, 0.0]},
-            {"name": "C", "type": "R", "links": ["rod", "block"], "at": [0.0, yc0]},
-            {"name": "C_guide", "type": "P", "links": ["ground", "block"], "at": [0.0, yc0],
-             "axis_deg": 90, "friction": {"coefficient": f}},
-        ],
-        "drivers": [{"joint": "A", "start": 0.0, "stop": travel, "steps": steps, "speed": 0.5}],
-        "effects": {"inertia": False, "gravity": [0.0, -9.81], "loads": True, "friction": True},
-        "outputs": ["kinematics", "reactions", "driving"],
-    }
-
-
 @pytest.mark.parametrize("method", ["dyad", "global"])
 @pytest.mark.parametrize("f", [0.2, 0.35])
 def test_inclined_slider_self_locks_at_the_friction_angle(f, method):
@@ -275,19 +251,6 @@ def test_friction_not_acting_leaves_the_result_byte_identical():
     b = linkage_sym.analyze(linkage_sym.load_scene(bare)).to_json()
     assert a == b
     assert '"friction_' not in a and '"efficiency"' not in a
-
-
-def _with_friction(name):
-    """Shipped example ``name`` with friction in every R and P joint (coefficients 0.10,
-    0.11, ... in joint order; pins of radius 1 cm)."""
-    d = example_dict(name)
-    d["effects"]["friction"] = True
-    for k, j in enumerate(d["joints"]):
-        if j.get("type", "R") == "R":
-            j["friction"] = {"coefficient": 0.1 + 0.01 * k, "radius": 0.01}
-        elif j["type"] == "P":
-            j["friction"] = {"coefficient": 0.1 + 0.01 * k}
-    return d
 
 
 @pytest.mark.parametrize("name", ["sixbar_class3", "hydraulic_boom", "printing_mechanism",

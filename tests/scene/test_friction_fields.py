@@ -81,19 +81,17 @@ def test_read_and_dumped_back():
     assert "friction" not in dump_scene(plain)["effects"]
 
 
-def test_the_compiled_symbolic_runtime_refuses_friction_naming_the_field():
-    """derive() writes the friction out (tests/symbolic/test_symbolic_friction.py); the
-    compiled runtime, which does not solve it, refuses it by field."""
+def test_the_compiled_symbolic_runtime_solves_friction_and_refuses_cams_still():
+    """The compiled runtime solves the friction's laws (tests/codegen/test_symbolic_friction.py
+    checks its values); it refused a scene whose friction acts before (issue 29).  The
+    refusal that remains (cam contacts) still names its joints; friction that does not act
+    is no obstacle either."""
     scene = linkage_sym.load_example(PRESS)
+    assert linkage_sym.compile_mechanism(scene).art.friction
+    assert linkage_sym.analyze(scene, method="symbolic").forces.method == "symbolic"
     with pytest.raises(SymbolicUnsupportedError) as err:
-        linkage_sym.compile_mechanism(scene)
-    fields = [p.split(":")[0] for p in err.value.problems]
-    assert fields == ["joints[0].friction", "joints[1].friction", "joints[2].friction",
-                      "joints[3].friction"]
+        linkage_sym.compile_mechanism(linkage_sym.load_example("cam_eccentric_rocker"))
     assert "method 'dyad' or 'global'" in err.value.problems[0]
-    with pytest.raises(SymbolicUnsupportedError):
-        linkage_sym.analyze(scene, method="symbolic")
-    # friction that does not act is no obstacle
     off = parse_scene(_press(lambda d: d["effects"].update(friction=False)))
     assert linkage_sym.compile_mechanism(off, use_cache=False) is not None
 

@@ -35,10 +35,11 @@ def has_springs(name: str) -> bool:
 
 def has_friction(name: str) -> bool:
     """Whether the shipped example ``name``'s joint friction acts (``effects.friction`` and a
-    joint's positive coefficient): the compiled symbolic runtime refuses it, naming
-    ``joints[i].friction`` (issue 29; ``derive`` writes the friction out, checked by
-    ``tests/symbolic/test_symbolic_friction.py``), so checks that compile the symbolic layer
-    leave such an example out."""
+    joint's positive coefficient): the page leaves the friction out, so the checks over
+    :func:`symbolic_examples` (the page's among them) leave such an example out; the
+    compiled runtime's friction has checks of its own
+    (``tests/codegen/test_symbolic_friction.py``, ``test_precision_friction.py``,
+    ``tests/design/test_design_friction.py``)."""
     d = example_dict(name)
     return bool(d.get("effects", {}).get("friction")) and any(
         j.get("friction", {}).get("coefficient", 0) > 0 for j in d["joints"])

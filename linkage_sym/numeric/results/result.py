@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from linkage_sym.numeric.results.efficiency import mean_efficiency_record, run_work
 from linkage_sym.numeric.results.records import RecordBlock
 from linkage_sym.numeric.results.strict_json import LEFT_OUT, LeftOut, finite_only
 
@@ -412,16 +413,20 @@ class Analysis:
         ]
 
     def tail(self, warnings: list | None = None, dropped: "LeftOut | None" = None,
-             steps_per_choice: list | None = None) -> dict:
-        """The keys of the result after ``steps``: ``force_method``, ``groups``, ``warnings``.
+             steps_per_choice: list | None = None, work: tuple | None = None) -> dict:
+        """The keys of the result after ``steps``: ``force_method``, ``groups``,
+        ``mean_efficiency``, ``warnings``.
 
         ``warnings`` default this run's; a note on the values left out
-        (``dropped``) is added to them.
+        (``dropped``) is added to them.  ``work``: the sweep's ``(work_in, work_out)``
+        with joint friction and one driver (:mod:`linkage_sym.numeric.results.efficiency`).
         """
         out = {}
         if self.forces is not None:
             out["force_method"] = self.forces.method
             out["groups"] = self.group_records(steps_per_choice)
+        if work is not None:  # extension: the sweep's mean efficiency (contract part two)
+            out["mean_efficiency"] = mean_efficiency_record(*work)
         warnings = list(self.warnings if warnings is None else warnings)
         if dropped is not None and dropped.count:
             warnings.append(dropped.warning())
@@ -435,7 +440,7 @@ class Analysis:
         """The result in the JSON layout of the scene-format contract."""
         dropped = LeftOut()
         steps = list(self.step_records(dropped=dropped))
-        return {**self.head(), "steps": steps, **self.tail(dropped=dropped)}
+        return {**self.head(), "steps": steps, **self.tail(dropped=dropped, work=run_work(self))}
 
     def to_json(self, **kwargs) -> str:
         """:meth:`to_dict` as strict JSON text (never ``NaN`` nor ``Infinity``).
