@@ -3,7 +3,7 @@ terminal's width, :mod:`linkage_sym.symbolic.text`) or LaTeX.
 
 ::
 
-    linkage-sym derive SCENE.json [--latex [--standalone] [--symbols]] [--numeric] [-o FILE]
+    linkage-sym derive SCENE.json [--latex [--standalone] [--symbols] [--no-figures]] [--numeric] [-o FILE]
 """
 
 from __future__ import annotations
@@ -16,15 +16,16 @@ __all__ = ["cmd_derive", "register"]
 def cmd_derive(args) -> int:
     from linkage_sym.symbolic import derive
 
-    if (args.standalone or args.symbols) and not args.latex:
-        raise OptionError("--standalone and --symbols shape the LaTeX output: give --latex too")
+    if (args.standalone or args.symbols or args.no_figures) and not args.latex:
+        raise OptionError("--standalone, --symbols and --no-figures shape the LaTeX output: "
+                          "give --latex too")
     _check_outputs(files=[("-o/--output", args.output)])
     scene = _load(args.scene)
     eqs = derive(scene, symbolic=not args.numeric, forces=True)
     if args.latex:
         from linkage_sym.symbolic.latex import latex_document, standalone
 
-        text = latex_document(eqs, symbols=args.symbols)
+        text = latex_document(eqs, symbols=args.symbols, figures=not args.no_figures)
         if args.standalone:
             text = standalone(text, f"Equations of the mechanism {scene.name}")
     else:
@@ -47,5 +48,7 @@ def register(sub) -> None:
                    help="with --latex: a complete document (preamble, bibliography) instead of a fragment")
     v.add_argument("--symbols", action="store_true",
                    help="with --latex: a table of every symbol with its meaning and unit")
+    v.add_argument("--no-figures", action="store_true",
+                   help="with --latex: leave out the TikZ figure of each vector loop")
     v.add_argument("-o", "--output", help="output file (default: standard output)")
     v.set_defaults(func=cmd_derive)

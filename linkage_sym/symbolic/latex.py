@@ -16,6 +16,7 @@ importable from here.
 
 from __future__ import annotations
 
+from linkage_sym.symbolic.latex_figures import TIKZ_PREAMBLE
 from linkage_sym.symbolic.latex_notation import (
     LINE,
     MAX_ENTRY,
@@ -36,7 +37,7 @@ from linkage_sym.symbolic.latex_sections import (
 from linkage_sym.symbolic.mechanism import MechanismEquations
 
 __all__ = [
-    "BIBLIOGRAPHY", "LINE", "MAX_ENTRY", "MAX_EQUATION", "MAX_MATRIX", "MAX_MATRIX_CHARS", "UNITS",
+    "BIBLIOGRAPHY", "LINE", "TIKZ_PREAMBLE", "MAX_ENTRY", "MAX_EQUATION", "MAX_MATRIX", "MAX_MATRIX_CHARS", "UNITS",
     "bibliography", "escape_text", "latex_document", "scene_joint_type", "standalone",
 ]
 
@@ -56,10 +57,13 @@ def bibliography() -> str:
 
 
 def standalone(body: str, title: str = "Equations") -> str:
-    """``body`` (fragments of :func:`latex_document`) as a complete document with its bibliography."""
+    """``body`` (fragments of :func:`latex_document`) as a complete document with its
+    bibliography (and TikZ, where ``body`` holds a picture)."""
+    tikz = [TIKZ_PREAMBLE] if r"\begin{tikzpicture}" in body else []
     return "\n".join([
         r"\documentclass{article}",
         r"\usepackage{amsmath,amssymb}",
+        *tikz,
         r"\allowdisplaybreaks",
         r"\usepackage{longtable}",
         r"\usepackage[margin=2cm]{geometry}",
@@ -75,7 +79,7 @@ def standalone(body: str, title: str = "Equations") -> str:
     ])
 
 
-def latex_document(eqs: MechanismEquations, symbols: bool = False) -> str:
+def latex_document(eqs: MechanismEquations, symbols: bool = False, figures: bool = False) -> str:
     r"""A LaTeX fragment with a mechanism's equations in the kinematics chapter's notation.
 
     Sections: the symbols and their meanings; every closed vector loop in
@@ -92,6 +96,10 @@ def latex_document(eqs: MechanismEquations, symbols: bool = False) -> str:
     symbols : bool
         A nomenclature table (``longtable``) of every symbol with its meaning
         and unit instead of the list of symbols.
+    figures : bool
+        After each loop's equations, a ``figure`` with a TikZ picture of the loop
+        (:func:`linkage_sym.symbolic.latex_figures.loop_figure`): needs
+        ``\usepackage{tikz}``.
 
     Returns
     -------
@@ -119,6 +127,8 @@ def latex_document(eqs: MechanismEquations, symbols: bool = False) -> str:
     doc.text(r"% Needs amsmath (and longtable with a symbol table); for matrices with more")
     doc.text(r"% than 10 columns add \setcounter{MaxMatrixCols}{20} to the preamble, and")
     doc.text(r"% \allowdisplaybreaks so that long blocks of equations break between rows.")
+    if figures and eqs.loops:
+        doc.text(rf"% The figures of the vector loops need {TIKZ_PREAMBLE}.")
     doc.text(r"% Cites the keys below; add these entries to your bibliography:")
     for key, text in BIBLIOGRAPHY.items():
         doc.text(rf"%   \bibitem{{{key}}} {text}")
@@ -138,5 +148,5 @@ def latex_document(eqs: MechanismEquations, symbols: bool = False) -> str:
         symbol_list(doc, nm, eqs)
     if not eqs.parameters:
         doc.text("The dimensions are the scene's numbers (derived with symbolic=False).")
-    equations(doc, nm, eqs)
+    equations(doc, nm, eqs, figures)
     return "\n".join(doc.out) + "\n"
