@@ -193,6 +193,8 @@ class _Figure:
         self.at = {n: complex(_num(k[0][0], self.values), _num(k[0][1], self.values))
                    for n, k in eqs.joint_kin.items()}
         pts = list(self.at.values()) + ([0j] if self.start is None else [])
+        for j in scene.meshes:  # a gear's pitch circle
+            pts += [self.at[p] + r * d for p, r in zip(j.pivots, j.radii) for d in (1, -1, 1j, -1j)]
         xs, ys = [p.real for p in pts], [p.imag for p in pts]
         size = scene.characteristic_length() or 1.0
         w, h = max(max(xs) - min(xs), size * 0.2), max(max(ys) - min(ys), size * 0.2)
