@@ -8,7 +8,10 @@
   its motion and its scene file.  The pictures are made again only when the scene file is newer
   than them, so a rebuild after a text change takes seconds.
 
-Both are written into the source folder (and listed in ``.gitignore``), as plain MyST pages.
+- ``derived/crank_rocker.md``: the four-bar's derived equations, the page
+  ``linkage-sym derive crank_rocker.json --markdown`` writes (``$$`` math for ``dollarmath``).
+
+All are written into the source folder (and listed in ``.gitignore``), as plain MyST pages.
 """
 
 from __future__ import annotations
@@ -162,6 +165,24 @@ def gallery_pages(srcdir: Path) -> None:
     _write_if_changed(gallery / "index.md", "\n".join(index) + "\n")
 
 
+# ---------------------------------------------------------------- derived equations
+
+
+def derived_page(example: str = "crank_rocker") -> str:
+    """The derived equations of a shipped example as a MyST page: the Markdown of
+    ``linkage-sym derive SCENE --markdown``, with a line saying so under its title."""
+    from linkage_sym.examples import load_example
+    from linkage_sym.symbolic import derive
+    from linkage_sym.symbolic.markdown import markdown_document
+
+    title, rest = markdown_document(derive(load_example(example))).split("\n", 1)
+    note = (f"Generated when the documentation is built: `linkage-sym derive "
+            f"linkage_sym/examples/{example}.json --markdown` prints this page (`--latex` the same "
+            "equations as LaTeX, with a TikZ figure of each vector loop). The symbols are "
+            "explained in [the symbolic layer](../symbolic.md).")
+    return "\n".join([title, "", note, rest])
+
+
 def _module_headings_as_rubrics(app, what, name, obj, options, lines) -> None:
     """A module docstring's numpydoc headings (``Examples`` over dashes) as rubrics, as numpydoc
     renders them in a function's docstring: as sections, every module's ``Examples`` would be
@@ -178,6 +199,7 @@ def _generate(app) -> None:
     srcdir = Path(app.srcdir)
     _write_if_changed(srcdir / "reference" / "cli.md", cli_page())
     gallery_pages(srcdir)
+    _write_if_changed(srcdir / "derived" / "crank_rocker.md", derived_page("crank_rocker"))
 
 
 def setup(app):

@@ -27,14 +27,16 @@ analyze SCENE.json [-o RESULT.json | -o -] [--format json|csv|npz|parquet]
     solver.  The summary ends with the worst step's estimated accuracy;
     ``--precision DIGITS`` evaluates the derived equations in mpmath and
     ``--extremes`` locates the sweep's extremes (``linkage_sym.cli.accuracy``).
-derive SCENE.json [--latex] [--numeric] [-o FILE]
+derive SCENE.json [--latex [--no-figures] | --markdown] [--numeric] [-o FILE]
     Derive the scene's equations with SymPy (loops, closed forms, velocity,
     acceleration and force equations) and print them as SymPy text (the positions as
     named steps, every line within the terminal's width), or with
     ``--latex`` as a LaTeX fragment in the notation of the textbook chapter
     "Kinematic analysis of planar mechanisms" (for ``\\input``
-    in a document that loads amsmath).  ``--numeric`` puts the scene's
-    numbers in place of the parameter symbols.
+    in a document that loads amsmath; a TikZ figure of each vector loop
+    unless ``--no-figures``), or with ``--markdown`` as Markdown with
+    MathJax math.  ``--numeric`` puts the scene's numbers in place of the
+    parameter symbols.
 balance SCENE.json [-o BALANCE.json | -o -] [--latex [FILE.tex]] [--plots DIR]
         [--balanced-scene FILE] [--optimize FILE [--weights F,M,T] [--max-mass KG]
         [--links L1,L2]]

@@ -1,9 +1,11 @@
 """``linkage-sym derive``: the scene's equations derived with SymPy, as text (wrapped to the
-terminal's width, :mod:`linkage_sym.symbolic.text`) or LaTeX.
+terminal's width, :mod:`linkage_sym.symbolic.text`), LaTeX (with a TikZ figure of each vector
+loop) or Markdown with MathJax math.
 
 ::
 
-    linkage-sym derive SCENE.json [--latex [--standalone] [--symbols]] [--numeric] [-o FILE]
+    linkage-sym derive SCENE.json [--latex [--standalone] [--symbols] [--no-figures]]
+                                  [--markdown [--symbols]] [--numeric] [-o FILE]
 """
 
 from __future__ import annotations
@@ -16,17 +18,27 @@ __all__ = ["cmd_derive", "register"]
 def cmd_derive(args) -> int:
     from linkage_sym.symbolic import derive
 
-    if (args.standalone or args.symbols) and not args.latex:
-        raise OptionError("--standalone and --symbols shape the LaTeX output: give --latex too")
+    if args.latex and args.markdown:
+        raise OptionError("--latex and --markdown write the same equations in two markups: "
+                          "give one of them")
+    if (args.standalone or args.no_figures) and not args.latex:
+        raise OptionError("--standalone and --no-figures shape the LaTeX output: give --latex too")
+    if args.symbols and not (args.latex or args.markdown):
+        raise OptionError("--symbols adds a table of the symbols to the LaTeX or Markdown "
+                          "output: give --latex or --markdown too")
     _check_outputs(files=[("-o/--output", args.output)])
     scene = _load(args.scene)
     eqs = derive(scene, symbolic=not args.numeric, forces=True)
     if args.latex:
         from linkage_sym.symbolic.latex import latex_document, standalone
 
-        text = latex_document(eqs, symbols=args.symbols)
+        text = latex_document(eqs, symbols=args.symbols, figures=not args.no_figures)
         if args.standalone:
             text = standalone(text, f"Equations of the mechanism {scene.name}")
+    elif args.markdown:
+        from linkage_sym.symbolic.markdown import markdown_document
+
+        text = markdown_document(eqs, symbols=args.symbols)
     else:
         import shutil
 
@@ -39,13 +51,19 @@ def cmd_derive(args) -> int:
 
 def register(sub) -> None:
     """Add the ``derive`` command to the ``linkage-sym`` subparsers ``sub``."""
-    v = sub.add_parser("derive", help="derive the scene's equations with SymPy (text or LaTeX)")
+    v = sub.add_parser("derive", help="derive the scene's equations with SymPy (text, LaTeX or Markdown)")
     v.add_argument("scene", help="scene JSON file")
     v.add_argument("--latex", action="store_true", help="write a LaTeX fragment (notation of the textbook chapter 'Kinematic analysis of planar mechanisms')")
+    v.add_argument("--markdown", action="store_true",
+                   help="write the same equations as Markdown with MathJax math ($$ blocks), "
+                   "for notebooks and documentation pages")
     v.add_argument("--numeric", action="store_true", help="the scene's numbers instead of parameter symbols")
     v.add_argument("--standalone", action="store_true",
                    help="with --latex: a complete document (preamble, bibliography) instead of a fragment")
     v.add_argument("--symbols", action="store_true",
-                   help="with --latex: a table of every symbol with its meaning and unit")
+                   help="with --latex or --markdown: a table of every symbol with its meaning "
+                   "and unit")
+    v.add_argument("--no-figures", action="store_true",
+                   help="with --latex: leave out the TikZ figure of each vector loop")
     v.add_argument("-o", "--output", help="output file (default: standard output)")
     v.set_defaults(func=cmd_derive)

@@ -14,6 +14,7 @@ import numpy as np
 import sympy as sp
 
 from linkage_sym.symbolic.latex_blocks import block_matrix, rate_matrix
+from linkage_sym.symbolic.latex_figures import loop_figure
 from linkage_sym.symbolic.latex_notation import (
     MAX_EQUATION,
     MAX_MATRIX,
@@ -161,10 +162,10 @@ def scene_joint_type(eqs, name: str) -> str:
     return eqs.scene.joint(name).type
 
 
-def equations(doc, nm, eqs) -> None:
-    """Every section after the symbols: loops, gear meshes, positions, velocities,
-    accelerations and, when derived, forces."""
-    _loops(doc, nm, eqs)
+def equations(doc, nm, eqs, figures: bool = False) -> None:
+    """Every section after the symbols: loops (with a TikZ figure of each where ``figures``),
+    gear meshes, positions, velocities, accelerations and, when derived, forces."""
+    _loops(doc, nm, eqs, figures)
     _meshes(doc, nm, eqs)
     _positions(doc, nm, eqs)
     _velocities(doc, nm, eqs)
@@ -197,8 +198,10 @@ def _friction(doc, nm, eqs) -> None:
     doc.align(rows, keys)
 
 
-def _loops(doc, nm, eqs) -> None:
-    """Every closed vector loop in complex form (eq. 3-8) and its projections (3-9)."""
+def _loops(doc, nm, eqs, figures: bool = False) -> None:
+    """Every closed vector loop in complex form (eq. 3-8) and its projections (3-9), each
+    followed by its figure where ``figures``
+    (:func:`linkage_sym.symbolic.latex_figures.loop_figure`)."""
     doc.text(r"\paragraph{Loop equations.}")
     if eqs.loops:
         doc.text(
@@ -211,10 +214,14 @@ def _loops(doc, nm, eqs) -> None:
                  + (" (its gear meshes close it below)." if eqs.meshes else "."))
     for jname, v in eqs.loops:
         key = f"loop-{jname}"
+        first = len(doc.labels)
         rows = [r.replace("&=", "&=", 1) for r in nm.sum_rows("0", v.complex())]
         doc.align(rows, [key] + [None] * (len(rows) - 1))
         rx, ry = nm.sum_rows("0", v.x), nm.sum_rows("0", v.y)
         doc.align(rx + ry, [key + "-x"] + [None] * (len(rx) - 1) + [key + "-y"] + [None] * (len(ry) - 1))
+        if figures:
+            eq_label = doc.labels[first]  # the loop's complex form: eq:<scene>:loop-<joint>
+            doc.text(loop_figure(eqs, nm, jname, "fig:" + eq_label[3:], eq_label))
 
 
 def _meshes(doc, nm, eqs) -> None:

@@ -1,9 +1,9 @@
 """Every derivable shipped example's ``derive --latex --standalone --symbols`` typesets
-within the page: compiled with ``pdflatex``, its log names no overfull box (horizontal
-or vertical) of more than 1 pt.
+within the page, its TikZ figure of each vector loop included: compiled with ``pdflatex``,
+its log names no overfull box (horizontal or vertical) of more than 1 pt.
 
 TeX is not a Python dependency: the test is skipped, saying so, where ``pdflatex`` is not
-on PATH (Debian: ``apt-get install texlive-latex-base texlive-latex-extra``).  The
+on PATH (Debian: ``apt-get install texlive-latex-base texlive-latex-extra texlive-pictures``).  The
 documents are written by the command line, so the test checks what a user gets, and
 compiled two at a time, each in a folder of its own.
 """
@@ -56,7 +56,7 @@ def _compile(folder) -> str:
 
 
 @pytest.mark.skipif(PDFLATEX is None, reason="pdflatex is not on PATH (Debian: apt-get install "
-                    "texlive-latex-base texlive-latex-extra): the typesetting is not checked")
+                    "texlive-latex-base texlive-latex-extra texlive-pictures): the typesetting is not checked")
 @pytest.mark.slow
 def test_every_example_typesets_without_an_overfull_box(tmp_path, capsys):
     folders = {}
@@ -66,6 +66,8 @@ def test_every_example_typesets_without_an_overfull_box(tmp_path, capsys):
         assert main(["derive", str(example_path(name)), "--latex", "--standalone", "--symbols",
                      "-o", str(folder / "eqs.tex")]) == 0
         folders[name] = folder
+        tex = (folder / "eqs.tex").read_text()  # the loops' figures are part of what compiles
+        assert r"\begin{tikzpicture}" in tex or "no closed vector loop" in tex, name
     capsys.readouterr()
     with ThreadPoolExecutor(max_workers=2) as pool:
         logs = dict(zip(folders, pool.map(_compile, folders.values())))
