@@ -241,20 +241,23 @@ def scalar_helpers(arities: dict) -> str:
     ``_tangent_sqrt_<k>(size, f1, ...)``, the square root of the product of the factors
     with a product below zero taken as a tangency (0) when its smallest factor is above
     ``-TANGENT_ULPS * eps * size``, else NaN
-    (:func:`~linkage_sym.numeric.kinematics.loci.clamp_tangent`, entry by entry).
+    (:func:`~linkage_sym.numeric.kinematics.loci.clamp_tangent`, entry by entry; NaN
+    propagates through the largest and the smallest, as NumPy's ``maximum`` and
+    ``minimum``).
     The module's namespace must define ``TANGENT_ULPS``, ``EPS``, ``sqrt`` and ``nan``."""
     out = []
     for k in sorted(arities.get("_coordinate_size", ())):
         args = ", ".join(f"v{i}" for i in range(k))
-        body = "    m = 0.0\n" + "".join(f"    m = max(m, abs(v{i}))\n" for i in range(k))
+        body = "    m = 0.0\n" + "".join(f"    a = abs(v{i})\n    if a > m or a != a:\n"
+                                         "        m = a\n" for i in range(k))
         out.append(f"def _coordinate_size_{k}({args}):\n{body}    return m\n")
     for k in sorted(arities.get("_tangent_sqrt", ())):
         f = [f"f{i}" for i in range(k - 1)]
-        prod = " * ".join(f)
-        worst = f[0] if len(f) == 1 else f"min({', '.join(f)})"
+        worst = "".join(f"        if {v} < w or {v} != {v}:\n            w = {v}\n" for v in f[1:])
         out.append(f"def _tangent_sqrt_{k}(size, {', '.join(f)}):\n"
-                   f"    p = {prod}\n"
+                   f"    p = {' * '.join(f)}\n"
                    "    if p < 0.0:\n"
-                   f"        p = 0.0 if {worst} >= -(TANGENT_ULPS * EPS * size) else nan\n"
+                   f"        w = {f[0]}\n{worst}"
+                   "        p = 0.0 if w >= -(TANGENT_ULPS * EPS * size) else nan\n"
                    "    return sqrt(p)\n")
     return "\n".join(out)
