@@ -233,12 +233,14 @@ def _designs(scene, parameters) -> Designs:
 
 
 def _backend(backend) -> str:
-    """The backend's name, checked (numba's presence is checked when it is built)."""
-    from linkage_sym.design.numba_sweep import BACKENDS
+    """The backend's name, checked (numba's, that numba is installed), before any work."""
+    from linkage_sym.design.numba_sweep import BACKENDS, require_numba
 
     if backend not in BACKENDS:
         raise SweepError("backend", f"unknown backend {backend!r}; the backends are "
                                     f"{', '.join(BACKENDS)}")
+    if backend == "numba":
+        require_numba()
     return backend
 
 
