@@ -3,9 +3,9 @@ designs x steps.
 
 :class:`NumbaModel` is :class:`~linkage_sym.design.evaluate.Model` (the NumPy backend of
 the designs) whose :meth:`~NumbaModel.solve` runs the chunk's positions, singularity
-screen, rates along the steps and transmission angles in one compiled loop
-(:func:`~linkage_sym.design.numba_kernel.sweep_kernel`), with the artifact's own
-functions printed as scalar code (:mod:`linkage_sym.codegen.scalar`) and compiled by
+screen, rates along the steps and transmission angles in one compiled loop (printed per
+artifact by :func:`~linkage_sym.design.numba_kernel.kernel_source`), with the artifact's
+own functions printed as scalar code (:mod:`linkage_sym.codegen.scalar`) and compiled by
 ``numba.njit``.  The designs' assembly configurations (a few operations per design),
 the limit positions' Newton iteration (:mod:`linkage_sym.design.limits`) and the metric
 columns stay NumPy's.  The numbers are the NumPy backend's within a few rounding errors
@@ -49,8 +49,6 @@ compiled by numba."""
 
 SUPPORTED = ("assemblable", "grashof", "K", "min_transmission_deg")
 """The metrics the numba backend computes."""
-
-_FORMS = {"unit": 0, "atan2": 1, "value": 2}
 
 
 def require_numba():
