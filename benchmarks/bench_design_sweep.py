@@ -16,6 +16,10 @@ metrics ``K`` and ``min_transmission_deg``.  Contenders, timed in this run, best
 * ``package``: ``linkage_sym.sweep(scene, grid, ["K", "min_transmission_deg"])`` in this
   process (one worker): the compiled mechanism's positions, the singularity screen, the
   rates along the sweep, the limit positions located by Newton between steps;
+* ``numba``: the same call with ``execution=Execution(backend="numba")``: the generated
+  closed forms printed as scalar code and compiled with numba, one loop over designs x
+  steps (linkage_sym/design/numba_sweep.py); its compilation (the first, small sweep, numba's
+  import included) is timed apart, ``numba_compile``, and kept out of its rate;
 * ``numpy``: ``sweep_fourbar`` of tests/support/fourbar_sweep_numpy.py, written from the
   textbook's formulas (closed-form positions of C at every step, the transmission angle at
   every step, ``K`` from the two toggle positions in closed form), blocks of 1024 designs.
@@ -26,7 +30,10 @@ the wall-clock rate); wall-clock seconds and the load average are recorded too. 
 (issue): the package within 1.5x of the hand-written sweep, and >= 4e7 design-positions per
 CPU-second.
 
-Before any timing counts, the two must agree: ``K`` within 1e-12 relative where both give
+Before any timing counts, the contenders must agree: the numba backend with the package's
+NumPy backend, ``K`` and the smallest transmission angle within 1e-12 relative and ``K_note``
+equal, design by design (tests/design/test_numba_sweep.py); the package with the
+hand-written sweep: ``K`` within 1e-12 relative where both give
 it, the smallest transmission angle within 1e-10 degrees where both call every step
 assembled (see tests/design/test_design_sweep_reference.py for the tolerances' reasons).
 """
@@ -55,6 +62,7 @@ sys.path.insert(0, str(HERE.parent / "tests" / "support"))
 from fourbar_sweep_numpy import sweep_fourbar  # noqa: E402
 
 import linkage_sym  # noqa: E402
+from linkage_sym.design import Execution  # noqa: E402
 
 METRICS = ["K", "min_transmission_deg"]
 STEPS = 361
@@ -130,6 +138,19 @@ def agreement(res, ref):
     }
 
 
+def same_as_package(res, pkg):
+    """The numba backend's table against the NumPy backend's: the largest relative
+    differences of ``K`` and the smallest transmission angle, NaN at the same designs."""
+    out = {}
+    for c in METRICS:
+        a, b = np.asarray(pkg[c], float), np.asarray(res[c], float)
+        assert np.array_equal(np.isnan(a), np.isnan(b)), c
+        f = np.isfinite(a)
+        out[f"{c}_max_relative_difference"] = float(np.max(np.abs(a[f] - b[f]) / np.abs(a[f])))
+    assert (np.asarray(pkg["K_note"]) == np.asarray(res["K_note"])).all()
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--grid", type=int, default=200, help="values per varied length")
@@ -141,16 +162,25 @@ def main():
     work = n * STEPS
     linkage_sym.sweep(scene, axes(4), METRICS)  # compile (or load from the cache) once
     reference(scene, axes(4))
+    numba = Execution(backend="numba")
+    c0, t0 = time.process_time(), time.perf_counter()
+    linkage_sym.sweep(scene, axes(4), METRICS, execution=numba)  # numba compiles, once
+    c_comp, w_comp = time.process_time() - c0, time.perf_counter() - t0
     loads = {"start": load()}
     c_pkg, w_pkg, res = best(lambda: linkage_sym.sweep(scene, ax, METRICS), a.repeats)
     loads["after_package"] = load()
+    c_nb, w_nb, res_nb = best(lambda: linkage_sym.sweep(scene, ax, METRICS, execution=numba),
+                              a.repeats)
+    loads["after_numba"] = load()
     c_np, w_np, ref = best(lambda: reference(scene, ax), a.repeats)
     loads["after_numpy"] = load()
     agree = agreement(res, ref)
     assert agree["K_max_relative_difference"] <= K_RTOL, agree
     assert agree["min_transmission_max_abs_difference_deg"] <= MU_ATOL_DEG, agree
     assert agree["designs_with_K_package_only"] == agree["designs_with_K_numpy_only"] == 0, agree
-    rate_pkg, rate_np = work / c_pkg, work / c_np
+    agree_nb = same_as_package(res_nb, res)
+    assert max(agree_nb.values()) <= K_RTOL, agree_nb
+    rate_pkg, rate_np, rate_nb = work / c_pkg, work / c_np, work / c_nb
     out = {
         "machine": {"python": sys.version.split()[0], "numpy": np.__version__,
                     "platform": platform.platform(), "cpus": os.cpu_count()},
@@ -159,15 +189,29 @@ def main():
         "load_average_1min": loads,
         "package": {"cpu_seconds": c_pkg, "wall_seconds": w_pkg,
                     "design_positions_per_cpu_s": rate_pkg},
+        "numba": {"cpu_seconds": c_nb, "wall_seconds": w_nb,
+                  "design_positions_per_cpu_s": rate_nb,
+                  "compile_cpu_seconds": c_comp, "compile_wall_seconds": w_comp,
+                  "numba": _numba_version()},
         "numpy": {"cpu_seconds": c_np, "wall_seconds": w_np,
                   "design_positions_per_cpu_s": rate_np},
         "package_over_numpy_cpu": c_pkg / c_np,
-        "targets": {"within_1.5x": c_pkg / c_np <= 1.5, "rate_4e7": rate_pkg >= 4e7},
+        "numba_speedup_over_numpy_cpu": c_np / c_nb,
+        "numba_speedup_over_package_cpu": c_pkg / c_nb,
+        "targets": {"within_1.5x": c_pkg / c_np <= 1.5, "rate_4e7": rate_pkg >= 4e7,
+                    "numba_rate_4e7": rate_nb >= 4e7},
         "agreement": agree,
+        "agreement_numba_with_package": {**agree_nb, "rtol": K_RTOL},
     }
     (HERE / "results").mkdir(exist_ok=True)
     (HERE / "results" / "design_sweep.json").write_text(json.dumps(out, indent=2) + "\n")
     print(json.dumps(out, indent=2))
+
+
+def _numba_version():
+    import numba
+
+    return numba.__version__
 
 
 if __name__ == "__main__":

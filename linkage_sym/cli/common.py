@@ -71,7 +71,8 @@ SWEEP_OPTIONS = {"parameters": "--vary", "output": "--output-link", "trace": "--
                  "metrics": "--metrics", "chunk_designs": "--chunk-designs", "scene": "scene",
                  "rows": "--scene-rows", "workers": "--workers", "tolerance": "--tolerance",
                  "samples": "--samples", "monte_carlo": "--monte-carlo",
-                 "random_state": "--random-state", "dask": "--dask", "path": "-o/--output"}
+                 "random_state": "--random-state", "dask": "--dask", "path": "-o/--output",
+                 "backend": "--backend"}
 """The parameters of :func:`linkage_sym.design.sweep` and the attributes of its
 ``MonteCarlo``, ``Execution`` and ``SceneFiles`` (the ``field`` of a ``SweepError``;
 ``path``: the table's file) and the options of ``sweep`` that fill them, named apart

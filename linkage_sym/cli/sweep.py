@@ -8,7 +8,7 @@
                       [--metrics LIST] [--output-link LINK] [--trace POINT]
                       [-o OUT.parquet|OUT.csv|-] [--workers N] [--dask ADDRESS|local]
                       [--plots DIR] [--write-scenes DIR [--scene-rows LIST]]
-                      [--chunk-designs N]
+                      [--chunk-designs N] [--backend numpy|numba]
 
 Options are checked (and output paths tested) before anything is computed; a
 problem is one line naming the option, exit status 2.
@@ -92,6 +92,11 @@ def register(sub) -> None:
                    "table's 'design' column) and ranges, comma-separated: 0,5,17 or 10:20 (10 to "
                    "19, as Python slices) or :100 (the first 100); default every design")
     p.add_argument("--chunk-designs", type=int, metavar="N", help="designs per chunk")
+    p.add_argument("--backend", choices=("numpy", "numba"), default="numpy",
+                   help="numpy (default): arrays over designs x steps; numba: the generated "
+                   "closed forms compiled, one loop over designs x steps (metrics assemblable, "
+                   "grashof, K, min_transmission_deg of scenes of dyads; compiling takes a few "
+                   "seconds once per run); pip install 'linkage_sym[numba]'")
     p.set_defaults(func=cmd_sweep)
     p.help_hook = _metrics_help
 
@@ -160,7 +165,8 @@ def _sweep(args) -> int:
         designs = axes if args.vary is not None else args.samples
     res = sweep(scene, designs, metrics, output=args.output_link, trace=args.trace,
                 scenes=None if args.write_scenes is None else SceneFiles(args.write_scenes, rows),
-                execution=Execution(args.workers, args.dask, args.chunk_designs, progress=True))
+                execution=Execution(args.workers, args.dask, args.chunk_designs, progress=True,
+                                    backend=args.backend))
     out = sys.stdout if args.output != "-" else sys.stderr
     if args.output == "-":
         sys.stdout.write(res.to_csv())

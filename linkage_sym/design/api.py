@@ -147,8 +147,10 @@ def sweep(scene, parameters, metrics=None, *, output=None, trace=None, scenes=No
         metrics = default_metrics(scene, output)
     metrics = [metrics] if isinstance(metrics, str) else list(metrics)
     plan = MetricPlan(scene, metrics, output, trace)
+    backend = _backend(execution.backend)
     spec = Spec(scene, tuple(designs.names), tuple(plan.metrics), plan.output,
-                None if trace is None else tuple([trace] if isinstance(trace, str) else trace))
+                None if trace is None else tuple([trace] if isinstance(trace, str) else trace),
+                backend=backend)
     model, _ = compiled_state(spec)
     if scenes is not None or any(n not in model.names for n in designs.names):
         # a mass, inertia or load is a parameter of the force blocks only
@@ -166,7 +168,8 @@ def sweep(scene, parameters, metrics=None, *, output=None, trace=None, scenes=No
             raise SweepError("workers", f"at least 1 process, got {workers!r}")
     if chunk_designs is None:
         chunk_designs = (ONE_AT_A_TIME_CHUNK if model.one_at_a_time
-                         else max(1, TARGET_ENTRIES // model.path.shape[1]))
+                         else max(1, getattr(model, "chunk_entries", TARGET_ENTRIES)
+                                  // model.path.shape[1]))
     elif not isinstance(chunk_designs, int) or chunk_designs < 1:
         raise SweepError("chunk_designs", f"at least 1 design, got {chunk_designs!r}")
     files, no_scene, bad_scene = [], [], []
@@ -232,6 +235,18 @@ def _designs(scene, parameters) -> Designs:
         if n not in base or n.startswith("theta0_"):
             check_names(Designs((n,), np.zeros((1, 1)), "monte-carlo"), model.names, "tolerance")
     return parameters.designs(base)
+
+
+def _backend(backend) -> str:
+    """The backend's name, checked (numba's, that numba is installed), before any work."""
+    from linkage_sym.design.numba_sweep import BACKENDS, require_numba
+
+    if backend not in BACKENDS:
+        raise SweepError("backend", f"unknown backend {backend!r}; the backends are "
+                                    f"{', '.join(BACKENDS)}")
+    if backend == "numba":
+        require_numba()
+    return backend
 
 
 def _rows(rows, n: int) -> np.ndarray:

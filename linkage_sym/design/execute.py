@@ -59,19 +59,28 @@ class Execution:
         8 designs when they run one at a time).
     progress : bool
         A progress bar on a terminal (tqdm).
+    backend : str
+        ``"numpy"`` (the default: arrays over designs x steps) or ``"numba"``: the
+        generated closed forms compiled by numba, one loop over designs x steps
+        (:mod:`linkage_sym.design.numba_sweep`; the ``numba`` extra), for the metrics
+        ``assemblable``, ``grashof``, ``K`` and ``min_transmission_deg`` of scenes of
+        dyads; its numbers are the NumPy backend's within a few rounding errors, not bit
+        for bit.
 
-    The sweep checks them; a problem names the attribute (``workers``, ``chunk_designs``).
+    The sweep checks them; a problem names the attribute (``workers``, ``chunk_designs``,
+    ``backend``).
 
     Examples
     --------
     >>> Execution(workers=2)
-    Execution(workers=2, dask=None, chunk_designs=None, progress=False)
+    Execution(workers=2, dask=None, chunk_designs=None, progress=False, backend='numpy')
     """
 
     workers: int | None = None
     dask: object = None
     chunk_designs: int | None = None
     progress: bool = False
+    backend: str = "numpy"
 
 
 @dataclass(frozen=True)
@@ -84,6 +93,7 @@ class Spec:
     output: str | None = None
     trace: tuple | None = None
     forces: bool = False  # compile the force blocks (a varied mass or load, or force metrics)
+    backend: str = "numpy"  # or "numba" (linkage_sym.design.numba_sweep)
 
 
 SETTLE_BYTES = 30 << 20
@@ -116,6 +126,10 @@ def compiled_state(spec: Spec):
     settle_allocator()
 
     plan = MetricPlan(spec.scene, spec.metrics, spec.output, spec.trace)
+    if spec.backend == "numba":
+        from linkage_sym.design.numba_sweep import NumbaModel
+
+        return NumbaModel(spec.scene, plan, forces=plan.forces or spec.forces), plan
     model = Model(spec.scene, forces=plan.forces or spec.forces)
     return model, plan
 

@@ -57,7 +57,8 @@ class Limits:
     ----------
     model : Model
     sol : Solution
-        The chunk, with its rates along the steps (``rate_t``).
+        The chunk, with its rates along the steps (``rate_t``), or the brackets of their
+        sign changes (``brackets``).
     col : int
         The output link's coordinate.
     swing : bool
@@ -67,17 +68,21 @@ class Limits:
     def __init__(self, model, sol, col, swing):
         n, N = sol.n, sol.N
         self.n, self.col, self.assembled = n, col, sol.assembled
-        r = np.ascontiguousarray(sol.rate_t[col])
         ok = sol.ok
-        # a bracket: two ok steps between which the rate changes sign (or is 0 at one)
-        with np.errstate(invalid="ignore"):
-            neg, zero = r < 0, r == 0
-        change = (neg[:, :-1] != neg[:, 1:]) | zero[:, :-1] | zero[:, 1:]
-        change &= ok[:, :-1]
-        change &= ok[:, 1:]
-        d, i = np.divmod(np.flatnonzero(change), N - 1)  # row-major, as np.nonzero
-        at = d * N + i
-        self.d, self.i, self.fa, self.fb = d, i, r.ravel()[at], r.ravel()[at + 1]
+        if sol.brackets is not None:  # found by the solver (the numba backend's loop)
+            d, i, self.fa, self.fb = sol.brackets
+        else:
+            r = np.ascontiguousarray(sol.rate_t[col])
+            # a bracket: two ok steps between which the rate changes sign (or is 0 at one)
+            with np.errstate(invalid="ignore"):
+                neg, zero = r < 0, r == 0
+            change = (neg[:, :-1] != neg[:, 1:]) | zero[:, :-1] | zero[:, 1:]
+            change &= ok[:, :-1]
+            change &= ok[:, 1:]
+            d, i = np.divmod(np.flatnonzero(change), N - 1)  # row-major, as np.nonzero
+            at = d * N + i
+            self.fa, self.fb = r.ravel()[at], r.ravel()[at + 1]
+        self.d, self.i = d, i
         self.ok_any = ok.any(axis=1)
         step = abs(model.slope[0]) if N > 1 else 0.0
         self.step = step

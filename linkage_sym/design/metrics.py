@@ -307,32 +307,53 @@ class MetricPlan:
             out[name] = col.astype(str)
         return out
 
+    def transmission_offsets(self, model, joints0, X0) -> list:
+        """``(ia, ib, cos c, sin c)`` of each RRR dyad: its links' coordinates and the
+        cosine and sine (n,) of the constant ``c`` by which ``gamma`` is their angles'
+        difference, from the designs' assembly configurations (``joints0``, ``X0``)."""
+        out = []
+        for inner, e1, e2, a, b in self.dyads:
+            J = joints0[inner]
+            ia, ib = model.angle_of[a], model.angle_of[b]
+            c1 = np.arctan2(*(joints0[e1] - J)[::-1]) - X0[ia]
+            c2 = np.arctan2(*(joints0[e2] - J)[::-1]) - X0[ib]
+            out.append((ia, ib, np.cos(c2 - c1), np.sin(c2 - c1)))
+        return out
+
     def _transmission(self, model, sol):
         """``min(gamma, pi - gamma) = atan(|sin gamma| / |cos gamma|)``, smallest over the steps:
         the angle of ``J -> E1`` is link ``a``'s angle plus a constant of the design, so
-        ``gamma``'s sine and cosine come from the coordinates' (no trigonometric call per step)."""
+        ``gamma``'s sine and cosine come from the coordinates' (no trigonometric call per step).
+        A solution with :attr:`~linkage_sym.design.solution.Solution.transmission` (the
+        compiled loop's) gives each dyad's smallest ratio already."""
         best = np.full(sol.n, np.inf)
-        for inner, e1, e2, a, b in self.dyads:
-            J = sol.joints0[inner]
-            ia, ib = model.angle_of[a], model.angle_of[b]
-            c1 = np.arctan2(*(sol.joints0[e1] - J)[::-1]) - sol.X0[ia]
-            c2 = np.arctan2(*(sol.joints0[e2] - J)[::-1]) - sol.X0[ib]
-            cc, sc = np.cos(c2 - c1)[:, None], np.sin(c2 - c1)[:, None]
-            ca, sa, cb, sb = sol.C[ia], sol.S[ia], sol.C[ib], sol.S[ib]
-            cd = cb * ca + sb * sa  # cos, sin of X_b - X_a
-            sd = sb * ca - cb * sa
-            with np.errstate(divide="ignore", invalid="ignore"):
-                num = sd * cc
-                num += cd * sc
-                cd *= cc
-                sd *= sc
-                cd -= sd
-                ratio = np.abs(np.divide(num, cd, out=num), out=num)  # |a|/|b| = |a/b|
-            best = np.fmin(best, _fmin(ratio))
+        if sol.transmission is not None:
+            ratios = list(sol.transmission)
+        else:
+            ratios = [self._ratio(sol, *dy) for dy in self.transmission_offsets(model, sol.joints0,
+                                                                                 sol.X0)]
+        for r in ratios:
+            best = np.fmin(best, r)
         best[~np.isfinite(best) & ~(best == np.inf)] = np.nan
         out = np.degrees(np.arctan(best))
         out[~sol.pos_ok.any(axis=1)] = np.nan
         return out
+
+    @staticmethod
+    def _ratio(sol, ia, ib, cc, sc):
+        """A dyad's smallest ``|sin gamma| / |cos gamma|`` over the steps (n,)."""
+        cc, sc = cc[:, None], sc[:, None]
+        ca, sa, cb, sb = sol.C[ia], sol.S[ia], sol.C[ib], sol.S[ib]
+        cd = cb * ca + sb * sa  # cos, sin of X_b - X_a
+        sd = sb * ca - cb * sa
+        with np.errstate(divide="ignore", invalid="ignore"):
+            num = sd * cc
+            num += cd * sc
+            cd *= cc
+            sd *= sc
+            cd -= sd
+            ratio = np.abs(np.divide(num, cd, out=num), out=num)  # |a|/|b| = |a/b|
+        return _fmin(ratio)
 
     def _shaking(self, model, sol):
         fx = np.zeros((sol.n, sol.N))

@@ -41,6 +41,11 @@ class Solution:
     C: np.ndarray | None = None  # (m, n, N) cosines of the coordinates (NaN where no position)
     S: np.ndarray | None = None
     model: object = None  # the Model that solved it
+    transmission: np.ndarray | None = None  # (dyads, n) each RRR dyad's smallest transmission
+    # ratio |sin gamma| / |cos gamma| over the steps, when the solver computed it (numba)
+    brackets: tuple | None = None  # (design, step, rate there, rate at the next step) of each
+    # sign change of the output's rate along the steps between ok steps, when the solver
+    # found them (numba; else Limits finds them in rate_t)
 
     model_rates = True  # rate_at is the Model's (a subclass: another runtime's)
 
