@@ -37,6 +37,7 @@ def scene(duration=0.3):
     return linkage_sym.load_scene(data)
 
 
+@pytest.mark.slow
 def test_each_breakpoint_crossed_ends_a_step():
     eq = MotionEquations(scene())
     traj = integrate_motion(eq, 0.0, (math.radians(30.0), 8.0), 0.3, method="LSODA")

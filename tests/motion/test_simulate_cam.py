@@ -43,6 +43,7 @@ def cam_scene(duration, start_speed, samples, loads=True, gravity=True, torque=T
     return linkage_sym.load_scene(data)
 
 
+@pytest.mark.slow
 def test_numeric_inertia_equals_the_derived_one_on_a_linkage():
     scene = linkage_sym.load_scene(example_dict("crank_rocker_motor"))
     derived = MotionEquations(scene, require_simulate=False)
