@@ -37,7 +37,10 @@ velocities the generated code returns *are* the velocity coefficients (``v_G / q
 
     J  = sum m |v_G|^2 + I w^2,   J' = 2 sum m v_G . a_G + I w alpha   (at qd = 1, qdd = 0)
 
-both exact (no finite difference).
+both exact (no finite difference).  The symbolic layer derives no cam contact: a scene with
+one takes the same sums from the numeric solver's kinematics at ``qd = 1`` and ``qdd = 0``
+(:func:`~linkage_sym.motion.lean.numeric_inertia_at`; its velocities and accelerations are
+the same coefficients and their derivatives, exact as well).
 """
 
 from __future__ import annotations
@@ -47,9 +50,9 @@ import math
 
 import numpy as np
 
-from linkage_sym.errors import SceneError
+from linkage_sym.errors import SYMBOLIC_LACKS, SceneError
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.motion.lean import effort_at, inertia_at
+from linkage_sym.motion.lean import effort_at, inertia_at, numeric_inertia_at
 
 __all__ = ["MotionEquations", "StepFailure", "motor_effort"]
 
@@ -124,9 +127,14 @@ class MotionEquations:
         ``simulate`` section (checked here, each problem naming its field).
     require_simulate : bool
         Whether the ``simulate`` section is required (the flywheel's search needs none).
+    numeric_inertia : bool, optional
+        ``J`` and ``J'`` from the numeric solver's kinematics at unit speed rather than from
+        the derived equations; default: where the symbolic layer derives no joint of the
+        scene (a cam contact) only.
     """
 
-    def __init__(self, scene: Scene, require_simulate: bool = True):
+    def __init__(self, scene: Scene, require_simulate: bool = True,
+                 numeric_inertia: bool | None = None):
         from linkage_sym.codegen.compile import compile_mechanism
         from linkage_sym.numeric.plan import compile_plan
 
@@ -142,7 +150,11 @@ class MotionEquations:
         kin = dataclasses.replace(scene, outputs=("kinematics",), loads=(),
                                   effects=dataclasses.replace(scene.effects, gravity=None,
                                                               springs=False, friction=False))
-        self.mechanism = compile_mechanism(kin)
+        # the symbolic layer derives no cam contact (SYMBOLIC_LACKS): such a scene's J and J'
+        # come from the numeric solver's kinematics at unit speed (the same sums, exact too)
+        self.numeric_inertia = (any(j.type in SYMBOLIC_LACKS for j in scene.joints)
+                                if numeric_inertia is None else bool(numeric_inertia))
+        self.mechanism = compile_plan(kin) if self.numeric_inertia else compile_mechanism(kin)
         self.q0 = float(_assembly_value(scene))
         self.period = _reduction_period(scene)
         self.evaluations = 0
@@ -172,7 +184,9 @@ class MotionEquations:
         return np.asarray(res.forces.driving[self.joint], float), res
 
     def inertia(self, q, reduce=True):
-        """``(J, J')`` at the driver values ``q`` (arrays ``(N,)``), from the derived equations."""
+        """``(J, J')`` at the driver values ``q`` (arrays ``(N,)``), from the derived equations
+        (from the numeric solver's kinematics for a scene the symbolic layer does not derive:
+        a cam contact)."""
         q = np.atleast_1d(np.asarray(q, float))
         res = self.mechanism.run({self.joint: self.reduce(q) if reduce else q},
                                  {self.joint: np.ones_like(q)}, {self.joint: np.zeros_like(q)})
@@ -190,30 +204,32 @@ class MotionEquations:
                 dJ += 2.0 * link.inertia * w * al
         return J, dJ
 
-    def acceleration(self, q: float, qd: float) -> float:
+    def acceleration(self, q: float, qd: float, piece=None) -> float:
         """``qdd`` at the state ``(q, qd)``; raises :class:`StepFailure` where the mechanism
         cannot be solved.  One state, without a result's bookkeeping
         (:mod:`~linkage_sym.motion.lean`): the same solves as :meth:`effort` and
-        :meth:`inertia`."""
+        :meth:`inertia`.  With a ``piece`` (:class:`~linkage_sym.motion.pieces.Piece`), the
+        equation frozen on it: its effort plan and its motor line."""
         self.evaluations += 1
-        e0 = self._effort_at(q, qd, 0.0)
+        plan = self.effort_plan if piece is None else piece.plan
+        e0 = self._effort_at(q, qd, 0.0, plan)
         if q != self._last[0]:  # the solvers' Jacobians vary qd alone at one q: J is that q's
             self._last = (q, self._inertia_at(q))
         J = self._last[1]
         if not J > 0:
             raise StepFailure(q, qd, f"the equivalent moment of inertia J is {J:.3g}: the "
                               "motion has no equation there")
-        M = float(motor_effort(self.motor, qd))
+        M = float(motor_effort(self.motor, qd)) if piece is None else piece.motor(qd)
         qdd = (M - e0) / J
         if self.nonlinear:
-            qdd = self._root(q, qd, qdd, M, J, abs(M) + abs(e0))
+            qdd = self._root(q, qd, qdd, M, J, abs(M) + abs(e0), plan)
         return float(qdd)
 
-    def _effort_at(self, q: float, qd: float, qdd: float) -> float:
-        """The driver's effort at one state (``q`` reduced); :class:`StepFailure` where the
-        step is not ``ok``."""
-        e, status, message = effort_at(self.effort_plan, self.joint, float(self.reduce(q)),
-                                       qd, qdd)
+    def _effort_at(self, q: float, qd: float, qdd: float, plan=None) -> float:
+        """The driver's effort at one state (``q`` reduced) from ``plan`` (default the
+        scene's); :class:`StepFailure` where the step is not ``ok``."""
+        e, status, message = effort_at(self.effort_plan if plan is None else plan, self.joint,
+                                       float(self.reduce(q)), qd, qdd)
         if status != "ok":
             raise StepFailure(q, qd, f"{status}: {message}")
         return e
@@ -221,14 +237,18 @@ class MotionEquations:
     def _inertia_at(self, q: float) -> float:
         """``J`` at one driver value (``q`` reduced), by the full run where the lean one
         declines the state."""
+        if self.numeric_inertia:
+            got = numeric_inertia_at(self.mechanism, self.scene, self.joint,
+                                     float(self.reduce(q)))
+            return self.inertia(q)[0][0] if got is None else got[0]
         got = inertia_at(self.mechanism, self.scene, self.joint, float(self.reduce(q)))
         return self.inertia(q)[0][0] if got is None else got[0]
 
-    def _root(self, q, qd, qdd, M, J, scale):
+    def _root(self, q, qd, qdd, M, J, scale, plan=None):
         """``qdd`` where the effort equals ``M`` when the effort is not affine in ``qdd``
         (friction): fixed-point steps ``qdd -= (effort - M) / J`` from the affine one."""
         for _ in range(MAX_ROOT_STEPS):
-            r = self._effort_at(q, qd, qdd) - M
+            r = self._effort_at(q, qd, qdd, plan) - M
             if abs(r) <= 1e-13 * (scale + abs(J * qdd)):
                 return qdd
             qdd -= r / J

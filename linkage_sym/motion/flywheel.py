@@ -16,7 +16,9 @@ and in ``J``, ``w_max^2 - w_min^2 = 2 delta w_m^2``).
 **Refinement by simulation.**  With a moment of inertia ``I`` added to the driven link (a
 flywheel on its shaft) the periodic motion is found by shooting: the speed ``w0`` at the start
 angle whose motion over one period returns to ``w0`` (a secant on ``w_end(w0) - w0``, to
-:data:`SHOOTING_TOL` of ``w_m``), integrated as ``simulate`` integrates; its
+:data:`SHOOTING_TOL` of ``w_m``; each trial after the first starts from the last trial's
+periodic speed and secant slope, a Newton step where a fresh search takes two shots to make
+its first secant), integrated as ``simulate`` integrates; its
 ``speed_fluctuation`` is measured as ``simulate`` measures it (:mod:`~linkage_sym.motion.periodic`).  ``1/delta`` is nearly affine
 in ``I``: a secant on ``1/delta(I) - 1/target``, kept within a bracket (bisection when the
 secant leaves it), until the simulated ``delta`` is at most the request and within
@@ -131,9 +133,14 @@ def energy_method(eq: MotionEquations, delta: float) -> dict:
             "effort": e0}
 
 
-def periodic_orbit(eq: MotionEquations, w_guess: float, rtol: float) -> dict:
+def periodic_orbit(eq: MotionEquations, w_guess: float, rtol: float, w_start=None,
+                   slope=None) -> dict:
     """The periodic motion over one period from the start angle (shooting, see the module
-    docstring): ``turn_record`` of it, with ``w0`` and the trajectory."""
+    docstring): ``turn_record`` of it, with ``w0``, the trajectory and ``slope``, the last
+    secant's slope of ``w_end(w0) - w0``.  ``w_start`` and ``slope`` (a neighbouring orbit's,
+    e.g. with another flywheel) start the search: a first shot from ``w_start`` and a Newton
+    step with ``slope``, where a search without them takes two shots to make its first
+    secant."""
     start = eq.driver.start if eq.scene.simulate is None else eq.scene.simulate.start
     target = start + eq.period
 
@@ -146,21 +153,25 @@ def periodic_orbit(eq: MotionEquations, w_guess: float, rtol: float) -> dict:
                               f"({traj.message or 'too slow'})"])
         return float(traj(traj.t_end)[1][0]) - w0, traj
 
-    wa, (fa, _) = w_guess, shot(w_guess)
-    wb = w_guess * (1 + 1e-3)
-    fb, traj = shot(wb)
+    w = w_guess if w_start is None else w_start
+    f, traj = shot(w)
+    before = None
     for _ in range(MAX_SHOTS):
-        if abs(fb) <= SHOOTING_TOL * w_guess:
+        if abs(f) <= SHOOTING_TOL * w_guess:
             break
-        if fb == fa:
-            break
-        wa, fa, wb = wb, fb, wb - fb * (wb - wa) / (fb - fa)
-        fb, traj = shot(wb)
+        if before is not None:
+            if f == before[1]:
+                break
+            slope = (f - before[1]) / (w - before[0])
+        step = -f / slope if slope else w * 1e-3
+        before = (w, f)
+        w = w + step
+        f, traj = shot(w)
     else:
         raise SceneError([f"simulate: the periodic motion was not found in {MAX_SHOTS} "
                           "shots (its speed at the start angle does not settle)"])
     record = turn_record(traj, 0.0, traj.t_end, eq.period)
-    return {**record, "w0": wb, "trajectory": traj}
+    return {**record, "w0": w, "trajectory": traj, "slope": slope}
 
 
 def flywheel(scene: Scene, fluctuation: float, *, rtol: float = 1e-10,
@@ -194,8 +205,10 @@ def flywheel(scene: Scene, fluctuation: float, *, rtol: float = 1e-10,
 
     def measure(added):
         if added not in cache:
+            near = trials and cache[trials[-1][0]]  # the last orbit starts the search
             orbit = periodic_orbit(MotionEquations(with_inertia(scene, link, added),
-                                                   require_simulate=False), w_m, rtol)
+                                                   require_simulate=False), w_m, rtol,
+                                   near["w0"] if near else None, near["slope"] if near else None)
             cache[added] = orbit
             trials.append((added, orbit["speed_fluctuation"]))
             if progress is not None:

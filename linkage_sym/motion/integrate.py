@@ -6,7 +6,10 @@ stepped and each step's dense output kept; stepping it here rather than through
 ``solve_ivp`` keeps every step taken before a state the mechanism cannot be solved at (the
 right-hand side raises there; ``solve_ivp`` would lose the whole run), and lets a progress bar
 follow the time.  The events are found on the dense output of the step in which they occur
-(``brentq`` to rounding):
+(``brentq`` to rounding).  The motion is integrated **piece by piece**
+(:mod:`~linkage_sym.motion.pieces`): where it crosses a row of the motor's table or a load's
+switch point the step is cut at the crossing and the solver restarts there on the next
+smooth piece, the dense output of each piece kept in turn.  The events:
 
 * a **stall**: the driver's speed crosses zero (from the sign it had, not from a start at
   rest);
@@ -27,6 +30,7 @@ from scipy.optimize import brentq
 
 from linkage_sym.motion.equations import MotionEquations, StepFailure
 from linkage_sym.motion.methods import METHODS
+from linkage_sym.motion.pieces import Pieces
 
 __all__ = ["METHODS", "RTOL", "Trajectory", "integrate_motion"]
 
@@ -85,6 +89,10 @@ def integrate_motion(eq: MotionEquations, t0: float, y0, t_bound: float, *,
                      progress=None) -> Trajectory:
     """Integrate the motion of ``eq`` from ``y0 = (q, qd)`` at ``t0`` to ``t_bound``.
 
+    The motion is integrated piece by piece (:mod:`~linkage_sym.motion.pieces`): the solver
+    restarts where the motion crosses a breakpoint of the motor's table or of the loads, so
+    that every piece it steps over is smooth.
+
     Parameters
     ----------
     eq : MotionEquations
@@ -115,56 +123,129 @@ def integrate_motion(eq: MotionEquations, t0: float, y0, t_bound: float, *,
     traj = Trajectory(t=[float(t0)], method=method, rtol=rtol, atol=atol,
                       y0=tuple(float(v) for v in y0))
     calls = eq.evaluations
-
-    def fun(t, y):
-        return np.array([y[1], eq.acceleration(y[0], y[1])])
-
-    solver = getattr(integrate, method)(fun, t0, np.asarray(y0, float), t_bound, rtol=rtol,
-                                        atol=np.asarray(atol))
-    sign = np.sign(y0[1])
-    while solver.status == "running":
-        t_before, y_before = solver.t, solver.y.copy()
-        try:
-            failed = solver.step()
-        except StepFailure as exc:
-            traj.end = "failure"
-            traj.message = (f"the mechanism cannot be solved at t = {t_before:.6g} s, "
-                            f"{_where(eq, exc.q, exc.qd)} (a state the integrator tried after "
-                            f"its last step): {exc}")
-            break
-        if solver.status == "failed":
-            traj.end = "failure"
-            traj.message = (f"the integrator failed at t = {t_before:.6g} s, "
-                            f"{_where(eq, *y_before)}: {failed}")
-            break
-        piece = solver.dense_output()
-        t_after, y_after = solver.t, solver.y
-        traj.steps += 1
-        end = None
-        if sign != 0 and np.sign(y_after[1]) != sign:  # the speed crossed zero: a stall
-            end = _root(lambda t: piece(t)[1], t_before, t_after)
-            traj.end = "stall"
-            qs = piece(end)[0]
-            traj.message = (f"the machine stalls at t = {end:.6g} s, {_where(eq, qs, 0.0)}: "
-                            "the driver's speed crosses zero")
-        elif target is not None and (y_after[0] - target) * (y_before[0] - target) <= 0 \
-                and y_after[0] != y_before[0]:
-            end = _root(lambda t: piece(t)[0] - target, t_before, t_after)
-            traj.end = "target"
-        if sign == 0:
-            sign = np.sign(y_after[1])
-        traj.pieces.append(piece)
-        traj.t.append(float(t_after if end is None else end))
-        if progress is not None:
-            progress(traj.t[-1])
-        if end is not None:
-            break
+    _Stepper(eq, traj, t_bound, target, progress).run(float(t0), np.asarray(y0, float))
     traj.evaluations = eq.evaluations - calls
     if len(traj.pieces) == 0:  # not one step: the state at t0 alone
         y = np.asarray(y0, float)
         traj.pieces.append(lambda t: np.repeat(y[:, None], np.size(t), axis=1))
         traj.t.append(float(t0))
     return traj
+
+
+MAX_STILL = 8
+"""Most restarts in a row at one time (the motion held on a breakpoint) before the run ends."""
+
+
+class _Stepper:
+    """The integration's loop: the solver stepped over one smooth piece after another."""
+
+    def __init__(self, eq, traj, t_bound, target, progress):
+        self.eq, self.traj, self.t_bound = eq, traj, t_bound
+        self.target, self.progress = target, progress
+        self.pieces = Pieces(eq)
+
+    def _solver(self, piece, t, y, max_step=np.inf):
+        eq = self.eq
+
+        def fun(_t, yy):
+            return np.array([yy[1], eq.acceleration(yy[0], yy[1], piece)])
+
+        return getattr(integrate, self.traj.method)(
+            fun, t, y, self.t_bound, rtol=self.traj.rtol, atol=np.asarray(self.traj.atol),
+            max_step=max_step)
+
+    def _fail(self, t, q, qd, what, detail="") -> None:
+        self.traj.end = "failure"
+        self.traj.message = what.format(t=t, where=_where(self.eq, q, qd)) + detail
+
+    def run(self, t: float, y: np.ndarray) -> None:
+        """Integrate from ``(t, y)`` until the motion ends (``traj.end``, ``traj.message``)."""
+        self.sign = np.sign(y[1])
+        try:
+            qdd = self.eq.acceleration(y[0], y[1])
+        except StepFailure as exc:
+            return self._fail(t, exc.q, exc.qd, _CANNOT, str(exc))
+        piece = self.pieces.at(y[0], y[1], y[1] > 0 or (y[1] == 0 and qdd >= 0), qdd >= 0)
+        still = 0
+        while True:
+            got = self._piece(piece, t, y)
+            if got is None:
+                return
+            t_next, y, piece = got
+            still = still + 1 if t_next == t else 0
+            t = t_next
+            if still > MAX_STILL:
+                return self._fail(t, y[0], y[1], "the motion is held at t = {t:.6g} s, {where}, "
+                                  "on a breakpoint of the motor's table or of the loads: it "
+                                  "leaves each side of it toward the other")
+
+    def _piece(self, piece, t, y):
+        """Step over ``piece`` from ``(t, y)``: ``(t, y, next piece)`` where the motion leaves
+        it, ``None`` where the motion ends."""
+        traj = self.traj
+        try:
+            solver = self._solver(piece, t, y)
+        except StepFailure as exc:
+            return self._fail(t, exc.q, exc.qd, _CANNOT, str(exc))
+        while solver.status == "running":
+            t_before, y_before = solver.t, solver.y.copy()
+            try:
+                failed = solver.step()
+            except StepFailure as exc:
+                return self._fail(t_before, exc.q, exc.qd, _CANNOT, str(exc))
+            if solver.status == "failed":
+                return self._fail(t_before, *y_before, "the integrator failed at t = {t:.6g} "
+                                  "s, {where}: ", str(failed))
+            t_after, y_after = solver.t, solver.y
+            if not piece.inside_safe(y_after[0]):  # past the frozen loads' lines: shorter
+                solver = self._solver(piece, t_before, y_before, (t_after - t_before) / 2)
+                continue
+            dense = solver.dense_output()
+            traj.steps += 1
+            end, kind, k = self._event(piece, dense, t_before, y_before, t_after, y_after)
+            if self.sign == 0:
+                self.sign = np.sign(y_after[1])
+            if end > t_before or kind != "switch":
+                traj.pieces.append(dense)
+                traj.t.append(float(end))
+                if self.progress is not None:
+                    self.progress(end)
+            if kind == "switch":
+                return end, dense(end), self.pieces.neighbour(piece, k)
+            if kind is not None:
+                return None
+        return None
+
+    def _event(self, piece, dense, t_before, y_before, t_after, y_after):
+        """The first event in the step: ``(time, kind, k)``, kind ``"stall"``, ``"target"``,
+        ``"switch"`` (leaving the piece by its switching function ``k``) or ``None``."""
+        traj, eq = self.traj, self.eq
+        found = [(t_after, None, -1)]
+        if self.sign != 0 and np.sign(y_after[1]) != self.sign:  # speed crossed zero: a stall
+            found.append((_root(lambda s: dense(s)[1], t_before, t_after), "stall", -1))
+        target = self.target
+        if target is not None and (y_after[0] - target) * (y_before[0] - target) <= 0 \
+                and y_after[0] != y_before[0]:
+            found.append((_root(lambda s: dense(s)[0] - target, t_before, t_after), "target", -1))
+        g_after = piece.switching(y_after)
+        if np.any(g_after < 0):
+            g_before = piece.switching(y_before)
+            for k in np.flatnonzero(g_after < 0):
+                at = t_before if g_before[k] <= 0 else \
+                    _root(lambda s, k=k: piece.switching(dense(s))[k], t_before, t_after)
+                found.append((at, "switch", int(k)))
+        end, kind, k = min(found, key=lambda e: (e[0], e[1] != "stall", e[1] != "target"))
+        if kind == "stall":
+            traj.end = "stall"
+            traj.message = (f"the machine stalls at t = {end:.6g} s, "
+                            f"{_where(eq, dense(end)[0], 0.0)}: the driver's speed crosses zero")
+        elif kind == "target":
+            traj.end = "target"
+        return end, kind, k
+
+
+_CANNOT = ("the mechanism cannot be solved at t = {t:.6g} s, {where} (a state the "
+           "integrator tried after its last step): ")
 
 
 def _root(f, a: float, b: float) -> float:

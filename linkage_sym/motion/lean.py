@@ -24,7 +24,7 @@ import numpy as np
 
 from linkage_sym.numeric.results.result import OK
 
-__all__ = ["effort_at", "inertia_at"]
+__all__ = ["effort_at", "inertia_at", "numeric_inertia_at"]
 
 SCREEN = 1e-3
 """The Hadamard ratio under which the compiled mechanism's run computes a condition number
@@ -101,3 +101,43 @@ def effort_at(plan, joint: str, q: float, qd: float, qdd: float) -> tuple:
                                              {joint: np.array([qdd])})
     ok = status[0] == OK
     return float(driving[joint][0]), str(status[0]), None if ok else messages[0]
+
+
+def numeric_inertia_at(plan, scene, joint: str, q: float):
+    """``(J, J')`` at the driver value ``q`` (one state) from the numeric ``plan`` of
+    ``scene``'s links (kinematics only: a scene the symbolic layer does not derive), summed
+    as :meth:`~linkage_sym.motion.equations.MotionEquations.inertia` sums them from the
+    links' states at unit speed, or ``None`` where the step is not ``ok``.
+
+    Examples
+    --------
+    >>> import linkage_sym
+    >>> from linkage_sym.examples import example_dict
+    >>> from linkage_sym.motion.equations import MotionEquations
+    >>> d = example_dict("cam_eccentric_rocker")
+    >>> d["drivers"][0]["motor"] = {"torque": 1.0}
+    >>> eq = MotionEquations(linkage_sym.load_scene(d), require_simulate=False)
+    >>> J, dJ = numeric_inertia_at(eq.mechanism, eq.scene, eq.joint, 0.7)
+    >>> full = eq.inertia(0.7, reduce=False)
+    >>> bool(abs(J - full[0][0]) <= 1e-14 * J and abs(dJ - full[1][0]) <= 1e-12 * J)
+    True
+    """
+    S, status = plan.link_states({joint: np.array([q])}, {joint: np.ones(1)},
+                                 {joint: np.zeros(1)})
+    if status[0] != OK:
+        return None
+    J = dJ = 0.0
+    for link in scene.links:
+        st = S[link.name]
+        if link.mass > 0:
+            vx, vy = (float(np.asarray(v).reshape(-1)[0]) for v in st.point_velocity(link.com))
+            ax, ay = (float(np.asarray(a).reshape(-1)[0])
+                      for a in st.point_acceleration(link.com))
+            J += link.mass * (vx * vx + vy * vy)
+            dJ += 2.0 * link.mass * (vx * ax + vy * ay)
+        if link.inertia > 0:
+            w = float(np.asarray(st.w).reshape(-1)[0])
+            al = float(np.asarray(st.al).reshape(-1)[0])
+            J += link.inertia * w * w
+            dJ += 2.0 * link.inertia * w * al
+    return J, dJ

@@ -203,6 +203,24 @@ class Plan:
         got = self._solve(q, qd, qdd, self._path(q), False, method)
         return got[5].driving, got[2], got[3]
 
+    def link_states(self, q, qd, qdd) -> tuple:
+        """The links' positions, velocities and accelerations alone at the states
+        ``(q, qd, qdd)`` (dicts of ``(N,)`` arrays, as :meth:`run` takes them): what
+        :meth:`run` solves before its records, forces included where the plan has them.
+
+        Returns
+        -------
+        states : dict of LinkState
+            Each link's state over the steps (component arrays).
+        status : ndarray
+            Each step's status, as :meth:`run` gives it.
+        """
+        q = {k: np.asarray(v, dtype=float) for k, v in q.items()}
+        qd = {k: np.asarray(v, dtype=float) for k, v in qd.items()}
+        qdd = {k: np.asarray(v, dtype=float) for k, v in qdd.items()}
+        got = self._solve(q, qd, qdd, self._path(q), False, "dyad")
+        return got[0], got[2]
+
     def _solve(self, q, qd, qdd, path, exact_condition, method) -> tuple:
         """Positions, rates and forces along ``path``: ``(S, block, status, messages,
         condition, forces, ok, ind_min, path_index)``."""
