@@ -523,7 +523,10 @@ class Model(NumpyEvaluator):
                                    [r[bad] for r in tiles["Q"]], C.reshape(m, E)[:, bad],
                                    S.reshape(m, E)[:, bad])
         if "forces" in need:
-            sol.forces = self._spread_rows(np.array(self.forces_and_friction(pts, P=Pf)[0]), idx, n)
+            F, fr = self.forces_and_friction(pts, P=Pf)
+            sol.forces = self._spread_rows(np.array(F), idx, n)
+            if fr is not None:  # the self-locking entries, False where no step was solved
+                sol.locked = self._spread_rows(np.broadcast_to(fr.locked, (1, F[0].size)), idx, n)[0] == 1
         return sol
 
     def _positions_at(self, sol, where, X, P, Q, C, S):

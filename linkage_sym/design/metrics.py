@@ -150,6 +150,9 @@ class MetricPlan:
         check_choices(scene, output, trace)
         self.need = set().union(*(_NEEDS.get(m, set()) for m in self.metrics))
         self.forces = "forces" in self.need
+        # joint friction acts: a design may self-lock at a step, its column says at how many
+        self.locks = self.forces and scene.effects.friction and any(
+            j.friction is not None for j in scene.joints)
         refuse_meshes(scene)
         self.output = self._output(output) if "rate_t" in self.need else None
         if "K" in self.metrics and not (len(scene.drivers) == 1
@@ -231,6 +234,8 @@ class MetricPlan:
                 out += [f"path_{p}_{c}_{i}" for p in self.trace for c in "xy" for i in range(N)]
             else:
                 out.append(m)
+        if self.locks:
+            out.append("self_locking")
         return out
 
     def _grashof_names(self):
@@ -264,6 +269,12 @@ class MetricPlan:
         lim = None
         ok = sol.ok
         periodic = whole_period(self.scene)
+        locked = np.zeros(ok.shape, bool) if sol.locked is None else sol.locked
+        if self.locks:
+            cols["self_locking"] = locked.sum(axis=1) / sol.N
+        # no finite effort drives a design through a self-locking step: its efforts and
+        # reactions over the cycle are unbounded (never the largest of its other steps)
+        unbounded = locked.any(axis=1)
         for m in self.metrics:
             if m == "assemblable":
                 cols[m] = ok.sum(axis=1) / sol.N
@@ -277,11 +288,12 @@ class MetricPlan:
             elif m in ("peak_driving", "rms_driving"):
                 for d in self.scene.drivers:
                     e = np.where(ok, sol.effort(d.joint), np.nan)
-                    cols[f"{m}_{d.joint}"] = (_fmax(np.abs(e)) if m == "peak_driving"
-                                              else cycle_rms(e, ok, periodic))
+                    v = (_fmax(np.abs(e)) if m == "peak_driving" else cycle_rms(e, ok, periodic))
+                    cols[f"{m}_{d.joint}"] = np.where(unbounded, np.inf, v)
             elif m == "peak_reaction":
                 for j in self.scene.joints:
-                    cols[f"peak_reaction_{j.name}"] = _fmax(np.where(ok, sol.reaction(j.name), np.nan))
+                    v = _fmax(np.where(ok, sol.reaction(j.name), np.nan))
+                    cols[f"peak_reaction_{j.name}"] = np.where(unbounded, np.inf, v)
             elif m in ("rms_shaking_force", "rms_shaking_moment"):
                 if "rms_shaking_force" not in cols:
                     fx, fy, mz = self._shaking(model, sol)

@@ -41,7 +41,7 @@ from linkage_sym.codegen.path import ScaledGroup
 from linkage_sym.design.solution import Solution
 from linkage_sym.model import OUTPUTS
 from linkage_sym.numeric import continuation
-from linkage_sym.numeric.results.result import OK, UNASSEMBLABLE
+from linkage_sym.numeric.results.result import OK, SELF_LOCKING, UNASSEMBLABLE
 
 __all__ = ["ParameterContinuation", "PlanSolution", "solve_designs", "DEFAULT_CHUNK"]
 
@@ -147,7 +147,7 @@ class PlanSolution(Solution):
             uniq, inv = np.unique(t[sel], return_inverse=True)
             plan = self.kin[k]
             r = plan.run(*_rates_along(model, uniq))
-            ok = r.status == OK
+            ok = np.isin(r.status, (OK, SELF_LOCKING))  # kinematics solved at both
             lk = r.links[link]
             rate[sel] = np.where(ok, lk.omega, np.nan)[inv]
             drate[sel] = np.where(ok, lk.alpha, np.nan)[inv]
@@ -195,10 +195,12 @@ def solve_designs(model, P, n, need) -> PlanSolution:
         status[d] = res.status
         for lk, c in model.angle_of.items():
             X[c, d] = X0[c, d] + res.links[lk].rotation
-    ok = status == OK
+    locked = status == SELF_LOCKING  # ok kinematically, as Model.solve counts it
+    ok = (status == OK) | locked
     pos_ok = status != UNASSEMBLABLE
     X[:, ~pos_ok] = np.nan
     with np.errstate(invalid="ignore"):
         C, S = np.cos(X), np.sin(X)
     return PlanSolution(n, N, P, assembled, X0, joints0, L, X, pos_ok, ok, rate_t=rate_t,
-                        C=C, S=S, model=model, runs=runs, kin=kin)
+                        C=C, S=S, model=model, runs=runs, kin=kin,
+                        locked=locked if "forces" in need else None)

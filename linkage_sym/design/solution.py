@@ -43,6 +43,8 @@ class Solution:
     model: object = None  # the Model that solved it
     transmission: np.ndarray | None = None  # (dyads, n) each RRR dyad's smallest transmission
     # ratio |sin gamma| / |cos gamma| over the steps, when the solver computed it (numba)
+    locked: np.ndarray | None = None  # (n, N) the self-locking steps (joint friction): ok
+    # kinematically, but no finite driving effort moves the design there (forces NaN)
     brackets: tuple | None = None  # (design, step, rate there, rate at the next step) of each
     # sign change of the output's rate along the steps between ok steps, when the solver
     # found them (numba; else Limits finds them in rate_t)

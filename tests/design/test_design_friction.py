@@ -108,3 +108,58 @@ def test_a_class3_design_keeps_its_friction_one_design_at_a_time(tmp_path):
                 ["assemblable", "peak_driving", "peak_reaction"], scenes=SceneFiles(tmp_path))
     _check_against_analyze(res, _designs_of(tmp_path))
     assert res["peak_driving_A"][0] != res["peak_driving_A"][1]
+
+
+def _inclined_sweep():
+    from tests.support.friction_scenes import inclined_slider
+
+    scene = linkage_sym.load_scene(inclined_slider(0.3))
+    mus = [0.0, 0.3, 0.6, 1.2]
+    return scene, mus, sweep(scene, {"mu_C_guide": mus}, ["assemblable", "peak_driving",
+                                                           "rms_driving", "peak_reaction"])
+
+
+def test_a_design_that_self_locks_is_not_given_a_finite_peak_effort():
+    """The inclined slider self-locks over part of its stroke above the friction angle's
+    coefficient: a design's ``self_locking`` column is the share of steps the numeric solver
+    reports ``self-locking`` for its own scene, and its efforts and reactions over the cycle
+    are unbounded (``inf``), never the largest of its other steps; a design that never
+    locks has the solver's peak effort (1e-9)."""
+    from tests.support.friction_scenes import inclined_slider
+
+    scene, mus, res = _inclined_sweep()
+    shares = []
+    for k, mu in enumerate(mus):
+        r = linkage_sym.analyze(linkage_sym.load_scene(inclined_slider(mu)))
+        status = np.asarray(r.status)
+        locked = int(np.sum(status == "self-locking"))
+        shares.append(locked)
+        assert res["self_locking"][k] == locked / scene.steps
+        assert res["assemblable"][k] == 1.0  # every step assembles: locking is no defect of it
+        if locked:
+            assert np.isinf(res["peak_driving_A"][k]) and np.isinf(res["rms_driving_A"][k])
+            assert all(np.isinf(res[f"peak_reaction_{j}"][k]) for j in ("A", "B", "C", "C_guide"))
+        else:
+            peak = np.max(np.abs(r.forces.driving["A"]))
+            assert abs(res["peak_driving_A"][k] - peak) <= TOL * peak
+    assert shares[0] == 0 and 0 < shares[1] < shares[2] < shares[3] == scene.steps
+
+
+def test_designs_solved_one_at_a_time_report_self_locking_alike(monkeypatch):
+    """Designs with a group without a closed form are solved by the numeric plan one at a
+    time (its statuses say ``self-locking``): forced onto that route, the inclined slider's
+    sweep has the same columns as the closed forms' (locked steps are assembled steps)."""
+    _, _, direct = _inclined_sweep()
+    init = Model.__init__
+
+    def one_at_a_time(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        self.one_at_a_time = True
+
+    monkeypatch.setattr(Model, "__init__", one_at_a_time)
+    _, _, planned = _inclined_sweep()
+    for col in direct.metrics:
+        a, b = np.asarray(direct[col], float), np.asarray(planned[col], float)
+        assert np.array_equal(np.isinf(a), np.isinf(b)), col
+        fin = np.isfinite(a)
+        assert np.allclose(a[fin], b[fin], rtol=TOL, atol=0.0), col
