@@ -332,11 +332,18 @@ class Curves:
     dyads: list
 
 
+DEGENERATE = 1e-12
+"""A cofactor of the four poses' compatibility equation no larger than this (its terms are
+dimensionless, of order one) vanishes: the poses are degenerate."""
+
+
 def _four(poses) -> tuple:
     P = read_poses(poses, counts=(4,))
     b, delta, scale, origin = _standard(P)
     c2, c3, c4 = _cofactors(b, delta, (0, 1, 2))
-    if c4 == 0 or c3 == 0:
+    # b and delta are dimensionless, at most 2 and 1: a cofactor at rounding's size vanishes
+    # (a coupler that translates between the poses gives b = 0 up to rounding)
+    if min(abs(c3), abs(c4)) <= DEGENERATE:
         raise SynthesisError("poses", "the compatibility equation of the four poses degenerates "
                                       "(a cofactor vanishes): the poses are degenerate")
     return P, b, delta, scale, origin, (c2, c3, c4, c2 + c3 + c4)

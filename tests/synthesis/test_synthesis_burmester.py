@@ -60,6 +60,10 @@ def _poses(data, n):
     lengths, point, degs, turn, shift = data
     degs = sorted(degs)[:n]
     assume(min(b - a for a, b in zip(degs, degs[1:])) > 5.0)
+    # not a change-point four-bar (s + l = p + q): it can fold into a parallelogram whose
+    # coupler translates between the poses, for which the compatibility equation degenerates
+    s, p, q, l = sorted(lengths)
+    assume(abs(s + l - p - q) > 1e-6 * l)
     try:
         return known(lengths, point, degs, turn, shift) + (max(lengths),)
     except SynthesisError:  # not assemblable at one of the angles, or a dead centre
@@ -198,3 +202,17 @@ def test_four_poses_give_curves_and_designs_through_them():
     assert [d.check.defect_free for d in result.designs] == sorted(
         [d.check.defect_free for d in result.designs], reverse=True)
     assert all(g[i] >= g[i + 1] for i in range(len(free) - 1))
+
+
+def test_poses_of_a_translating_coupler_are_refused_not_divided_by_zero():
+    """A parallelogram's coupler translates: its first three poses keep one angle to
+    rounding (the builder's 1e-14 degrees), a cofactor of the compatibility equation is
+    rounding's size, and the method said nothing but divided by it (a RuntimeWarning, or a
+    pivot 7.5 lengths away from the truth)."""
+    poses = [[1.668240069197374, 0.08518596646932158, -3.578124016646456e-14],
+             [1.028109233534221, 0.9343966881674433, 6.3611093629270335e-15],
+             [0.7517187709258284, 0.9968073897420424, 6.361109362927035e-15],
+             [-0.262052276734268, -0.19747055447176592, 37.0]]
+    with pytest.raises(SynthesisError, match="poses: the compatibility equation of the four "
+                                             "poses degenerates"):
+        dyads_at(poses, 0.3)
