@@ -14,12 +14,21 @@ from __future__ import annotations
 
 import sympy as sp
 
-from linkage_sym.symbolic.latex_notation import LINE, MAX_ENTRY, MAX_MATRIX, Doc, Namer
+from linkage_sym.symbolic.latex_notation import (LINE, MAX_ENTRY, MAX_MATRIX, Doc, Namer,
+                                                 typeset_width)
 
 __all__ = ["BLOCK_ROW", "block_grid", "block_matrix", "rate_matrix"]
 
 BLOCK_ROW = LINE + 30
 """A block whose longest row is longer than this (LaTeX characters) is written entry by entry."""
+BLOCK_TYPESET = 60
+"""... or wider than this typeset (:func:`typeset_width` of its entries, two characters for
+each column's gap): a row of numbers (``derive --numeric``) is short in source characters
+but wide on the page.  The widest rows of the shipped examples' symbolic blocks are 57."""
+
+
+def _row_width(row: list[str]) -> float:
+    return sum(typeset_width(c) for c in row) + 2 * (len(row) - 1)
 
 
 def block_grid(M: sp.Matrix, rows: list[slice], cols: list[slice]) -> list[list[sp.Matrix]]:
@@ -41,6 +50,7 @@ def block_matrix(namer: Namer, M: sp.Matrix, force: bool = False) -> str | None:
     cells = [[namer(M[i, j]) for j in range(M.cols)] for i in range(M.rows)]
     if not force and (max(len(c) for r in cells for c in r) > MAX_ENTRY
                       or max(sum(len(c) for c in r) for r in cells) > BLOCK_ROW
+                      or max(_row_width(r) for r in cells) > BLOCK_TYPESET
                       or M.rows > MAX_MATRIX or M.cols > 10):  # amsmath's MaxMatrixCols
         return None
     # one matrix row a source line: the .tex reads as the matrix it typesets

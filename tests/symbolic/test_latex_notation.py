@@ -121,3 +121,24 @@ def test_an_inner_sum_is_written_positive_terms_first(name):
                 if first.startswith("-") and any(t.startswith("+") for t in terms[1:]):
                     wrong.append(group[:120])
     assert not wrong, wrong[:5]
+
+
+def test_a_block_of_numbers_wide_on_the_page_is_written_entry_by_entry():
+    """``derive --numeric``: a row of a force block such as ``0.0630317380372777 sin(theta)``
+    twice is short in source characters but ran 180 pt past the margin typeset; such a block
+    is now written entry by entry, as a block of long source rows is."""
+    import sympy as sp
+
+    from linkage_sym.symbolic.latex_blocks import block_matrix
+
+    th = sp.Symbol("theta_coupler")
+    k = sp.Float("0.0630317380372777")
+    wide = sp.Matrix([[0, 0, k * sp.sin(th), -k * sp.cos(th), 0, 0]])
+    narrow = sp.Matrix([[0, 0, sp.Symbol("l") * sp.sin(th), -sp.Symbol("l") * sp.cos(th), 0, 0]])
+
+    def namer(e):
+        return sp.latex(e)
+
+    assert block_matrix(namer, wide) is None
+    assert block_matrix(namer, wide, force=True) is not None
+    assert block_matrix(namer, narrow) is not None
