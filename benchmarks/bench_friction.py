@@ -36,19 +36,15 @@ from linkage_sym.examples import example_dict  # noqa: E402
 from linkage_sym.numeric.plan import compile_plan  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent))  # the tests' scenes (tests.support)
+from tests.support import friction_scenes  # noqa: E402
 
 
 def with_friction(name):
-    """Example ``name`` with friction in every R and P joint (as tests/numeric/test_friction.py)."""
+    """Example ``name`` as shipped where it has friction, else with friction in every R and P
+    joint (tests.support.friction_scenes, as the friction tests take it)."""
     d = example_dict(name)
-    if not d["effects"].get("friction"):
-        d["effects"]["friction"] = True
-        for k, j in enumerate(d["joints"]):
-            if j.get("type", "R") == "R":
-                j["friction"] = {"coefficient": 0.1 + 0.01 * k, "radius": 0.01}
-            elif j["type"] == "P":
-                j["friction"] = {"coefficient": 0.1 + 0.01 * k}
-    return d
+    return d if d["effects"].get("friction") else friction_scenes.with_friction(name)
 
 
 def case(name, steps=3600, repeats=5):

@@ -29,7 +29,7 @@ from scipy import integrate
 from scipy.optimize import brentq
 
 from linkage_sym.motion.equations import MotionEquations, StepFailure
-from linkage_sym.motion.methods import METHODS
+from linkage_sym.motion.methods import METHODS, check_solver
 from linkage_sym.motion.pieces import Pieces
 
 __all__ = ["METHODS", "RTOL", "Trajectory", "integrate_motion"]
@@ -114,10 +114,7 @@ def integrate_motion(eq: MotionEquations, t0: float, y0, t_bound: float, *,
     -------
     Trajectory
     """
-    if method not in METHODS:
-        raise ValueError(f"method: one of {', '.join(METHODS)}, got {method!r}")
-    if not 0 < rtol <= RTOL:
-        raise ValueError(f"rtol: must be in (0, {RTOL:g}], got {rtol!r}")
+    check_solver(method, rtol, RTOL)
     scale = 1.0 if eq.driver.kind == "R" else (eq.scene.characteristic_length() or 1.0)
     atol = (ATOL * scale, ATOL * scale)
     traj = Trajectory(t=[float(t0)], method=method, rtol=rtol, atol=atol,

@@ -21,7 +21,6 @@ driver's; with several drivers it holds ``reason`` (why there is no single perio
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 
 import numpy as np
@@ -32,7 +31,8 @@ from linkage_sym.model import Scene
 from linkage_sym.motion.equations import StepFailure, motor_effort
 from linkage_sym.motion.integrate import ATOL, RTOL, Trajectory
 from linkage_sym.motion.memory import check_memory
-from linkage_sym.motion.methods import METHODS
+from linkage_sym.motion.result_json import SimulationJSON
+from linkage_sym.motion.methods import check_solver
 from linkage_sym.motion.multi import SeveralEquations, where
 from linkage_sym.motion.periodic import crossing_times, turn_record
 
@@ -94,10 +94,7 @@ def integrate_several(eq: SeveralEquations, y0, t_bound: float, *, method: str =
     -------
     SeveralTrajectory
     """
-    if method not in METHODS:
-        raise ValueError(f"method: one of {', '.join(METHODS)}, got {method!r}")
-    if not 0 < rtol <= RTOL:
-        raise ValueError(f"rtol: must be in (0, {RTOL:g}], got {rtol!r}")
+    check_solver(method, rtol, RTOL)
     n = eq.n
     length = eq.scene.characteristic_length() or 1.0
     scale = [1.0 if d.kind == "R" else length for d in eq.drivers]
@@ -174,7 +171,7 @@ def _root(f, a: float, b: float) -> float:
 
 
 @dataclass
-class SeveralSimulationResult:
+class SeveralSimulationResult(SimulationJSON):
     """A simulated motion of several motors: the analysis of its sampled states and what the
     integration says.
 
@@ -222,19 +219,6 @@ class SeveralSimulationResult:
                     1e-300)
         return max(float(np.max(np.abs(self.analysis.forces.driving[j][ok] - m[ok]),
                                 initial=0.0)) for j, m in self.motor.items()) / scale
-
-    def to_dict(self) -> dict:
-        """The result in the contract's JSON layout."""
-        base = self.analysis.to_dict()
-        steps = [{"time": float(t), **record} for t, record in zip(self.time, base["steps"])]
-        extra = {"integrator": self.trajectory.integrator(), "motion": self.motion}
-        if self.message is not None:
-            extra["end"] = self.message
-        return {**{k: v for k, v in base.items() if k != "steps"}, "steps": steps, **extra}
-
-    def to_json(self, **kwargs) -> str:
-        """:meth:`to_dict` as strict JSON text."""
-        return json.dumps(self.to_dict(), **{**kwargs, "allow_nan": False})
 
 
 def simulate_several(scene: Scene, *, method: str = "LSODA", rtol: float = RTOL,

@@ -14,7 +14,6 @@ layout plus each step's ``time``, the ``integrator`` and the periodic ``motion``
 from __future__ import annotations
 
 import dataclasses
-import json
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,13 +22,14 @@ from linkage_sym.model import Scene
 from linkage_sym.motion.equations import MotionEquations, motor_effort
 from linkage_sym.motion.integrate import RTOL, Trajectory, integrate_motion
 from linkage_sym.motion.memory import check_memory
+from linkage_sym.motion.result_json import SimulationJSON
 from linkage_sym.motion.periodic import periodic_motion
 
 __all__ = ["SimulationResult", "simulate"]
 
 
 @dataclass
-class SimulationResult:
+class SimulationResult(SimulationJSON):
     """A simulated motion: the analysis of its sampled states and what the integration says.
 
     Attributes
@@ -74,19 +74,6 @@ class SimulationResult:
         ok = self.analysis.ok
         scale = max(float(np.max(np.abs(self.motor[ok]), initial=0.0)), 1e-300)
         return float(np.max(np.abs(driving[ok] - self.motor[ok]), initial=0.0) / scale)
-
-    def to_dict(self) -> dict:
-        """The result in the contract's JSON layout."""
-        base = self.analysis.to_dict()
-        steps = [{"time": float(t), **record} for t, record in zip(self.time, base["steps"])]
-        extra = {"integrator": self.trajectory.integrator(), "motion": self.motion}
-        if self.message is not None:
-            extra["end"] = self.message
-        return {**{k: v for k, v in base.items() if k != "steps"}, "steps": steps, **extra}
-
-    def to_json(self, **kwargs) -> str:
-        """:meth:`to_dict` as strict JSON text."""
-        return json.dumps(self.to_dict(), **{**kwargs, "allow_nan": False})
 
 
 def simulate(scene: Scene, *, method: str = "LSODA", rtol: float = RTOL,
