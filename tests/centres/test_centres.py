@@ -221,7 +221,7 @@ def test_reachability_of_the_examples():
         k = kennedy_centres(scene, res)
         unreachable = [p for p, s in zip(k.pairs, k.source) if s == "unreachable"]
         missed = ~k.reached & (res.status == "ok")[:, None]
-        if name == "fivebar":
+        if name in ("fivebar", "fivebar_motors"):  # one mechanism: with and without motors
             assert len(unreachable) == 5
             continue
         assert unreachable == [], name
