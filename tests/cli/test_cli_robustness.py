@@ -86,6 +86,7 @@ def test_demo_unknown_example_names_the_option_and_lists_examples(tmp_path):
 # -- 2. output paths checked before anything is computed or written ---------------------
 
 
+@pytest.mark.slow  # about 1-3 s each: the fast lane stays under two minutes
 @pytest.mark.parametrize("command, option, extra", [
     ("analyze", "-o", []),
     ("analyze", "-o", ["--plots", "PICS"]),
@@ -107,6 +108,7 @@ def test_an_output_file_that_is_a_folder_is_refused(tmp_path, command, option, e
     assert files_under(tmp_path) == ["existing"]
 
 
+@pytest.mark.slow  # about 1-3 s each: the fast lane stays under two minutes
 @pytest.mark.parametrize("command, option, where, extra", [
     ("analyze", "--plots", "folder", ["-o", "OUT"]),
     ("analyze", "--plots", "under", ["-o", "OUT"]),

@@ -4,6 +4,8 @@ import json
 import subprocess
 import sys
 
+import pytest
+
 from linkage_sym.cli import main
 from linkage_sym.examples import example_path
 
@@ -40,6 +42,7 @@ def test_view_needs_the_output_option(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow  # about 1-3 s each: the fast lane stays under two minutes
 def test_a_cam_scene_writes_a_page_solved_by_the_port(tmp_path):
     """A cam mechanism's page: no generated function, ``cams.js`` and the profile as data."""
     out = tmp_path / "cam.html"
@@ -50,6 +53,7 @@ def test_a_cam_scene_writes_a_page_solved_by_the_port(tmp_path):
     assert "http://" not in html and "https://" not in html
 
 
+@pytest.mark.slow  # about 1-3 s each: the fast lane stays under two minutes
 def test_a_cam_mechanism_the_page_does_not_solve_is_refused_naming_the_group(tmp_path):
     """An RRP dyad driven by a cam's follower: the page's port solves input links, RRR dyads
     and cam followers only; the refusal names the group and its joints; nothing is written."""

@@ -54,6 +54,7 @@ def test_path_writes_designs_table_and_plot(tmp_path, capsys):
     assert png.stat().st_size > 0
 
 
+@pytest.mark.slow  # 3-5 s: the fast lane stays under two minutes
 def test_path_slider_crank_scenes_sweep_through_the_targets(tmp_path, capsys):
     from tests.support.slider_reference import coupler_points as slider_points
     from tests.support.slider_reference import random_slider_crank

@@ -36,6 +36,7 @@ from linkage_sym.codegen.javascript import mechanism_script
 from linkage_sym.codegen.runtime import CompiledMechanism
 from linkage_sym.examples import load_example
 from linkage_sym.numeric.plan import compile_plan
+from tests.support.marks import fast_cases
 
 NODE = shutil.which("node")
 pytestmark = pytest.mark.skipif(NODE is None, reason="Node.js (node) is not installed")
@@ -69,7 +70,7 @@ def inputs(cm, rng):
             "P": list(cm.params), "CX": list(np.cos(X)), "SX": list(np.sin(X))}
 
 
-@pytest.mark.parametrize("name", symbolic_examples())
+@pytest.mark.parametrize("name", fast_cases(symbolic_examples(), {"crank_rocker", "sixbar_class3"}))
 def test_every_generated_function_in_javascript_equals_numpy(name, tmp_path):
     scene = load_example(name)
     art = js_artifact(name)
@@ -131,6 +132,7 @@ HARD = {
 }
 
 
+@pytest.mark.slow  # about 1-3 s each: the fast lane stays under two minutes
 @pytest.mark.parametrize("case", sorted(HARD))
 def test_the_page_evaluator_statuses_at_singular_unassemblable_and_jumping_steps(case, tmp_path):
     """Every step of the sweep: statuses as both Python runtimes give them (the NumPy

@@ -30,6 +30,7 @@ from linkage_sym.codegen.runtime import CompiledMechanism
 from linkage_sym.examples import load_example
 from tests.support import scenes
 from tests.support.example_sets import symbolic_examples
+from tests.support.marks import fast_cases
 
 NODE = shutil.which("node")
 pytestmark = pytest.mark.skipif(NODE is None, reason="Node.js (node) is not installed")
@@ -79,7 +80,8 @@ HARD = {  # as tests/codegen/test_javascript.py's: their rates at every step
 }
 
 
-@pytest.mark.parametrize("name", symbolic_examples() + sorted(HARD))
+@pytest.mark.parametrize("name", fast_cases(symbolic_examples() + sorted(HARD),
+                                             {"crank_rocker", "sixbar_class3", "triad jump"}))
 def test_the_javascript_rates_and_forces_equal_the_numpy_evaluator(name, tmp_path):
     """At 12 steps of a shipped example; at every step of a sweep with a singular step, a
     run of unassemblable steps, or a Newton group's re-entry."""

@@ -221,6 +221,7 @@ def test_the_flywheel_takes_one_driver():
     assert err.value.problems[0].startswith("drivers: ")
 
 
+@pytest.mark.slow  # 3-5 s: the fast lane stays under two minutes
 def test_with_friction_in_every_joint_the_motors_efforts_move_the_mechanism_as_integrated():
     data = copy.deepcopy(example_dict("fivebar_motors"))
     for joint in data["joints"]:

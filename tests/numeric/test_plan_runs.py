@@ -179,6 +179,7 @@ print(json.dumps(faults))
 """
 
 
+@pytest.mark.slow  # about 1-3 s each: the fast lane stays under two minutes
 @pytest.mark.skipif(platform.system() != "Linux" or platform.libc_ver()[0] != "glibc",
                     reason="counts the page faults of glibc's heap on Linux")
 @pytest.mark.parametrize("runtime", ["numeric", pytest.param("symbolic", marks=pytest.mark.slow)])

@@ -321,7 +321,8 @@ def _flat(record, prefix=""):
 @pytest.mark.parametrize("name", slow_cases(example_names(), {
     "engine_four_stroke", "song_wang_sixbar", "watt_sixbar", "shaper", "stephenson_sixbar",
     "fivebar", "cam_cycloidal_roller", "slider_crank_offset", "gear_linkage", "planetary_train",
-    "crank_rocker", "guide_bar_quick_return"}))
+    "crank_rocker", "guide_bar_quick_return", "shaper_flywheel", "crank_rocker_motor", "fivebar_motors",
+    "printing_mechanism_stroke"}))
 def test_json_file_is_byte_identical_to_the_contract_writer(name, tmp_path):
     d = example_dict(name)
     if name in NEWTON:
@@ -866,6 +867,7 @@ def test_a_failure_while_writing_leaves_no_partial_file(fmt, tmp_path, capsys, m
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r." + fmt, "scene.json"]
 
 
+@pytest.mark.slow  # about 1-3 s each: the fast lane stays under two minutes
 @pytest.mark.parametrize("signame, status", [pytest.param("SIGTERM", None, marks=pytest.mark.slow),
                                              ("SIGINT", 130)])
 def test_a_killed_analyze_leaves_no_partial_file(signame, status, tmp_path):

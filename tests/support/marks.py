@@ -39,3 +39,21 @@ def slow_cases(values, slow, key=str):
         else:
             out.append(v)
     return out
+
+
+def fast_cases(values, fast, key=str):
+    """``values`` as parameters, all but those whose ``key`` is in ``fast`` marked ``slow``:
+    a test run once per shipped example keeps a few examples in the fast lane (the whole
+    set runs in the default run).
+
+    Examples
+    --------
+    >>> [getattr(p, "marks", ()) == () for p in fast_cases(["a", "b"], {"a"})]
+    [True, False]
+    """
+    values = list(values)
+    keys = [key(v) for v in values]
+    missing = set(fast) - set(keys)
+    if missing:
+        raise ValueError(f"no case {sorted(missing)!r}")
+    return slow_cases(values, set(keys) - set(fast), key=key)

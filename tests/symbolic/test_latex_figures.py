@@ -24,6 +24,7 @@ from linkage_sym.structure.parameters import driver_q0, ident, link_frames
 from linkage_sym.symbolic import derive
 from linkage_sym.symbolic.latex import latex_document, standalone
 from tests.support.example_sets import symbolic_examples
+from tests.support.marks import fast_cases
 
 REL = 1e-9
 """Positions agree to this fraction of the mechanism's size (its characteristic length)."""
@@ -60,7 +61,7 @@ def figures(tex: str) -> list[str]:
     return re.findall(r"\\begin\{figure\}.*?\\end\{figure\}", tex, re.S)
 
 
-@pytest.mark.parametrize("name", symbolic_examples())
+@pytest.mark.parametrize("name", fast_cases(symbolic_examples(), {"crank_rocker", "sixbar_class3"}))
 def test_each_loop_figure_is_where_the_numeric_solver_puts_the_mechanism(name):
     eqs = derive(load_example(name))
     figs = figures(latex_document(eqs, figures=True))

@@ -22,6 +22,7 @@ from linkage_sym.symbolic import derive
 from linkage_sym.symbolic.latex import latex_document
 from linkage_sym.symbolic.markdown import markdown_document, markdown_text
 from tests.support.example_sets import symbolic_examples
+from tests.support.marks import fast_cases
 
 PARSER = MarkdownIt("commonmark").enable("table").use(dollarmath_plugin)
 
@@ -51,7 +52,7 @@ def markdown_counts(md: str) -> tuple[int, int]:
     return len(blocks), md.count("&=") + sum(r"\begin{aligned}" not in b for b in blocks)
 
 
-@pytest.mark.parametrize("name", symbolic_examples())
+@pytest.mark.parametrize("name", fast_cases(symbolic_examples(), {"crank_rocker", "sixbar_class3"}))
 def test_the_markdown_parses_converts_and_holds_the_latex_equations(name):
     eqs = derive(load_example(name))
     md, tex = markdown_document(eqs, symbols=True), latex_document(eqs, symbols=True)

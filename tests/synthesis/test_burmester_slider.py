@@ -65,6 +65,7 @@ def test_five_poses_of_a_slider_crank_give_it_back(seed):
     assert all(math.isnan(r["guide_deg"]) == (r["linkage"] == "four-bar") for r in rows)
 
 
+@pytest.mark.slow  # about 1-3 s each: the fast lane stays under two minutes
 @pytest.mark.parametrize("seed", [5, 6])
 def test_four_poses_slider_pin_and_designs_through_them(seed):
     poses, j, size = _known(seed, 4)
