@@ -230,8 +230,9 @@ class MotionEquations:
         scene's); :class:`StepFailure` where the step is not ``ok``."""
         e, status, message = effort_at(self.effort_plan if plan is None else plan, self.joint,
                                        float(self.reduce(q)), qd, qdd)
-        if status != "ok":
-            raise StepFailure(q, qd, f"{status}: {message}")
+        if status != "ok":  # the status once, where the step's message does not begin with it
+            raise StepFailure(q, qd, message if message.startswith(f"{status}:") else
+                              f"{status}: {message}")
         return e
 
     def _inertia_at(self, q: float) -> float:

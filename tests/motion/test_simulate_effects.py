@@ -65,3 +65,22 @@ def test_friction_inverse_dynamics_closes_the_loop_with_the_global_method():
     assert np.all(again.forces.friction_power > 0)  # the friction does act
     motor = np.interp(d["qd"], *np.transpose(table))
     assert np.max(np.abs(again.forces.driving["A"] - motor)) <= 1e-8 * np.max(np.abs(motor))
+
+
+def test_a_self_locking_state_ends_the_simulation_saying_where():
+    """The inclined slider pushed by a force motor from 4° (friction 0.3 at its guide): no
+    finite force moves it there (the kinetostatic solver's status ``self-locking``), so the
+    simulation ends at once with a message giving the time, the driver's value and speed,
+    the status once and the joint whose friction locks it."""
+    from tests.support.friction_scenes import inclined_slider
+
+    d = inclined_slider(0.3)
+    d["effects"]["inertia"] = True
+    d["links"][0].update(mass=0.5, com=d["joints"][0]["at"])
+    d["drivers"][0]["motor"] = {"force": 400.0}
+    d["simulate"] = {"duration": 1.0, "start": 0.0, "start_speed": 0.0, "samples": 201}
+    res = simulate(linkage_sym.load_scene(d))
+    assert res.message.startswith("the mechanism cannot be solved at t = 0 s, driver A at 0 m, "
+                                  "0 m/s"), res.message
+    assert res.message.count("self-locking") == 1 and "joint(s) C_guide" in res.message
+    assert list(res.analysis.status) == ["self-locking"]
