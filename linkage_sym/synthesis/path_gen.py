@@ -46,6 +46,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkage_sym.synthesis import path_model, path_slider
+from linkage_sym.synthesis.path_dyads import crank_turns, dyad_through
 from linkage_sym.synthesis.common import SynthesisError, number
 from linkage_sym.synthesis.path_check import Check, check, scene_of
 
@@ -124,17 +125,6 @@ def _size(T) -> float:
 # ------------------------------------------------------------------ exact: three points
 
 
-def _dyad(delta, rot_fixed, rot_free):
-    """``W, Z`` of ``W (e^(i r) - 1) + Z (e^(i s) - 1) = delta_j`` (j = 2, 3), Cramer's rule."""
-    a2, a3 = np.exp(1j * rot_fixed[:, 0]) - 1, np.exp(1j * rot_fixed[:, 1]) - 1
-    b2, b3 = np.exp(1j * rot_free[:, 0]) - 1, np.exp(1j * rot_free[:, 1]) - 1
-    det = a2 * b3 - a3 * b2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        W = (delta[0] * b3 - delta[1] * b2) / det
-        Z = (a2 * delta[1] - a3 * delta[0]) / det
-    return W, Z
-
-
 def exact_three(T, betas, rng, draws=EXACT_DRAWS):
     """Designs through three targets exactly: ``(z (m, 9), sigma (m,), thetas (m, 3))``.
 
@@ -143,15 +133,11 @@ def exact_three(T, betas, rng, draws=EXACT_DRAWS):
     """
     P = T[:, 0] + 1j * T[:, 1]
     delta = P[1:] - P[0]
-    if betas is None:
-        sense = rng.choice([-1.0, 1.0], draws)[:, None]
-        b = np.sort(rng.uniform(0.1, 2 * np.pi - 0.1, (draws, 2)), axis=1) * sense
-    else:
-        b = np.broadcast_to(np.asarray(betas, dtype=float), (draws, 2))
+    b = crank_turns(betas, rng, draws)
     alpha = rng.uniform(-np.pi, np.pi, (draws, 2))
     gamma = rng.uniform(-np.pi, np.pi, (draws, 2))
-    W, Z = _dyad(delta, b, alpha)
-    Ws, Zs = _dyad(delta, gamma, alpha)
+    W, Z = dyad_through(delta, b, alpha)
+    Ws, Zs = dyad_through(delta, gamma, alpha)
     B1, C1 = P[0] - Z, P[0] - Zs
     A, D = B1 - W, C1 - Ws
     bl = np.abs(C1 - B1)

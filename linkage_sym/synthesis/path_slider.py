@@ -36,6 +36,8 @@ import math
 
 import numpy as np
 
+from linkage_sym.synthesis.path_dyads import crank_turns, dyad_through
+
 NPAR = 8
 """``Ax, Ay, a, b, e, g, u, v``."""
 
@@ -112,15 +114,6 @@ def scene_of(z, sigma, thetas, name="path-generator", steps=181, speed=1.0) -> d
             "drivers": [drv], "outputs": ["kinematics"]}
 
 
-def _dyad(delta, rot_fixed, rot_free):
-    """``W, Z`` of ``W (e^(i r) - 1) + Z (e^(i s) - 1) = delta_j`` (j = 2, 3), Cramer's rule."""
-    a2, a3 = np.exp(1j * rot_fixed[:, 0]) - 1, np.exp(1j * rot_fixed[:, 1]) - 1
-    b2, b3 = np.exp(1j * rot_free[:, 0]) - 1, np.exp(1j * rot_free[:, 1]) - 1
-    det = a2 * b3 - a3 * b2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return (delta[0] * b3 - delta[1] * b2) / det, (a2 * delta[1] - a3 * delta[0]) / det
-
-
 def _slider_side(delta, alpha, g):
     """``Z_s`` with ``C_j = P_j - Z_s e^(i alpha_j)`` on a line of direction ``g`` (j = 1..3):
     ``Im((delta_j - Z_s b_j) w) = 0`` with ``b_j = e^(i alpha_j) - 1``, ``w = e^(-i g)``."""
@@ -145,14 +138,10 @@ def exact_three(T, betas, rng, draws=20000):
     """
     P = T[:, 0] + 1j * T[:, 1]
     delta = P[1:] - P[0]
-    if betas is None:
-        sense = rng.choice([-1.0, 1.0], draws)[:, None]
-        b = np.sort(rng.uniform(0.1, 2 * np.pi - 0.1, (draws, 2)), axis=1) * sense
-    else:
-        b = np.broadcast_to(np.asarray(betas, dtype=float), (draws, 2))
+    b = crank_turns(betas, rng, draws)
     alpha = rng.uniform(-np.pi, np.pi, (draws, 2))
     g = rng.uniform(-np.pi / 2, np.pi / 2, draws)
-    W, Z = _dyad(delta, b, alpha)
+    W, Z = dyad_through(delta, b, alpha)
     Zs = _slider_side(delta, alpha, g)
     B1, C1 = P[0] - Z, P[0] - Zs
     A = B1 - W
