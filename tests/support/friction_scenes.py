@@ -48,3 +48,21 @@ def inclined_slider(f, start_deg=4.0, stop_deg=40.0, steps=181):
         "effects": {"inertia": False, "gravity": [0.0, -9.81], "loads": True, "friction": True},
         "outputs": ["kinematics", "reactions", "driving"],
     }
+
+
+def assert_zero_friction_is_frictionless(a, b):
+    """The forces ``a`` of a scene whose every friction coefficient is 0 against the forces
+    ``b`` of the same scene without friction: the same numbers exactly, no friction and no
+    friction power, an efficiency of 1 wherever it has a value (all but at most 4 steps)."""
+    import numpy as np
+
+    for j in a.reactions:
+        assert np.array_equal(a.reactions[j], b.reactions[j])
+        assert np.array_equal(a.reaction_moments[j], b.reaction_moments[j])
+        assert np.array_equal(a.friction[j], np.zeros(len(a.friction[j])))
+    assert np.array_equal(a.driving["A"], b.driving["A"])
+    assert np.array_equal(a.frame_force, b.frame_force)
+    assert np.array_equal(a.frame_moment, b.frame_moment)
+    assert np.array_equal(a.friction_power, np.zeros(len(a.friction_power)))
+    ok = np.isfinite(a.efficiency)
+    assert np.all(a.efficiency[ok] == 1.0) and ok.sum() >= len(ok) - 4
