@@ -68,8 +68,13 @@ def _printer(kind="numpy"):
     if kind == "javascript":
         from sympy.printing.jscode import JavascriptCodePrinter
 
-        # strict: a function without a JavaScript form is an error, never a comment
-        return JavascriptCodePrinter({"user_functions": {}, "strict": True})
+        class _StrictJavascript(JavascriptCodePrinter):
+            # a function without a JavaScript form is an error, never a comment; said here
+            # rather than by the ``strict`` setting, which SymPy before 1.13 does not know
+            def _print_not_supported(self, expr):
+                raise ValueError(f"no JavaScript form for {type(expr).__name__}: {expr}")
+
+        return _StrictJavascript({"user_functions": {}})
     if kind != "numpy":
         raise ValueError(f"unknown printer {kind!r}: one of {', '.join(PRINTERS)}")
     from sympy.printing.numpy import NumPyPrinter
