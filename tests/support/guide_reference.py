@@ -1,0 +1,80 @@
+"""Known inverted slider-cranks measured by the solver: the references of the guide (RP) dyad tests.
+
+Shares no code with ``linkage_sym.synthesis.burmester_rp``, ``burmester_slider``, ``burmester`` or
+``motion``: the linkage (a crank ``A B``, the coupler pinned at ``B`` whose line slides through a
+block pinned to the ground at ``D``) is written here as a scene from random dimensions, solved by
+``compile_plan``, and its poses read from the solved traced point and coupler rotation.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tests.support.slider_reference import solve_at
+
+
+def random_inverted_slider_crank(rng, kind="oscillating"):
+    """An inverted slider-crank with random crank, frame, offset (``B``'s distance from the
+    coupler's line), placement and traced point ``P``, as a scene (joints ``A B D_slide D``,
+    links ``crank coupler slider``), assembled at a random crank angle in a random mode.
+
+    ``kind``: ``oscillating`` (crank + |offset| < frame: the crank turns fully, the coupler
+    swings) or ``rotating`` (crank - |offset| > frame: both turn fully)."""
+    while True:
+        a, g, e = rng.uniform(0.2, 1.0), rng.uniform(0.3, 1.2), rng.uniform(-0.3, 0.3)
+        if (kind == "oscillating" and a + abs(e) < g - 0.15) or (kind == "rotating"
+                                                                 and a - abs(e) > g + 0.15):
+            break
+    A = rng.uniform(-1.0, 1.0, 2)
+    frame = float(rng.uniform(-math.pi, math.pi))
+    D = A + g * np.array([math.cos(frame), math.sin(frame)])
+    phi = float(rng.uniform(-math.pi, math.pi))
+    B = A + a * np.array([math.cos(phi), math.sin(phi)])
+    r = B - D
+    alpha, s = math.atan2(r[1], r[0]), math.asin(e / np.linalg.norm(r))
+    psi = alpha - s if rng.uniform() < 0.5 else alpha - math.pi + s  # either assembly mode
+    u = np.array([math.cos(psi), math.sin(psi)])
+    n = np.array([-u[1], u[0]])
+    P = B + rng.uniform(-1.0, 1.0) * u + rng.uniform(0.2, 0.8) * n
+    xy = lambda p: [float(p[0]), float(p[1])]  # noqa: E731
+    return {
+        "name": "inverted-slider-crank",
+        "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "slider"}],
+        "joints": [
+            {"name": "A", "type": "R", "links": ["ground", "crank"], "at": xy(A)},
+            {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": xy(B)},
+            {"name": "D_slide", "type": "P", "links": ["coupler", "slider"], "at": xy(D),
+             "axis_deg": math.degrees(psi)},
+            {"name": "D", "type": "R", "links": ["slider", "ground"], "at": xy(D)},
+        ],
+        "points": [{"name": "P", "link": "coupler", "at": xy(P)}],
+        "drivers": [{"joint": "A", "toward": "B", "start_deg": math.degrees(phi),
+                     "stop_deg": math.degrees(phi) + 360.0, "steps": 361, "speed": 1.0}],
+        "outputs": ["kinematics"],
+    }
+
+
+def poses_of(scene, n, span_deg=210.0):
+    """The scene's poses (``[x, y, angle_deg]``: the traced point ``P``, the coupler's
+    rotation) at ``n`` crank angles spread over ``span_deg`` from its assembly, solved."""
+    th = np.radians(scene["drivers"][0]["start_deg"] + np.linspace(0.0, span_deg, n))
+    res = solve_at(scene, th)
+    P, rot = res.points["P"].position, res.links["coupler"].rotation
+    return [[float(P[j, 0]), float(P[j, 1]), math.degrees(rot[j])] for j in range(n)]
+
+
+def line_distances(scene, q):
+    """The distance of the block's pivot ``D`` from the coupler's line at crank angles ``q``
+    (rad), as the solver places the coupler (m): zero where the linkage is assembled."""
+    res = solve_at(scene, q)
+    j = {x["name"]: x for x in scene["joints"]}
+    B0, D = np.array(j["B"]["at"]), np.array(j["D"]["at"])
+    t0 = math.radians(j["D_slide"]["axis_deg"])
+    n0 = np.array([-math.sin(t0), math.cos(t0)])
+    e = float((D - B0) @ n0)  # D's signed distance from the line, seen from B, at assembly
+    rot = res.links["coupler"].rotation
+    B = res.joints["B"].position
+    n = np.column_stack([-np.sin(t0 + rot), np.cos(t0 + rot)])
+    return np.abs(np.einsum("ij,ij->i", D - B, n) - e)
