@@ -1,11 +1,12 @@
-"""``linkage-sym synthesize motion``: four-bars and slider-cranks through four or five coupler
-poses (Burmester).
+"""``linkage-sym synthesize motion``: four-bars and (inverted) slider-cranks through four or five
+coupler poses (Burmester).
 
 synthesize motion --poses P.json [--dyads N] [-o DIR] [--name NAME] [--steps N] [--speed W]
     P.json holds ``[[x, y, angle_deg], ...]`` (the coupler frame's origin, m, and
     angle, degrees).  Every four-bar from pairs of Burmester dyads, and every
     slider-crank from a dyad and a coupler point whose positions lie on a line,
-    is driven through the poses by the solver and classified; the table is printed, best
+    and every inverted slider-crank from a dyad and a fixed pivot a coupler line
+    passes through in every pose, is driven through the poses by the solver and classified; the table is printed, best
     first.  With -o: ``design-01.json`` ... (the coupler frame's origin the traced
     point P, the sweep from pose 1 to the last), ``designs.csv``, ``poses.png``
     (the best design in every pose) and ``burmester.png`` (the curves or points).
@@ -78,10 +79,15 @@ def cmd_motion(args) -> int:
     free = sum(r["defect_free"] for r in rows)
     sliders = sum(r["linkage"] == "slider-crank" for r in rows)
     k = len(result.sliders)
-    also = (f" and {sliders} slider-cranks (from {k} coupler point{'s' if k > 1 else ''} on a line)"
+    also = (f", {sliders} slider-cranks (from {k} coupler point{'s' if k > 1 else ''} on a line)"
             if result.sliders else "")
+    guides = sum(r["linkage"] == "inverted slider-crank" for r in rows)
+    k = len(result.guides)
+    also += (f", {guides} inverted slider-cranks (from {k} fixed pivot{'s' if k > 1 else ''} on a "
+             "coupler line)" if result.guides else "")
     print(f"motion generation through {n} poses: {len(result.dyads)} {found}, "
-          f"{len(rows) - sliders} four-bars{also} ({free} without a defect), best first; error: "
+          f"{len(rows) - sliders - guides} four-bars{also} ({free} without a defect), best first; "
+          "error: "
           "the largest distance of the solver's coupler pose from a pose, in coupler lengths")
     _print_table(rows)
     if args.output:
@@ -103,8 +109,8 @@ def cmd_motion(args) -> int:
 
 def add_motion(kinds) -> None:
     """Add ``motion`` to the ``synthesize`` command's kinds (``kinds``: its subparsers)."""
-    p = kinds.add_parser("motion", help="four-bars and slider-cranks through 4 or 5 coupler poses "
-                         "(Burmester)")
+    p = kinds.add_parser("motion", help="four-bars and (inverted) slider-cranks through 4 or 5 "
+                         "coupler poses (Burmester)")
     p.add_argument("--poses", required=True, metavar="P.json",
                    help="JSON list of 4 or 5 poses [x, y, angle_deg]: the coupler frame's origin "
                         "(m) and angle (deg)")

@@ -1,5 +1,5 @@
 """Pictures of a motion generation: the poses with a linkage in each, the Burmester curves
-(and the slider dyads' lines).
+(and the slider dyads' lines, the guide dyads' pivots and coupler lines).
 
 Only the synthesis' results are read here (:class:`~linkage_sym.synthesis.motion.MotionSynthesis`):
 the linkage in pose ``j`` is its fixed pivots and its moving pivots carried by
@@ -30,6 +30,13 @@ def _at(pose, local):
     return x + c * local[0] - s * local[1], y + s * local[0] + c * local[1]
 
 
+def _line(guide, pose):
+    """``(point, direction)``: a guide dyad's coupler line in a pose (through ``G``'s place on it
+    in pose 1)."""
+    t = pose[2] + guide.angle
+    return _at(pose, guide.local), (math.cos(t), math.sin(t))
+
+
 def _spread(poses) -> float:
     return float(max(np.max(np.hypot(*(poses[:, :2] - poses[0, :2]).T)), 1e-300))
 
@@ -52,6 +59,8 @@ def plot_poses(result, path, design: int = 0):
         The file written.
     """
     d = result.designs[design]
+    if d.kind == "inverted slider-crank":
+        return _plot_guide_poses(result, d, path)
     slider = d.kind == "slider-crank"
     crank = result.dyads[d.crank]
     rocker = result.sliders[d.rocker] if slider else result.dyads[d.rocker]
@@ -75,6 +84,10 @@ def plot_poses(result, path, design: int = 0):
     else:
         D = rocker.centre
         ax.plot([A[0], D[0]], [A[1], D[1]], "^", color="k", ms=9, label="fixed pivots A, D")
+    return _finish(fig, ax, d, path)
+
+
+def _finish(fig, ax, d, path):
     c = d.check
     state = "no defect" if c.defect_free else "; ".join(n.split(":")[0] for n in c.notes)
     ax.set_title(f"{d.scene['name']}: {c.grashof}, min transmission angle "
@@ -85,6 +98,36 @@ def plot_poses(result, path, design: int = 0):
     ax.legend(loc="best", fontsize=8)
     ax.grid(True, lw=0.3)
     return style.save(fig, path)
+
+
+def _plot_guide_poses(result, d, path):
+    """An inverted slider-crank in every pose: the crank, the coupler's line through the
+    block's pivot ``D`` (the block a square), the coupler's triangle ``B``, ``P``, ``D``'s
+    foot."""
+    crank, guide = result.dyads[d.crank], result.guides[d.rocker]
+    fig = style.new_figure(6.4, 5.4)
+    ax = fig.add_subplot()
+    size = 0.15 * _spread(result.poses)
+    A, D = crank.centre, guide.pivot
+    t = np.array(guide.travel)
+    for j, pose in enumerate(result.poses):
+        color = style.PALETTE[j % len(style.PALETTE)]
+        B = _at(pose, crank.local)
+        p, u = _line(guide, pose)
+        # the line from B's foot on it past D, as far as D travels along it and a quarter more
+        foot = (B[0] - p[0]) * u[0] + (B[1] - p[1]) * u[1]
+        ends = [min(foot, t.min(), 0.0), max(foot, t.max(), 0.0)]
+        pad = 0.25 * (ends[1] - ends[0])
+        line = np.asarray(p) + np.outer([ends[0] - pad, ends[1] + pad], u)
+        ax.plot(line[:, 0], line[:, 1], "-", color=color, lw=1.4)
+        F = (p[0] + foot * u[0], p[1] + foot * u[1])
+        ax.add_patch(Polygon([B, F, pose[:2]], closed=True, facecolor=color, alpha=0.15,
+                             edgecolor=color))
+        ax.plot([A[0], B[0]], [A[1], B[1]], "-o", color=color, lw=1.2, ms=3)
+        ax.plot(*D, "s", color=color, ms=14, mfc="none")
+        _frame(ax, pose[0], pose[1], pose[2], size, color, f"pose {j + 1}")
+    ax.plot([A[0], D[0]], [A[1], D[1]], "^", color="k", ms=9, label="fixed pivots A, D (block)")
+    return _finish(fig, ax, d, path)
 
 
 def _guide(ax, slider, label="slider's guide"):
@@ -124,6 +167,8 @@ def plot_curves(result, path):
         title = f"four poses: Burmester curves, {len(result.dyads)} dyads sampled"
     else:
         title = f"five poses: {len(result.dyads)} Burmester point pairs"
+    if len(result.guides):
+        title += f", {len(result.guides)} guide dyad{'s' if len(result.guides) > 1 else ''}"
     for k, dy in enumerate(result.dyads):
         ax.plot([dy.centre[0], dy.circle[0]], [dy.centre[1], dy.circle[1]], "-", color="0.5", lw=0.8)
         ax.plot([dy.centre[0]], [dy.centre[1]], "^", color="#1f77b4", ms=7,
@@ -134,8 +179,19 @@ def plot_curves(result, path):
         _guide(ax, sl, "slider lines (centre points at infinity)" if k == 0 else None)
         ax.plot([sl.circle[0]], [sl.circle[1]], "s", color="#2ca02c", ms=6,
                 label="slider pins (pose 1)" if k == 0 else None)
+    for k, g in enumerate(result.guides):
+        p, u = _line(g, result.poses[0])
+        t = np.array(g.travel)
+        pad = 0.25 * max(t.max() - t.min(), 1e-300)
+        ends = np.asarray(p) + np.outer([t.min() - pad, t.max() + pad], u)
+        ax.plot(ends[:, 0], ends[:, 1], ":", color="#9467bd", lw=1.4,
+                label="guide lines of the coupler (pose 1)"
+                if k == 0 else None)
+        ax.plot([g.pivot[0]], [g.pivot[1]], "D", color="#9467bd", ms=7,
+                label="guide pivots (their circle points at infinity)" if k == 0 else None)
     pts = np.array([*result.poses[:, :2], *(dy.centre for dy in result.dyads),
-                    *(dy.circle for dy in result.dyads), *(sl.circle for sl in result.sliders)])
+                    *(dy.circle for dy in result.dyads), *(sl.circle for sl in result.sliders),
+                    *(g.pivot for g in result.guides)])
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     mid, half = 0.5 * (lo + hi), 0.55 * float(max(hi - lo))
     for j, pose in enumerate(result.poses):

@@ -43,7 +43,6 @@ Five poses of a coupler whose line ``y = 0.2`` (frame coordinates) passes throug
 
 from __future__ import annotations
 
-import cmath
 import math
 from dataclasses import dataclass
 
@@ -143,19 +142,4 @@ def guide_points(poses) -> list[GuideDyad]:
     return out
 
 
-def coupler_line(guide: GuideDyad, pose) -> tuple:
-    """``(point, direction)`` of the guide's coupler line in a pose ``(x, y, angle)`` (m, rad).
-
-    Examples
-    --------
-    >>> g = GuideDyad((1.0, 1.0), (1.0, 0.0), 0.5, 0.5, (0.0,), 0.0)
-    >>> [round(v, 12) for v in coupler_line(g, (0.0, 0.0, math.pi / 2))[0]]
-    [0.0, 1.0]
-    """
-    x, y, t = (float(v) for v in pose)
-    p = complex(x, y) + cmath.exp(1j * t) * complex(*guide.local)
-    u = cmath.exp(1j * (t + guide.angle))
-    return (p.real, p.imag), (u.real, u.imag)
-
-
-__all__ = ["DEGENERATE", "GuideDyad", "coupler_line", "guide_points"]
+__all__ = ["DEGENERATE", "GuideDyad", "guide_points"]

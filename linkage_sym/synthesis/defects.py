@@ -1,4 +1,4 @@
-"""Branch, order and dead-centre defects of a crank-driven four-bar or slider-crank, by the solver.
+"""Branch, order and dead-centre defects of a crank-driven four-bar or (inverted) slider-crank, by the solver.
 
 The one defect checker of the syntheses: motion generation (four or five
 poses, :mod:`~linkage_sym.synthesis.motion`) and path generation
@@ -51,6 +51,25 @@ between the coupler and the normal to the guide; its crank turns fully when
 ``crank + |offset| < coupler`` (class ``slider-crank``, else
 ``slider-rocker``), and then its two modes are its two circuits.
 
+Or an inverted slider-crank (the coupler the guide, sliding through a block
+pinned to the ground): joints ``A``, ``B``, the slide ``D_slide`` (P,
+coupler-slider, its ``axis_deg`` the coupler line's direction in the
+assembly, its ``at`` the block's pivot) and ``D`` (R, slider-ground, at the
+same point), links ``crank``, ``coupler``, ``slider``.  Its assembly modes
+are the crank pin ahead of or behind the block along the coupler's line (the
+sign of ``(B - D) . u``, ``u`` along the line; the other mode is the coupler
+turned about ``B`` until its line passes through ``D`` again, at the same
+offset of ``B``).  Its transmission angle is the angle between ``DB`` and the
+normal to the coupler's line (the pin's force on the guide is along that
+normal, the velocity of the guide's point at ``B`` turning about ``D`` is
+normal to ``DB``): ``acos(|offset| / |DB|)``, 90° for a line through ``B``,
+0 where ``|DB|`` falls to the offset and the linkage cannot be assembled.
+Its crank turns fully when ``crank + |offset| < frame`` (class
+``oscillating-guide``, the coupler swings) or ``crank - |offset| > frame``
+(``rotating-guide``, the coupler turns fully too), else it rocks
+(``guide-rocker``); turning fully, its two modes are its two circuits.  Its
+"coupler length", the scale of the tolerance, is ``|DB|`` in the assembly.
+
 Examples
 --------
 A crank-rocker's own coupler-point positions at four crank angles:
@@ -90,14 +109,16 @@ length of it (and a link's rotation within this many radians)."""
 
 @dataclass(frozen=True)
 class MotionCheck:
-    """What the solver finds when the crank drives a four-bar or slider-crank through its targets.
+    """What the solver finds when the crank drives a four-bar or (inverted) slider-crank through its
+    targets.
 
     Attributes
     ----------
     grashof : str
         The Grashof class (``crank-rocker``, ``double-crank``, ``double-rocker``,
         ``triple-rocker``, ``change point``; a slider-crank: ``slider-crank`` when
-        its crank turns fully, else ``slider-rocker``).
+        its crank turns fully, else ``slider-rocker``; an inverted slider-crank:
+        ``oscillating-guide``, ``rotating-guide`` or ``guide-rocker``).
     branch : bool
         A target is met only in the other assembly mode, or the mode changes between
         two solved steps of the motion (see the module docstring).
@@ -108,7 +129,7 @@ class MotionCheck:
         The crank's motion from the first target to the last passes a dead centre.
     circuit : bool
         A target met only in the other assembly mode lies on the other circuit of
-        a Grashof four-bar, or of a slider-crank whose crank turns fully (see the
+        a Grashof four-bar, or of an (inverted) slider-crank whose crank turns fully (see the
         module docstring); False for one with a single circuit.
     missed : tuple of int
         Targets (0-based) met in neither assembly mode at their crank angle.
@@ -127,12 +148,13 @@ class MotionCheck:
     notes : tuple of str
         The defects in words.
     kind : str
-        ``four-bar`` or ``slider-crank``.
+        ``four-bar``, ``slider-crank`` or ``inverted slider-crank``.
     coupler : float
-        The coupler's length ``|BC|`` (m).
+        The coupler's length ``|BC|`` (m; an inverted slider-crank's ``|DB|`` in the assembly).
     full_turn : bool
         The crank turns fully (a Grashof crank; a slider-crank's crank with
-        ``crank + |offset| < coupler``).
+        ``crank + |offset| < coupler``; an inverted slider-crank's with ``|crank - frame| >
+        |offset|``).
     solved : bool
         Every step of the motion (the targets' crank angles among them) solved.
     """
@@ -163,12 +185,14 @@ def _joint(scene: dict, name: str) -> np.ndarray:
     for j in scene["joints"]:
         if j["name"] == name:
             return np.array(j["at"], dtype=float)
-    raise ValueError(f"the scene has no joint {name!r} (joints A, B, C, D of a four-bar or "
-                     "A, B, C, C_guide of a slider-crank are expected)")
+    raise ValueError(f"the scene has no joint {name!r} (joints A, B, C, D of a four-bar, "
+                     "A, B, C, C_guide of a slider-crank or A, B, D_slide, D of an inverted "
+                     "slider-crank are expected)")
 
 
 def kind_of(scene: dict) -> str:
-    """``slider-crank`` when the scene has the slide ``C_guide``, else ``four-bar``.
+    """``slider-crank`` when the scene has the slide ``C_guide``, ``inverted slider-crank``
+    when it has the slide ``D_slide``, else ``four-bar``.
 
     Examples
     --------
@@ -176,16 +200,30 @@ def kind_of(scene: dict) -> str:
     >>> kind_of(slider_crank(0.05, 0.2, 0.01).scene)
     'slider-crank'
     """
-    return "slider-crank" if any(j["name"] == "C_guide" for j in scene["joints"]) else "four-bar"
+    names = {j["name"] for j in scene["joints"]}
+    if "C_guide" in names:
+        return "slider-crank"
+    return "inverted slider-crank" if "D_slide" in names else "four-bar"
 
 
 def guide_direction(scene: dict) -> np.ndarray:
-    """The unit vector along a slider-crank's guide (its slide ``C_guide``'s ``axis_deg``)."""
+    """The unit vector along a slider-crank's guide (its slide ``C_guide``'s ``axis_deg``) or an
+    inverted slider-crank's coupler line in the assembly (``D_slide``'s)."""
     for j in scene["joints"]:
-        if j["name"] == "C_guide":
+        if j["name"] in ("C_guide", "D_slide"):
             t = math.radians(float(j["axis_deg"]))
             return np.array([math.cos(t), math.sin(t)])
-    raise ValueError("the slider-crank scene has no slide C_guide")
+    raise ValueError("the slider-crank scene has no slide C_guide or D_slide")
+
+
+def _guide_turn(scene: dict) -> float:
+    """How far the other mode of an inverted slider-crank turns its coupler about ``B`` (rad):
+    its line through ``D`` at ``B``'s offset, turned from ``psi`` to ``2 alpha - pi - psi``
+    (``alpha`` the direction of ``B - D``)."""
+    r = _joint(scene, "B") - _joint(scene, "D")
+    u = guide_direction(scene)
+    return math.remainder(2 * math.atan2(r[1], r[0]) - math.pi - 2 * math.atan2(u[1], u[0]),
+                          2 * math.pi)
 
 
 def _other_c(scene: dict) -> np.ndarray:
@@ -204,6 +242,8 @@ def mirrored(scene: dict) -> dict:
     """The same four-bar assembled in the other mode: ``C`` reflected in the line ``BD``,
     the coupler's traced points turned with it about ``B`` (the coupler stays rigid).
     A slider-crank: ``C`` (and its slide) reflected in the normal to the guide through ``B``.
+    An inverted slider-crank: the coupler (its line ``D_slide``) turned about ``B`` until the
+    line passes through ``D`` on the other side of ``B``'s foot on it.
 
     Examples
     --------
@@ -214,18 +254,23 @@ def mirrored(scene: dict) -> dict:
     >>> [round(v, 12) for v in m["joints"][2]["at"]], [round(v, 12) for v in m["points"][0]["at"]]
     ([0.4, -1.2], [0.4, -1.2])
     """
-    B, C = _joint(scene, "B"), _joint(scene, "C")
-    r = C - B
-    C2 = _other_c(scene)
-    turn = math.atan2(r[0] * (C2 - B)[1] - r[1] * (C2 - B)[0], r @ (C2 - B))
+    B = _joint(scene, "B")
+    out = dict(scene)
+    if kind_of(scene) == "inverted slider-crank":
+        turn = _guide_turn(scene)
+        out["joints"] = [dict(j, axis_deg=float(j["axis_deg"]) + math.degrees(turn))
+                         if j["name"] == "D_slide" else dict(j) for j in scene["joints"]]
+    else:
+        r = _joint(scene, "C") - B
+        C2 = _other_c(scene)
+        turn = math.atan2(r[0] * (C2 - B)[1] - r[1] * (C2 - B)[0], r @ (C2 - B))
+        out["joints"] = [dict(j, at=[float(v) for v in C2]) if j["name"] in ("C", "C_guide")
+                         else dict(j) for j in scene["joints"]]
     rot = np.array([[math.cos(turn), -math.sin(turn)], [math.sin(turn), math.cos(turn)]])
 
     def moved(p):
         return [float(v) for v in B + rot @ (np.asarray(p, dtype=float) - B)]
 
-    out = dict(scene)
-    out["joints"] = [dict(j, at=[float(v) for v in C2]) if j["name"] in ("C", "C_guide")
-                     else dict(j) for j in scene["joints"]]
     if "points" in scene:
         out["points"] = [dict(p, at=moved(p["at"])) if p["link"] == "coupler" else dict(p)
                          for p in scene["points"]]
@@ -234,12 +279,20 @@ def mirrored(scene: dict) -> dict:
 
 def _turn(scene: dict, other: dict, link: str) -> float:
     """How much farther ``link`` is turned in ``other``'s assembly than in ``scene``'s (rad)."""
+    if kind_of(scene) == "inverted slider-crank":
+        if link != "coupler":
+            return 0.0
+        return math.radians(math.remainder(_slide_deg(other) - _slide_deg(scene), 360.0))
     ends = {"coupler": "BC", "rocker": "DC"}.get(link)
     if ends is None:
         return 0.0
     u = _joint(scene, ends[1]) - _joint(scene, ends[0])
     v = _joint(other, ends[1]) - _joint(other, ends[0])
     return math.atan2(u[0] * v[1] - u[1] * v[0], u @ v)
+
+
+def _slide_deg(scene: dict) -> float:
+    return next(float(j["axis_deg"]) for j in scene["joints"] if j["name"] == "D_slide")
 
 
 def _unwrap(crank_deg) -> tuple[int, list, bool]:
@@ -319,6 +372,13 @@ def _geometry(res, kind, guide) -> tuple[np.ndarray, np.ndarray]:
     """``(gamma, mode)`` at the solved steps: the transmission angle (rad, 0..pi/2) and the
     assembly mode's sign (see the module docstring)."""
     ok = res.status == "ok"
+    if kind == "inverted slider-crank":
+        B, D = (np.asarray(res.joints[n].position)[ok] for n in "BD")
+        t = math.atan2(guide[1], guide[0]) + np.asarray(res.links["coupler"].rotation)[ok]
+        u, r = np.column_stack([np.cos(t), np.sin(t)]), B - D
+        normal = np.column_stack([-u[:, 1], u[:, 0]])
+        cos = np.abs(np.einsum("ij,ij->i", r, normal)) / np.linalg.norm(r, axis=1)
+        return np.arccos(np.clip(cos, 0.0, 1.0)), np.sign(np.einsum("ij,ij->i", r, u))
     B, C = (np.asarray(res.joints[n].position)[ok] for n in "BC")
     r = C - B
     if kind == "slider-crank":
@@ -336,6 +396,13 @@ def _classify(scene: dict, kind: str) -> tuple[str, bool, list, float]:
     """``(class, full_turn, loop lengths or [], coupler)`` of the scene's linkage."""
     from linkage_sym.structure.grashof import classify
 
+    if kind == "inverted slider-crank":
+        A, B, D = (_joint(scene, n) for n in "ABD")
+        a, g, b = (float(np.linalg.norm(v)) for v in (B - A, D - A, B - D))
+        offset = abs(float(_cross((B - D)[None], guide_direction(scene)[None])[0]))
+        name = ("oscillating-guide" if a + offset < g else
+                "rotating-guide" if a - offset > g else "guide-rocker")
+        return name, name != "guide-rocker", [], b
     A, B, C = (_joint(scene, n) for n in "ABC")
     a, b = float(np.linalg.norm(B - A)), float(np.linalg.norm(C - B))
     if kind == "slider-crank":
@@ -391,14 +458,15 @@ def _notes(order, branch, circuit, dead, missed) -> tuple:
 def check_motion(scene: dict, crank_deg, *, point=None, targets=None, link="coupler",
                  rotations=None, tol=TOLERANCE, steps_per_turn=STEPS_PER_TURN,
                  unwrapped=False, unit="deg") -> MotionCheck:
-    """Drive a four-bar or slider-crank by its crank through its targets with the solver; its defects.
+    """Drive a four-bar or (inverted) slider-crank by its crank through its targets with the solver.
 
     Parameters
     ----------
     scene : dict
         A four-bar scene (joints ``A B C D``, links ``crank coupler rocker``) or a
         slider-crank scene (joints ``A B C C_guide``, links ``crank coupler
-        slider``), the driver on ``A``, assembled in target 1.
+        slider``) or an inverted slider-crank scene (joints ``A B D_slide D``, links
+        ``crank coupler slider``), the driver on ``A``, assembled in target 1.
     crank_deg : sequence of float
         The crank angle (degrees, from ``+x``) at which each target is to be met,
         in the order the targets are to be met; the first is the assembly's.
@@ -443,7 +511,7 @@ def check_motion(scene: dict, crank_deg, *, point=None, targets=None, link="coup
     errs = _errors(res, idx, point, targets, link, rotations, b)
     lo, hi = min(idx), max(idx)
     dead = bool(np.any(res.status[lo:hi + 1] != "ok"))
-    guide = guide_direction(scene) if kind == "slider-crank" else None
+    guide = guide_direction(scene) if kind != "four-bar" else None
     gamma, modes = _geometry(res, kind, guide)
     branch, circuit, missed = len(set(modes.tolist()) - {0.0}) > 1, False, []
     bad = [] if tol is None else [k for k, e in enumerate(errs) if not e <= tol * b]

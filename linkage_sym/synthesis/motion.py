@@ -6,7 +6,11 @@ the centre-point curve.  Every ordered pair of dyads (the first the crank,
 the second the rocker) is a four-bar candidate.  The slider dyads -- coupler
 points whose positions lie on a line, the centre point at infinity
 (:mod:`~linkage_sym.synthesis.burmester_slider`) -- each with every dyad as
-its crank, are slider-crank candidates (the guide that line).  Each is written as a scene
+its crank, are slider-crank candidates (the guide that line); the guide dyads -- fixed
+pivots that a line of the coupler passes through in every pose, the circle point at
+infinity (:mod:`~linkage_sym.synthesis.burmester_rp`) -- each with every dyad as its
+crank, are inverted slider-crank candidates (the coupler sliding through a block pinned
+at the pivot).  Each is written as a scene
 (pivots in the poses' own coordinates, assembled in pose 1, the coupler frame's
 origin the traced point ``P``, the driver turning the crank from pose 1 to
 the last pose through the others) and driven through the poses by the
@@ -32,6 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkage_sym.synthesis.burmester import Curves, Dyad, burmester_curves, burmester_points, read_poses
+from linkage_sym.synthesis.burmester_rp import GuideDyad, guide_points
 from linkage_sym.synthesis.burmester_slider import SliderDyad, slider_points
 from linkage_sym.synthesis.common import SynthesisError, scene_name, sweep_options
 from linkage_sym.synthesis.defects import MotionCheck, check_motion
@@ -47,7 +52,7 @@ APART = 1e-6
 
 @dataclass(frozen=True)
 class MotionDesign:
-    """A four-bar or slider-crank candidate through the poses, as the solver found it.
+    """A four-bar or (inverted) slider-crank candidate through the poses, as the solver found it.
 
     Attributes
     ----------
@@ -55,14 +60,17 @@ class MotionDesign:
         The scene (``linkage_sym.load_scene`` reads it).
     crank, rocker : int
         Indices of its dyads in :attr:`MotionSynthesis.dyads`; a slider-crank's
-        ``rocker`` indexes :attr:`MotionSynthesis.sliders`.
+        ``rocker`` indexes :attr:`MotionSynthesis.sliders`, an inverted
+        slider-crank's :attr:`MotionSynthesis.guides`.
     lengths : dict of str to float
         ``crank``, ``coupler``, ``rocker``, ``ground`` (m; a slider-crank's
-        ``rocker`` and ``ground`` NaN).
+        ``rocker`` and ``ground`` NaN; an inverted slider-crank's ``coupler`` the
+        distance from its pin ``B`` to the block's pivot ``D`` in pose 1, its
+        ``rocker`` NaN).
     check : MotionCheck
         The solver's findings (defects, Grashof class, transmission angle, errors).
     kind : str
-        ``four-bar`` or ``slider-crank``.
+        ``four-bar``, ``slider-crank`` or ``inverted slider-crank``.
     """
 
     scene: dict
@@ -91,6 +99,8 @@ class MotionSynthesis:
         Pairs of dyads that make no linkage (a shared pivot).
     sliders : list of SliderDyad
         The slider dyads (coupler points on a line) combined with the dyads.
+    guides : list of GuideDyad
+        The guide dyads (fixed pivots on a coupler line) combined with the dyads.
     """
 
     poses: np.ndarray
@@ -99,6 +109,7 @@ class MotionSynthesis:
     designs: list
     skipped: int
     sliders: list = ()
+    guides: list = ()
 
 
 def _sample(curves: Curves, count: int, poses: np.ndarray) -> list[Dyad]:
@@ -145,12 +156,29 @@ def _slider_scene(name, crank: Dyad, slider: SliderDyad, poses, steps, speed) ->
     return scene
 
 
-def _design(name, dyads, k, l, poses, steps, speed, sliders=None) -> MotionDesign | None:
+def _guide_scene(name, crank: Dyad, guide: GuideDyad, poses, steps, speed) -> dict:
+    """An inverted slider-crank: the crank ``A B`` of ``crank``, the coupler's line sliding
+    through the block (link ``slider``) pinned to the ground at the guide's pivot ``D``."""
+    scene = _scene(name, crank, crank, poses, steps, speed)
+    D = [float(v) for v in guide.pivot]
+    scene["links"][2] = {"name": "slider"}
+    scene["joints"][2] = {"name": "D_slide", "type": "P", "links": ["coupler", "slider"], "at": D,
+                          "axis_deg": math.degrees(guide.axis)}
+    scene["joints"][3] = {"name": "D", "type": "R", "links": ["slider", "ground"], "at": D}
+    return scene
+
+
+def _design(name, dyads, k, l, poses, steps, speed, sliders=None,
+            guides=None) -> MotionDesign | None:
     """The four-bar of dyads ``k`` and ``l`` or, with ``sliders``, the slider-crank of dyad
-    ``k`` and slider ``sliders[l]``; None where two of its pivots coincide."""
+    ``k`` and slider ``sliders[l]``, or with ``guides`` the inverted slider-crank of dyad
+    ``k`` and guide ``guides[l]``; None where two of its pivots coincide."""
     crank = dyads[k]
     spread = float(np.max(np.hypot(*(poses[:, :2] - poses[0, :2]).T)))
-    if sliders is None:
+    if guides is not None:
+        pts = (crank.centre, crank.circle, guides[l].pivot)
+        scene = _guide_scene(name, crank, guides[l], poses, steps, speed)
+    elif sliders is None:
         rocker = dyads[l]
         pts = (crank.centre, crank.circle, rocker.circle, rocker.centre)
         scene = _scene(name, crank, rocker, poses, steps, speed)
@@ -167,14 +195,17 @@ def _design(name, dyads, k, l, poses, steps, speed, sliders=None) -> MotionDesig
     drv["stop_deg"] = drv["start_deg"] + math.degrees(check.crank_angles[-1] - check.crank_angles[0])
     lengths = {"crank": math.dist(pts[0], pts[1]), "coupler": math.dist(pts[1], pts[2]),
                "rocker": math.nan, "ground": math.nan}
-    if sliders is None:
+    if guides is not None:
+        lengths.update(ground=math.dist(pts[2], pts[0]))
+    elif sliders is None:
         lengths.update(rocker=math.dist(pts[2], pts[3]), ground=math.dist(pts[3], pts[0]))
     return MotionDesign(scene, k, l, lengths, check, check.kind)
 
 
 def motion_synthesis(poses, *, dyads: int = 12, samples: int = 720, name: str = "motion",
                      steps: int = 361, speed: float = 1.0) -> MotionSynthesis:
-    """Four-bars whose coupler frame passes through four or five poses.
+    """Four-bars, slider-cranks and inverted slider-cranks whose coupler frame passes through
+    four or five poses.
 
     Parameters
     ----------
@@ -199,7 +230,8 @@ def motion_synthesis(poses, *, dyads: int = 12, samples: int = 720, name: str = 
     ------
     SynthesisError
         Malformed poses, degenerate poses, fewer than two dyads (five poses
-        with no real Burmester point pair, say).
+        with no real Burmester point pair, say) and no slider or guide to pair
+        with one.
     """
     P = read_poses(poses)
     steps, speed = sweep_options(steps, speed)
@@ -210,18 +242,22 @@ def motion_synthesis(poses, *, dyads: int = 12, samples: int = 720, name: str = 
     sliders = slider_points(poses)
     if len(P) == 5:
         found = burmester_points(poses)
-        if len(found) < 2 and not (found and sliders):
+        guides = guide_points(poses)
+        if len(found) < 2 and not (found and (sliders or guides)):
             raise SynthesisError("poses", f"the five poses have {len(found)} real Burmester point "
-                                          f"pairs and {len(sliders)} slider dyads: no four-bar or "
-                                          "slider-crank meets them (move a pose, or give four)")
+                                          f"pairs, {len(sliders)} slider dyads and {len(guides)} "
+                                          "guide dyads: no four-bar or (inverted) slider-crank "
+                                          "meets them (move a pose, or give four)")
     else:
         curves = burmester_curves(poses, samples)
         found = _sample(curves, dyads, P)
+        guides = guide_points(poses)
     designs, skipped = [], 0
     pairs = [(k, l, None) for k in range(len(found)) for l in range(len(found)) if k != l]
     pairs += [(k, l, sliders) for k in range(len(found)) for l in range(len(sliders))]
-    for k, l, with_sliders in pairs:
-        d = _design(name, found, k, l, P, steps, speed, with_sliders)
+    pairs += [(k, l, None, guides) for k in range(len(found)) for l in range(len(guides))]
+    for k, l, *followers in pairs:
+        d = _design(name, found, k, l, P, steps, speed, *followers)
         if d is None:
             skipped += 1
         else:
@@ -229,13 +265,18 @@ def motion_synthesis(poses, *, dyads: int = 12, samples: int = 720, name: str = 
     designs.sort(key=lambda d: (not d.check.defect_free, -np.nan_to_num(d.check.gamma_min, nan=-1)))
     for i, d in enumerate(designs, 1):
         d.scene["name"] = f"{name}-{i:02d}"
-    return MotionSynthesis(P, found, curves, designs, skipped, sliders)
+    return MotionSynthesis(P, found, curves, designs, skipped, sliders, guides)
 
 
 def _guide(scene) -> tuple:
     """``(offset, guide_deg)`` of a slider-crank scene (the guide's signed distance from ``A``,
-    m, and direction), NaN for a four-bar."""
+    m, and direction) or an inverted slider-crank's (its coupler line's signed distance from
+    ``B``, in pose 1), NaN for a four-bar."""
     j = {x["name"]: x for x in scene["joints"]}
+    if "D_slide" in j:
+        t = math.radians(j["D_slide"]["axis_deg"])
+        B, D = j["B"]["at"], j["D"]["at"]
+        return math.cos(t) * (D[1] - B[1]) - math.sin(t) * (D[0] - B[0]), j["D_slide"]["axis_deg"]
     if "C_guide" not in j:
         return math.nan, math.nan
     t = math.radians(j["C_guide"]["axis_deg"])
@@ -257,7 +298,7 @@ def table(result: MotionSynthesis) -> list[dict]:
         j = {x["name"]: x["at"] for x in d.scene["joints"]}
         c = d.check
         finite = [e for e in c.errors if math.isfinite(e)]
-        D = j.get("D", (math.nan, math.nan))  # a slider-crank has no pivot D
+        D = j.get("D", (math.nan, math.nan))  # a slider-crank has no pivot D (a guide's is its block's)
         offset, guide_deg = _guide(d.scene)
         rows.append({
             "design": f"design-{i:02d}", "Ax": j["A"][0], "Ay": j["A"][1], "Dx": D[0],
