@@ -18,8 +18,9 @@ line (in the fixed frame, here the coupler's) the guide.  The counts are
 the slider's (Sandor and Erdman, *Advanced Mechanism Design: Analysis and
 Synthesis*, Vol. 2, 1984, ch. 2, dyads with a pivot at infinity):
 
-* **Four poses**: one or three guide dyads (the real directions of the
-  slider's cubic form) -- the points of the circle-point curve at infinity;
+* **Four poses**: one guide dyad (the slider's cubic form has one real
+  direction) -- the circle-point curve's real point at infinity, its centre
+  point on the centre-point curve, the one-parameter family of fixed pivots;
 * **Five poses**: none for general poses; poses of a linkage with a coupler
   line through a fixed pivot (an inverted slider-crank) give that guide back.
 
@@ -117,8 +118,8 @@ def guide_points(poses) -> list[GuideDyad]:
     -------
     list of GuideDyad
         Distinct dyads, each meeting all its poses to
-        :data:`~linkage_sym.synthesis.burmester.RESIDUAL`: one or three for four
-        poses (fewer where a pivot is not determined), none for five general poses.
+        :data:`~linkage_sym.synthesis.burmester.RESIDUAL`: one for four poses (none
+        where the pivot is not determined), none for five general poses.
 
     Raises
     ------

@@ -14,9 +14,11 @@ with its centre point at infinity; for four infinitesimally separated poses
 the point is Ball's point).
 
 * **Four poses**: three equations in ``m`` (two unknowns) have a solution only
-  where their 3x3 determinant vanishes -- a cubic form in ``(cos phi, sin phi)``:
-  one or three directions (mod a half turn), each with its point ``m``: one
-  or three slider dyads.
+  where their 3x3 determinant vanishes -- a cubic form in ``(cos phi, sin phi)``
+  with the factor ``cos^2 phi + sin^2 phi`` (on the isotropic directions its
+  first two columns are proportional; the circle-point curve is a circular
+  cubic, Bottema and Roth, *Theoretical Kinematics*, 1979): one direction
+  (mod a half turn) with its point ``m``, one slider dyad.
 * **Five poses**: the fourth equation must hold as well; a general set of
   five poses admits none, one from a slider-crank (or any linkage with a
   coupler point on a line) admits it.
@@ -158,8 +160,8 @@ def slider_points(poses) -> list[SliderDyad]:
     -------
     list of SliderDyad
         Distinct dyads, each meeting all its poses to
-        :data:`~linkage_sym.synthesis.burmester.RESIDUAL`: one or three for four
-        poses (fewer where a pin is not determined), none for five general poses.
+        :data:`~linkage_sym.synthesis.burmester.RESIDUAL`: one for four poses (none
+        where the pin is not determined), none for five general poses.
     """
     P = read_poses(poses)
     delta, c, scale = _data(P)

@@ -8,6 +8,7 @@ block pinned to the ground at ``D``) is written here as a scene from random dime
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -15,15 +16,17 @@ import numpy as np
 from tests.support.slider_reference import solve_at
 
 
-def random_inverted_slider_crank(rng, kind="oscillating"):
+def random_inverted_slider_crank(rng, kind="oscillating", offset=None):
     """An inverted slider-crank with random crank, frame, offset (``B``'s distance from the
     coupler's line), placement and traced point ``P``, as a scene (joints ``A B D_slide D``,
     links ``crank coupler slider``), assembled at a random crank angle in a random mode.
 
     ``kind``: ``oscillating`` (crank + |offset| < frame: the crank turns fully, the coupler
-    swings) or ``rotating`` (crank - |offset| > frame: both turn fully)."""
+    swings) or ``rotating`` (crank - |offset| > frame: both turn fully); ``offset`` (m): the
+    offset, random when None."""
     while True:
         a, g, e = rng.uniform(0.2, 1.0), rng.uniform(0.3, 1.2), rng.uniform(-0.3, 0.3)
+        e = e if offset is None else offset
         if (kind == "oscillating" and a + abs(e) < g - 0.15) or (kind == "rotating"
                                                                  and a - abs(e) > g + 0.15):
             break
@@ -65,16 +68,34 @@ def poses_of(scene, n, span_deg=210.0):
     return [[float(P[j, 0]), float(P[j, 1]), math.degrees(rot[j])] for j in range(n)]
 
 
-def line_distances(scene, q):
-    """The distance of the block's pivot ``D`` from the coupler's line at crank angles ``q``
-    (rad), as the solver places the coupler (m): zero where the linkage is assembled."""
-    res = solve_at(scene, q)
+def other_assembly(scene):
+    """The same linkage assembled in its other mode at the same crank angle: the coupler (its
+    slide's axis and the traced point) turned about ``B`` by the angle, other than 0, at which
+    its line passes through ``D`` again -- found by scanning and root finding on the distance."""
+    from scipy.optimize import brentq
+
     j = {x["name"]: x for x in scene["joints"]}
-    B0, D = np.array(j["B"]["at"]), np.array(j["D"]["at"])
+    B, D = np.array(j["B"]["at"]), np.array(j["D"]["at"])
     t0 = math.radians(j["D_slide"]["axis_deg"])
-    n0 = np.array([-math.sin(t0), math.cos(t0)])
-    e = float((D - B0) @ n0)  # D's signed distance from the line, seen from B, at assembly
-    rot = res.links["coupler"].rotation
-    B = res.joints["B"].position
-    n = np.column_stack([-np.sin(t0 + rot), np.cos(t0 + rot)])
-    return np.abs(np.einsum("ij,ij->i", D - B, n) - e)
+
+    r = D - B
+
+    def off(turn):  # D's signed distance from the turned line, less the assembled one
+        return ((math.cos(t0 + turn) * r[1] - math.sin(t0 + turn) * r[0])
+                - (math.cos(t0) * r[1] - math.sin(t0) * r[0]))
+
+    grid = np.linspace(1e-3, 2 * math.pi - 1e-3, 2001)
+    f = [off(t) for t in grid]
+    roots = [brentq(off, grid[k], grid[k + 1], xtol=1e-15) for k in range(len(grid) - 1)
+             if f[k] * f[k + 1] < 0]
+    assert len(roots) == 1, roots
+    turn = roots[0]
+    c, s = math.cos(turn), math.sin(turn)
+    out = json.loads(json.dumps(scene))
+    for x in out["joints"]:
+        if x["name"] == "D_slide":
+            x["axis_deg"] = x["axis_deg"] + math.degrees(turn)
+    for p in out["points"]:
+        v = np.array(p["at"]) - B
+        p["at"] = [float(B[0] + c * v[0] - s * v[1]), float(B[1] + s * v[0] + c * v[1])]
+    return out, turn
