@@ -12,7 +12,8 @@
 * :mod:`~linkage_sym.synthesis.positions` -- design by two or three coupler
   positions (``linkage-sym synthesize coupler-positions``);
 * :mod:`~linkage_sym.synthesis.motion` -- motion generation through four
-  or five coupler poses by Burmester theory (:mod:`~linkage_sym.synthesis.burmester`),
+  or five coupler poses by Burmester theory (:mod:`~linkage_sym.synthesis.burmester`;
+  slider and guide dyads, pivots at infinity, in ``burmester_slider`` and ``burmester_rp``),
   every candidate driven through the poses by the solver and classified
   (:mod:`~linkage_sym.synthesis.defects`: branch, order and dead-centre
   defects, Grashof class, minimum transmission angle)
@@ -49,7 +50,8 @@ from linkage_sym.synthesis.positions import coupler_positions
 
 
 def motion_synthesis(poses, **options):
-    """Four-bars whose coupler frame passes through 4 or 5 poses ``[x, y, angle_deg]``.
+    """Four-bars and (inverted) slider-cranks whose coupler frame passes through 4 or 5 poses
+    ``[x, y, angle_deg]``.
 
     See :func:`linkage_sym.synthesis.motion.motion_synthesis` (loaded on call:
     its solver checks need SciPy).
