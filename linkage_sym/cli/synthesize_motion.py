@@ -6,8 +6,8 @@ synthesize motion --poses P.json [--dyads N] [-o DIR] [--name NAME] [--steps N] 
     angle, degrees).  Every four-bar from pairs of Burmester dyads, and every
     slider-crank from a dyad and a coupler point whose positions lie on a line,
     and every inverted slider-crank from a dyad and a fixed pivot a coupler line
-    passes through in every pose, is driven through the poses by the solver and classified; the table is printed, best
-    first.  With -o: ``design-01.json`` ... (the coupler frame's origin the traced
+    passes through in every pose, is driven through the poses by the solver and
+    classified; the table is printed, best first.  With -o: ``design-01.json`` ... (the coupler frame's origin the traced
     point P, the sweep from pose 1 to the last), ``designs.csv``, ``poses.png``
     (the best design in every pose) and ``burmester.png`` (the curves or points).
 """

@@ -1,4 +1,4 @@
-"""Branch, order and dead-centre defects of a crank-driven four-bar or (inverted) slider-crank, by the solver.
+"""Branch, order and dead-centre defects of a crank-driven four-bar or (inverted) slider-crank.
 
 The one defect checker of the syntheses: motion generation (four or five
 poses, :mod:`~linkage_sym.synthesis.motion`) and path generation

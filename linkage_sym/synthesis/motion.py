@@ -298,7 +298,7 @@ def table(result: MotionSynthesis) -> list[dict]:
         j = {x["name"]: x["at"] for x in d.scene["joints"]}
         c = d.check
         finite = [e for e in c.errors if math.isfinite(e)]
-        D = j.get("D", (math.nan, math.nan))  # a slider-crank has no pivot D (a guide's is its block's)
+        D = j.get("D", (math.nan, math.nan))  # a slider-crank has no D (an inverted one's: the block)
         offset, guide_deg = _guide(d.scene)
         rows.append({
             "design": f"design-{i:02d}", "Ax": j["A"][0], "Ay": j["A"][1], "Dx": D[0],
