@@ -3,12 +3,14 @@ coupler poses (Burmester).
 
 synthesize motion --poses P.json [--dyads N] [-o DIR] [--name NAME] [--steps N] [--speed W]
     P.json holds ``[[x, y, angle_deg], ...]`` (the coupler frame's origin, m, and
-    angle, degrees).  Every four-bar from pairs of Burmester dyads, and every
+    angle, degrees).  Every four-bar from pairs of Burmester dyads, every
     slider-crank from a dyad and a coupler point whose positions lie on a line,
-    and every inverted slider-crank from a dyad and a fixed pivot a coupler line
-    passes through in every pose, is driven through the poses by the solver and
-    classified; the table is printed, best first.  With -o: ``design-01.json`` ... (the coupler frame's origin the traced
-    point P, the sweep from pose 1 to the last), ``designs.csv``, ``poses.png``
+    every inverted slider-crank from a dyad and a fixed pivot a coupler line
+    passes through in every pose, and every guide-slider from such a pivot (its
+    block driven) and a coupler point on a line, is driven through the poses by
+    the solver and classified; the table is printed, best first.  With -o:
+    ``design-01.json`` ... (the coupler frame's origin the traced point P, the
+    sweep from pose 1 to the last), ``designs.csv``, ``poses.png``
     (the best design in every pose) and ``burmester.png`` (the curves or points).
 """
 
@@ -82,11 +84,13 @@ def cmd_motion(args) -> int:
     also = (f", {sliders} slider-cranks (from {k} coupler point{'s' if k > 1 else ''} on a line)"
             if result.sliders else "")
     guides = sum(r["linkage"] == "inverted slider-crank" for r in rows)
+    both = sum(r["linkage"] == "guide-slider" for r in rows)
     k = len(result.guides)
     also += (f", {guides} inverted slider-cranks (from {k} fixed pivot{'s' if k > 1 else ''} on a "
-             "coupler line)" if result.guides else "")
+             f"coupler line) and {both} guide-sliders" if result.guides else "")
     print(f"motion generation through {n} poses: {len(result.dyads)} {found}, "
-          f"{len(rows) - sliders - guides} four-bars{also} ({free} without a defect), best first; "
+          f"{len(rows) - sliders - guides - both} four-bars{also} ({free} without a defect), best "
+          "first; "
           "error: "
           "the largest distance of the solver's coupler pose from a pose, in coupler lengths")
     _print_table(rows)

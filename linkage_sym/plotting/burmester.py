@@ -59,7 +59,7 @@ def plot_poses(result, path, design: int = 0):
         The file written.
     """
     d = result.designs[design]
-    if d.kind == "inverted slider-crank":
+    if d.kind in ("inverted slider-crank", "guide-slider"):
         return _plot_guide_poses(result, d, path)
     slider = d.kind == "slider-crank"
     crank = result.dyads[d.crank]
@@ -101,20 +101,22 @@ def _finish(fig, ax, d, path):
 
 
 def _plot_guide_poses(result, d, path):
-    """An inverted slider-crank in every pose: the crank, the coupler's line through the
-    block's pivot ``D`` (the block a square), the coupler's triangle ``B``, ``P``, ``D``'s
-    foot."""
-    crank, guide = result.dyads[d.crank], result.guides[d.rocker]
+    """An inverted slider-crank or a guide-slider in every pose: the coupler's line through the
+    block's pivot (the block a square), the crank or the slider's pin (a square) and guide, the
+    coupler's triangle (its pin, the pin's foot on the line, ``P``)."""
+    gs = d.kind == "guide-slider"
+    guide = result.guides[d.crank if gs else d.rocker]
+    pin = result.sliders[d.rocker] if gs else result.dyads[d.crank]
     fig = style.new_figure(6.4, 5.4)
     ax = fig.add_subplot()
     size = 0.15 * _spread(result.poses)
-    A, D = crank.centre, guide.pivot
+    D = guide.pivot
     t = np.array(guide.travel)
     for j, pose in enumerate(result.poses):
         color = style.PALETTE[j % len(style.PALETTE)]
-        B = _at(pose, crank.local)
+        B = _at(pose, pin.local)
         p, u = _line(guide, pose)
-        # the line from B's foot on it past D, as far as D travels along it and a quarter more
+        # the line from the pin's foot on it past D, as far as D travels along it and a quarter more
         foot = (B[0] - p[0]) * u[0] + (B[1] - p[1]) * u[1]
         ends = [min(foot, t.min(), 0.0), max(foot, t.max(), 0.0)]
         pad = 0.25 * (ends[1] - ends[0])
@@ -123,10 +125,18 @@ def _plot_guide_poses(result, d, path):
         F = (p[0] + foot * u[0], p[1] + foot * u[1])
         ax.add_patch(Polygon([B, F, pose[:2]], closed=True, facecolor=color, alpha=0.15,
                              edgecolor=color))
-        ax.plot([A[0], B[0]], [A[1], B[1]], "-o", color=color, lw=1.2, ms=3)
+        if gs:
+            ax.plot(*B, "s", color=color, ms=8, mfc="none")
+        else:
+            ax.plot([pin.centre[0], B[0]], [pin.centre[1], B[1]], "-o", color=color, lw=1.2, ms=3)
         ax.plot(*D, "s", color=color, ms=14, mfc="none")
         _frame(ax, pose[0], pose[1], pose[2], size, color, f"pose {j + 1}")
-    ax.plot([A[0], D[0]], [A[1], D[1]], "^", color="k", ms=9, label="fixed pivots A, D (block)")
+    if gs:
+        _guide(ax, pin)
+        ax.plot(*D, "^", color="k", ms=9, label="fixed pivot A (the driven block)")
+    else:
+        A = pin.centre
+        ax.plot([A[0], D[0]], [A[1], D[1]], "^", color="k", ms=9, label="fixed pivots A, D (block)")
     return _finish(fig, ax, d, path)
 
 

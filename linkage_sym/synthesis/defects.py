@@ -70,6 +70,18 @@ Its crank turns fully when ``crank + |offset| < frame`` (class
 (``guide-rocker``); turning fully, its two modes are its two circuits.  Its
 "coupler length", the scale of the tolerance, is ``|DB|`` in the assembly.
 
+Or a guide-slider (a slider on a fixed line and a block pinned to the ground that
+the coupler's line slides through, the block driven): joints ``A`` (R,
+ground-crank, the block's pivot, driven), ``B`` (P, coupler-crank: the coupler's
+line, its ``at`` a point of the block on that line), ``C`` (R, coupler-slider)
+and ``C_guide`` (P, ground-slider), links ``crank`` (the block), ``coupler``,
+``slider``.  The block turns the coupler with it: each angle has one
+configuration (no other mode, no branch), and none where the coupler's line
+runs parallel to the guide (a dead centre: the slider runs off to infinity; the
+solver's steps may pass it, the sign of the lines' cross product then changes).  Its transmission angle is the
+angle between the coupler's line and the guide; its class ``guide-slider``,
+its "coupler length" ``|AC|`` in the assembly.
+
 Examples
 --------
 A crank-rocker's own coupler-point positions at four crank angles:
@@ -118,7 +130,8 @@ class MotionCheck:
         The Grashof class (``crank-rocker``, ``double-crank``, ``double-rocker``,
         ``triple-rocker``, ``change point``; a slider-crank: ``slider-crank`` when
         its crank turns fully, else ``slider-rocker``; an inverted slider-crank:
-        ``oscillating-guide``, ``rotating-guide`` or ``guide-rocker``).
+        ``oscillating-guide``, ``rotating-guide`` or ``guide-rocker``; a guide-slider:
+        ``guide-slider``).
     branch : bool
         A target is met only in the other assembly mode, or the mode changes between
         two solved steps of the motion (see the module docstring).
@@ -148,9 +161,10 @@ class MotionCheck:
     notes : tuple of str
         The defects in words.
     kind : str
-        ``four-bar``, ``slider-crank`` or ``inverted slider-crank``.
+        ``four-bar``, ``slider-crank``, ``inverted slider-crank`` or ``guide-slider``.
     coupler : float
-        The coupler's length ``|BC|`` (m; an inverted slider-crank's ``|DB|`` in the assembly).
+        The coupler's length ``|BC|`` (m; an inverted slider-crank's ``|DB|``, a
+        guide-slider's ``|AC|``, in the assembly).
     full_turn : bool
         The crank turns fully (a Grashof crank; a slider-crank's crank with
         ``crank + |offset| < coupler``; an inverted slider-crank's with ``|crank - frame| >
@@ -191,8 +205,9 @@ def _joint(scene: dict, name: str) -> np.ndarray:
 
 
 def kind_of(scene: dict) -> str:
-    """``slider-crank`` when the scene has the slide ``C_guide``, ``inverted slider-crank``
-    when it has the slide ``D_slide``, else ``four-bar``.
+    """``slider-crank`` when the scene has the slide ``C_guide`` (``guide-slider`` when its
+    ``B`` is a slide too), ``inverted slider-crank`` when it has the slide ``D_slide``, else
+    ``four-bar``.
 
     Examples
     --------
@@ -200,9 +215,9 @@ def kind_of(scene: dict) -> str:
     >>> kind_of(slider_crank(0.05, 0.2, 0.01).scene)
     'slider-crank'
     """
-    names = {j["name"] for j in scene["joints"]}
+    names = {j["name"]: j.get("type") for j in scene["joints"]}
     if "C_guide" in names:
-        return "slider-crank"
+        return "guide-slider" if names.get("B") == "P" else "slider-crank"
     return "inverted slider-crank" if "D_slide" in names else "four-bar"
 
 
@@ -291,8 +306,9 @@ def _turn(scene: dict, other: dict, link: str) -> float:
     return math.atan2(u[0] * v[1] - u[1] * v[0], u @ v)
 
 
-def _slide_deg(scene: dict) -> float:
-    return next(float(j["axis_deg"]) for j in scene["joints"] if j["name"] == "D_slide")
+def _slide_deg(scene: dict, name: str = "D_slide", rad: bool = False) -> float:
+    deg = next(float(j["axis_deg"]) for j in scene["joints"] if j["name"] == name)
+    return math.radians(deg) if rad else deg
 
 
 def _unwrap(crank_deg) -> tuple[int, list, bool]:
@@ -368,10 +384,14 @@ def _cross(u, v) -> np.ndarray:
     return u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
 
 
-def _geometry(res, kind, guide) -> tuple[np.ndarray, np.ndarray]:
+def _geometry(scene, res, kind, guide) -> tuple[np.ndarray, np.ndarray]:
     """``(gamma, mode)`` at the solved steps: the transmission angle (rad, 0..pi/2) and the
     assembly mode's sign (see the module docstring)."""
     ok = res.status == "ok"
+    if kind == "guide-slider":
+        t = _slide_deg(scene, "B", rad=True) + np.asarray(res.links["coupler"].rotation)[ok]
+        cross = np.cos(t) * guide[1] - np.sin(t) * guide[0]
+        return np.arcsin(np.clip(np.abs(cross), 0.0, 1.0)), np.sign(cross)
     if kind == "inverted slider-crank":
         B, D = (np.asarray(res.joints[n].position)[ok] for n in "BD")
         t = math.atan2(guide[1], guide[0]) + np.asarray(res.links["coupler"].rotation)[ok]
@@ -396,6 +416,8 @@ def _classify(scene: dict, kind: str) -> tuple[str, bool, list, float]:
     """``(class, full_turn, loop lengths or [], coupler)`` of the scene's linkage."""
     from linkage_sym.structure.grashof import classify
 
+    if kind == "guide-slider":
+        return kind, False, [], float(np.linalg.norm(_joint(scene, "C") - _joint(scene, "A")))
     if kind == "inverted slider-crank":
         A, B, D = (_joint(scene, n) for n in "ABD")
         a, g, b = (float(np.linalg.norm(v)) for v in (B - A, D - A, B - D))
@@ -420,6 +442,9 @@ def _classify(scene: dict, kind: str) -> tuple[str, bool, list, float]:
 def _other_mode(scene, q, idx, res, errs, bad, args, grashof, full, lengths) -> tuple:
     """``(branch, circuit, missed, dead)`` of the targets ``bad`` missed in the solver's mode."""
     point, targets, link, rotations, tol, b = args
+    if kind_of(scene) == "guide-slider":  # one configuration at each angle: no other mode
+        return (False, False, [k for k in bad if math.isfinite(errs[k])],
+                any(not math.isfinite(errs[k]) for k in bad))
     other = mirrored(scene)
     if rotations is not None:  # the other mode's assembly turns the coupler and the rocker
         rotations = [r - _turn(scene, other, link) for r in rotations]
@@ -465,8 +490,9 @@ def check_motion(scene: dict, crank_deg, *, point=None, targets=None, link="coup
     scene : dict
         A four-bar scene (joints ``A B C D``, links ``crank coupler rocker``) or a
         slider-crank scene (joints ``A B C C_guide``, links ``crank coupler
-        slider``) or an inverted slider-crank scene (joints ``A B D_slide D``, links
-        ``crank coupler slider``), the driver on ``A``, assembled in target 1.
+        slider``), an inverted slider-crank scene (joints ``A B D_slide D``, links
+        ``crank coupler slider``) or a guide-slider scene (joints ``A B C C_guide``, ``B`` a
+        slide), the driver on ``A``, assembled in target 1.
     crank_deg : sequence of float
         The crank angle (degrees, from ``+x``) at which each target is to be met,
         in the order the targets are to be met; the first is the assembly's.
@@ -512,8 +538,10 @@ def check_motion(scene: dict, crank_deg, *, point=None, targets=None, link="coup
     lo, hi = min(idx), max(idx)
     dead = bool(np.any(res.status[lo:hi + 1] != "ok"))
     guide = guide_direction(scene) if kind != "four-bar" else None
-    gamma, modes = _geometry(res, kind, guide)
+    gamma, modes = _geometry(scene, res, kind, guide)
     branch, circuit, missed = len(set(modes.tolist()) - {0.0}) > 1, False, []
+    if kind == "guide-slider":  # the line crossed the guide's direction: the slider ran off
+        dead, branch = dead or branch, False
     bad = [] if tol is None else [k for k, e in enumerate(errs) if not e <= tol * b]
     if bad:
         other = _other_mode(scene, q, idx, res, errs, bad,

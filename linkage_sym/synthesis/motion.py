@@ -1,4 +1,4 @@
-"""Motion generation: four-bars whose coupler passes through four or five given poses.
+"""Motion generation: linkages whose coupler passes through four or five given poses.
 
 The dyads come from Burmester theory (:mod:`~linkage_sym.synthesis.burmester`):
 for five poses every Burmester point pair, for four poses dyads sampled along
@@ -6,11 +6,13 @@ the centre-point curve.  Every ordered pair of dyads (the first the crank,
 the second the rocker) is a four-bar candidate.  The slider dyads -- coupler
 points whose positions lie on a line, the centre point at infinity
 (:mod:`~linkage_sym.synthesis.burmester_slider`) -- each with every dyad as
-its crank, are slider-crank candidates (the guide that line); the guide dyads -- fixed
-pivots that a line of the coupler passes through in every pose, the circle point at
-infinity (:mod:`~linkage_sym.synthesis.burmester_rp`) -- each with every dyad as its
-crank, are inverted slider-crank candidates (the coupler sliding through a block pinned
-at the pivot).  Each is written as a scene
+its crank, are slider-crank candidates (the guide that line); the guide
+dyads -- fixed pivots that a line of the coupler passes through in every
+pose, the circle point at infinity (:mod:`~linkage_sym.synthesis.burmester_rp`)
+-- each with every dyad as its crank, are inverted slider-crank candidates
+(the coupler sliding through a block pinned at the pivot); each guide with
+each slider is a guide-slider candidate (the block at the guide's pivot
+driven: it turns the coupler with it).  Each is written as a scene
 (pivots in the poses' own coordinates, assembled in pose 1, the coupler frame's
 origin the traced point ``P``, the driver turning the crank from pose 1 to
 the last pose through the others) and driven through the poses by the
@@ -30,6 +32,7 @@ Examples
 from __future__ import annotations
 
 import cmath
+import itertools
 import math
 from dataclasses import dataclass
 
@@ -61,16 +64,18 @@ class MotionDesign:
     crank, rocker : int
         Indices of its dyads in :attr:`MotionSynthesis.dyads`; a slider-crank's
         ``rocker`` indexes :attr:`MotionSynthesis.sliders`, an inverted
-        slider-crank's :attr:`MotionSynthesis.guides`.
+        slider-crank's :attr:`MotionSynthesis.guides`; a guide-slider's ``crank``
+        indexes the guides, its ``rocker`` the sliders.
     lengths : dict of str to float
         ``crank``, ``coupler``, ``rocker``, ``ground`` (m; a slider-crank's
         ``rocker`` and ``ground`` NaN; an inverted slider-crank's ``coupler`` the
         distance from its pin ``B`` to the block's pivot ``D`` in pose 1, its
-        ``rocker`` NaN).
+        ``rocker`` NaN; a guide-slider's ``coupler`` the distance from the block's pivot
+        ``A`` to the slider's pin ``C`` in pose 1, the others NaN).
     check : MotionCheck
         The solver's findings (defects, Grashof class, transmission angle, errors).
     kind : str
-        ``four-bar``, ``slider-crank`` or ``inverted slider-crank``.
+        ``four-bar``, ``slider-crank``, ``inverted slider-crank`` or ``guide-slider``.
     """
 
     scene: dict
@@ -168,37 +173,78 @@ def _guide_scene(name, crank: Dyad, guide: GuideDyad, poses, steps, speed) -> di
     return scene
 
 
-def _design(name, dyads, k, l, poses, steps, speed, sliders=None,
-            guides=None) -> MotionDesign | None:
-    """The four-bar of dyads ``k`` and ``l`` or, with ``sliders``, the slider-crank of dyad
-    ``k`` and slider ``sliders[l]``, or with ``guides`` the inverted slider-crank of dyad
-    ``k`` and guide ``guides[l]``; None where two of its pivots coincide."""
-    crank = dyads[k]
+def _guide_slider_scene(name, guide: GuideDyad, slider: SliderDyad, poses, steps, speed) -> dict:
+    """A guide-slider: the block (link ``crank``) pinned at the guide's pivot ``A`` and driven,
+    the coupler's line sliding through it (the slide ``B``, its point of the block the foot of
+    the slider's pin on that line, or a spread along it), the slider's pin ``C`` and guide."""
+    G, C = np.asarray(guide.pivot), np.asarray(slider.circle)
+    u = np.array([math.cos(guide.axis), math.sin(guide.axis)])
     spread = float(np.max(np.hypot(*(poses[:, :2] - poses[0, :2]).T)))
-    if guides is not None:
-        pts = (crank.centre, crank.circle, guides[l].pivot)
-        scene = _guide_scene(name, crank, guides[l], poses, steps, speed)
-    elif sliders is None:
-        rocker = dyads[l]
-        pts = (crank.centre, crank.circle, rocker.circle, rocker.centre)
-        scene = _scene(name, crank, rocker, poses, steps, speed)
-    else:
-        pts = (crank.centre, crank.circle, sliders[l].circle)
-        scene = _slider_scene(name, crank, sliders[l], poses, steps, speed)
+    arm = float((C - G) @ u)
+    B = G + (arm if abs(arm) > APART * spread else spread) * u
+    start = math.degrees(math.atan2(B[1] - G[1], B[0] - G[0]))
+    xy = lambda p: [float(p[0]), float(p[1])]  # noqa: E731
+    return {
+        "name": name,
+        "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "slider"}],
+        "joints": [
+            {"name": "A", "type": "R", "links": ["ground", "crank"], "at": xy(G)},
+            {"name": "B", "type": "P", "links": ["coupler", "crank"], "at": xy(B),
+             "axis_deg": math.degrees(guide.axis)},
+            {"name": "C", "type": "R", "links": ["coupler", "slider"], "at": xy(C)},
+            {"name": "C_guide", "type": "P", "links": ["ground", "slider"], "at": xy(C),
+             "axis_deg": math.degrees(slider.angle)},
+        ],
+        "points": [{"name": "P", "link": "coupler", "at": xy(poses[0, :2])}],
+        "drivers": [{"joint": "A", "toward": "B", "start_deg": start, "stop_deg": start + 360.0,
+                     "steps": steps, "speed": speed, "acceleration": 0.0}],
+        "outputs": ["kinematics"],
+    }
+
+
+_SCENES = {"four-bar": _scene, "slider-crank": _slider_scene,
+           "inverted slider-crank": _guide_scene, "guide-slider": _guide_slider_scene}
+
+
+def _pins(kind, first, second) -> tuple:
+    """The design's pivots and pins at pose 1, in loop order from the driven pivot."""
+    if kind == "guide-slider":
+        return first.pivot, second.circle
+    if kind == "inverted slider-crank":
+        return first.centre, first.circle, second.pivot
+    if kind == "slider-crank":
+        return first.centre, first.circle, second.circle
+    return first.centre, first.circle, second.circle, second.centre
+
+
+def _design(name, kind, first, second, k, l, poses, steps, speed) -> MotionDesign | None:
+    """The linkage ``kind`` of the dyads ``first`` (the driven one: a crank dyad, a guide for a
+    guide-slider) and ``second``, numbered ``k`` and ``l`` in their lists; None where two of
+    its pivots coincide."""
+    spread = float(np.max(np.hypot(*(poses[:, :2] - poses[0, :2]).T)))
+    pts = _pins(kind, first, second)
     if min(math.dist(p, q) for i, p in enumerate(pts) for q in pts[i + 1:]) <= APART * spread:
         return None
-    W = complex(*crank.circle) - complex(*crank.centre)
-    phi = [math.degrees(cmath.phase(W) + bj) for bj in crank.beta]
+    scene = _SCENES[kind](name, first, second, poses, steps, speed)
+    if kind == "guide-slider":  # the block turns with the coupler
+        drv = scene["drivers"][0]["start_deg"]
+        phi = [drv + math.degrees(t - poses[0, 2]) for t in poses[:, 2]]
+    else:
+        W = complex(*first.circle) - complex(*first.centre)
+        phi = [math.degrees(cmath.phase(W) + bj) for bj in first.beta]
     check = check_motion(scene, phi, point="P", targets=poses[:, :2].tolist(),
                          rotations=(poses[:, 2] - poses[0, 2]).tolist())
     drv = scene["drivers"][0]
     drv["stop_deg"] = drv["start_deg"] + math.degrees(check.crank_angles[-1] - check.crank_angles[0])
-    lengths = {"crank": math.dist(pts[0], pts[1]), "coupler": math.dist(pts[1], pts[2]),
+    lengths = {"crank": math.dist(pts[0], pts[1]), "coupler": math.dist(pts[1], pts[-1]),
                "rocker": math.nan, "ground": math.nan}
-    if guides is not None:
+    if kind == "four-bar":
+        lengths.update(coupler=math.dist(pts[1], pts[2]), rocker=math.dist(pts[2], pts[3]),
+                       ground=math.dist(pts[3], pts[0]))
+    elif kind == "inverted slider-crank":
         lengths.update(ground=math.dist(pts[2], pts[0]))
-    elif sliders is None:
-        lengths.update(rocker=math.dist(pts[2], pts[3]), ground=math.dist(pts[3], pts[0]))
+    elif kind == "guide-slider":
+        lengths.update(crank=math.nan, coupler=math.dist(pts[0], pts[1]))
     return MotionDesign(scene, k, l, lengths, check, check.kind)
 
 
@@ -243,7 +289,7 @@ def motion_synthesis(poses, *, dyads: int = 12, samples: int = 720, name: str = 
     if len(P) == 5:
         found = burmester_points(poses)
         guides = guide_points(poses)
-        if len(found) < 2 and not (found and (sliders or guides)):
+        if len(found) < 2 and not (found and (sliders or guides)) and not (sliders and guides):
             raise SynthesisError("poses", f"the five poses have {len(found)} real Burmester point "
                                           f"pairs, {len(sliders)} slider dyads and {len(guides)} "
                                           "guide dyads: no four-bar or (inverted) slider-crank "
@@ -253,15 +299,17 @@ def motion_synthesis(poses, *, dyads: int = 12, samples: int = 720, name: str = 
         found = _sample(curves, dyads, P)
         guides = guide_points(poses)
     designs, skipped = [], 0
-    pairs = [(k, l, None) for k in range(len(found)) for l in range(len(found)) if k != l]
-    pairs += [(k, l, sliders) for k in range(len(found)) for l in range(len(sliders))]
-    pairs += [(k, l, None, guides) for k in range(len(found)) for l in range(len(guides))]
-    for k, l, *followers in pairs:
-        d = _design(name, found, k, l, P, steps, speed, *followers)
-        if d is None:
-            skipped += 1
-        else:
-            designs.append(d)
+    pairs = [("four-bar", found, found), ("slider-crank", found, sliders),
+             ("inverted slider-crank", found, guides), ("guide-slider", guides, sliders)]
+    for kind, firsts, seconds in pairs:
+        for k, l in itertools.product(range(len(firsts)), range(len(seconds))):
+            if kind == "four-bar" and k == l:
+                continue
+            d = _design(name, kind, firsts[k], seconds[l], k, l, P, steps, speed)
+            if d is None:
+                skipped += 1
+            else:
+                designs.append(d)
     designs.sort(key=lambda d: (not d.check.defect_free, -np.nan_to_num(d.check.gamma_min, nan=-1)))
     for i, d in enumerate(designs, 1):
         d.scene["name"] = f"{name}-{i:02d}"

@@ -99,3 +99,34 @@ def other_assembly(scene):
         v = np.array(p["at"]) - B
         p["at"] = [float(B[0] + c * v[0] - s * v[1]), float(B[1] + s * v[0] + c * v[1])]
     return out, turn
+
+
+def random_guide_slider(rng):
+    """A guide-slider with random pivot ``A`` (the driven block's), coupler line, guide and pin
+    offset, as a scene (joints ``A``, the slide ``B`` of the coupler's line through the block,
+    ``C``, ``C_guide``; links ``crank`` -- the block -- ``coupler``, ``slider``), its coupler
+    line and guide at 60 to 120 degrees in the assembly."""
+    A = rng.uniform(-1.0, 1.0, 2)
+    psi = float(rng.uniform(-math.pi, math.pi))
+    chi = psi + math.radians(rng.uniform(60.0, 120.0))  # the guide's direction
+    u, n = np.array([math.cos(psi), math.sin(psi)]), np.array([-math.sin(psi), math.cos(psi)])
+    C = A + rng.uniform(0.3, 1.0) * u + rng.uniform(-0.4, 0.4) * n  # the pin, off the line
+    B = A + rng.uniform(0.2, 0.6) * u  # the block's point on the coupler's line
+    P = C + rng.uniform(-0.5, 0.5, 2)
+    xy = lambda p: [float(p[0]), float(p[1])]  # noqa: E731
+    return {
+        "name": "guide-slider",
+        "links": [{"name": "crank"}, {"name": "coupler"}, {"name": "slider"}],
+        "joints": [
+            {"name": "A", "type": "R", "links": ["ground", "crank"], "at": xy(A)},
+            {"name": "B", "type": "P", "links": ["coupler", "crank"], "at": xy(B),
+             "axis_deg": math.degrees(psi)},
+            {"name": "C", "type": "R", "links": ["coupler", "slider"], "at": xy(C)},
+            {"name": "C_guide", "type": "P", "links": ["ground", "slider"], "at": xy(C),
+             "axis_deg": math.degrees(chi)},
+        ],
+        "points": [{"name": "P", "link": "coupler", "at": xy(P)}],
+        "drivers": [{"joint": "A", "toward": "B", "start_deg": math.degrees(psi),
+                     "stop_deg": math.degrees(psi) + 360.0, "steps": 361, "speed": 1.0}],
+        "outputs": ["kinematics"],
+    }

@@ -38,11 +38,13 @@ def _same_line(axis_a, axis_b):
 
 def _through_poses(scene, crank_angles, poses):
     """The largest distance of the solver's coupler frame from a pose, rotation error times the
-    coupler length ``|BD|`` added, over that length; the scene read back from JSON."""
+    coupler length added (``|BC|``, ``|BD|`` or a guide-slider's ``|AC|``), over that length;
+    the scene read back from JSON."""
     scene = json.loads(json.dumps(scene))
     res = solve_at(scene, np.asarray(crank_angles))
     at = {j["name"]: j["at"] for j in scene["joints"]}
-    b = math.dist(at["B"], at["C"] if "C" in at else at["D"])
+    slide_b = any(x["name"] == "B" and x["type"] == "P" for x in scene["joints"])
+    b = math.dist(at["A"] if slide_b else at["B"], at["C"] if "C" in at else at["D"])
     P, rot = res.points["P"].position, res.links["coupler"].rotation
     turn = [math.radians(p[2] - poses[0][2]) for p in poses]
     err = [math.dist(P[k], p[:2]) + b * abs(math.remainder(rot[k] - turn[k], 2 * math.pi))
@@ -208,3 +210,29 @@ def test_checker_finds_a_branch_on_the_other_circuit_and_90_degrees_without_offs
     c = check_motion(centred, deg, point="P", targets=P, rotations=rot)
     assert c.grashof == "rotating-guide" and c.defect_free
     assert abs(c.gamma_min - math.pi / 2) <= 1e-9
+
+
+@pytest.mark.parametrize("seed", [13, 14])
+def test_guide_slider_poses_give_it_back_and_a_dead_centre_between_poses_is_found(seed):
+    from tests.support.guide_reference import random_guide_slider
+
+    known = random_guide_slider(np.random.default_rng(seed))
+    j = {x["name"]: x for x in known["joints"]}
+    size = math.dist(j["A"]["at"], j["C"]["at"])
+    poses = poses_of(known, 5, span_deg=50.0)
+    result = motion_synthesis(poses)
+    both = [d for d in result.designs if d.kind == "guide-slider"]
+    assert len(both) == 1  # one guide and one slider
+    d = both[0]
+    at = {x["name"]: x for x in d.scene["joints"]}
+    assert math.dist(at["A"]["at"], j["A"]["at"]) <= 1e-9 * size
+    assert math.dist(at["C"]["at"], j["C"]["at"]) <= 1e-9 * size
+    assert _same_line(at["B"]["axis_deg"], j["B"]["axis_deg"]) <= 1e-9
+    assert _same_line(at["C_guide"]["axis_deg"], j["C_guide"]["axis_deg"]) <= 1e-9
+    assert d.check.defect_free and d.check.grashof == "guide-slider"
+    assert _through_poses(d.scene, d.check.crank_angles, poses) <= 1e-9
+    # the coupler's line, 60-120 degrees from the guide in pose 1, turning 160 degrees runs
+    # parallel to it between two poses: the block cannot drive the slider through there
+    poses = poses_of(known, 5, span_deg=160.0)
+    both = [d for d in motion_synthesis(poses).designs if d.kind == "guide-slider"]
+    assert len(both) == 1 and both[0].check.dead_centre and not both[0].check.defect_free
