@@ -2,7 +2,9 @@
 (tests.support.guide_reference: written and solved there, no synthesis code) give that linkage
 back among the solutions to 1e-9 of its size; every defect-free design meets every pose as the
 solver drives its scene read back from JSON; an independent random-start least-squares search on
-the dyad's own equation finds nothing the method did not report; degenerate poses are refused."""
+the dyad's own equation finds nothing the method did not report; degenerate poses are refused;
+known guide-sliders (a guide and a slider, the block driven) come back, and their dead centre is
+found."""
 
 import json
 import math
