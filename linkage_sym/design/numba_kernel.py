@@ -27,7 +27,7 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["kernel_source", "singular", "unit_direction"]
+__all__ = ["entry_source", "fmax", "fmax_select", "screen_lines", "singular", "solve_lines", "unit_direction"]
 
 _JIT = numba.njit(error_model="numpy")
 
@@ -59,6 +59,12 @@ def fmax(a, b):
     return a if a >= b else b
 
 
+@numba.njit(error_model="numpy", inline="always")
+def fmax_select(a, b):
+    """NumPy's ``fmax`` of two numbers (a NaN loses) as selections, no branch."""
+    return b if a != a else (a if (b != b) | (a >= b) else b)
+
+
 @_JIT
 def singular(rout, pattern, m, L, rows_length, cols_length, cond_max):
     """Whether the dimensionless condition number of ``A`` (the entries ``rout`` at
@@ -85,8 +91,9 @@ def _entry(pattern, i, j):
     return f"a{i}_{j}" if (i, j) in pattern else "0.0"
 
 
-def _screen_lines(blocks, pattern) -> list:
-    """``flag = ...`` of every block of 2 or 3 coordinates (``BlockSystem.below``)."""
+def screen_lines(blocks, pattern, fmax) -> list:
+    """``flag = ...`` of every block of 2 or 3 coordinates (``BlockSystem.below``), the
+    larger of two numbers by the function named ``fmax``."""
     out = ["flag = False"]
     for r0, _, c0, c1 in blocks:
         k = c1 - c0
@@ -95,7 +102,7 @@ def _screen_lines(blocks, pattern) -> list:
             (a, b), (c, d) = g
             out += [f"det = {a} * {d} - {b} * {c}",
                     f"q0, q1, q2, q3 = {a} * {a}, {b} * {b}, {c} * {c}, {d} * {d}",
-                    "norms = fmax((q0 + q1) * (q2 + q3), (q0 + q2) * (q1 + q3))"]
+                    f"norms = {fmax}((q0 + q1) * (q2 + q3), (q0 + q2) * (q1 + q3))"]
         elif k == 3:
             (a, b, c), (d, e, f), (gg, h, kk) = g
             out += [f"det = {a} * ({e} * {kk} - {f} * {h}) + {b} * ({f} * {gg} - {d} * {kk})"
@@ -104,18 +111,19 @@ def _screen_lines(blocks, pattern) -> list:
                     f"{f} * {f}) * ({gg} * {gg} + {h} * {h} + {kk} * {kk}))",
                     f"cols = (({a} * {a} + {d} * {d} + {gg} * {gg}) * ({b} * {b} + {e} * {e} + "
                     f"{h} * {h}) * ({c} * {c} + {f} * {f} + {kk} * {kk}))",
-                    "norms = fmax(rows, cols)"]
+                    f"norms = {fmax}(rows, cols)"]
         else:
             continue
-        out.append("flag = flag or det * det < t2 * norms")
+        out.append("flag = flag | (det * det < t2 * norms)")
     return out
 
 
-def _solve_lines(blocks, pattern, m) -> list:
-    """``x<c> = ...`` of every coordinate, block by block (``BlockSystem.solve``)."""
+def solve_lines(blocks, pattern, rhs) -> list:
+    """``x<c> = ...`` of every coordinate, block by block (``BlockSystem.solve``);
+    ``rhs(i)``: the expression of row ``i`` of ``B qd``."""
     out = []
     for r0, r1, c0, c1 in blocks:
-        b = [f"rout[{len(pattern) + r0 + i}]" for i in range(r1 - r0)]
+        b = [rhs(r0 + i) for i in range(r1 - r0)]
         for (i, j) in pattern:
             if r0 <= i < r1 and j < c0:
                 b[i - r0] = f"({b[i - r0]} - a{i}_{j} * x{j})"
@@ -169,54 +177,39 @@ def _position_lines(x, forms, m) -> list:
     return out
 
 
-def kernel_source(directions, rates, x, forms, blocks, pattern, m, dyads, col) -> str:
-    """Source of ``kernel(Pd, Hd, Hr, Q, QD, QDD, assembled, L, cc, sc, screen,
-    rows_length, cols_length, pos_ok, ok, tmin, bd, bi, bfa, bfb) -> brackets``.
+def entry_source(directions, rates, x, forms, blocks, pattern, m, dyads, col) -> str:
+    """Source of ``entry(P, Qt, QD, QDD, Hdt, Hrt, cc, sc, d, Ld, screen, rows_length,
+    cols_length, pattern, tr, dout, rout, C, S, nowhere) -> (status, rate)``: one design
+    (parameters ``P``) at one step, as the NumPy backend evaluates it.
 
     ``directions``, ``rates``: the compiled scalar functions' names; ``x``, ``forms``:
     the closed step's coordinates and forms; ``blocks``, ``pattern``: the artifact's;
     ``dyads``: ``(ia, ib)`` of each RRR dyad whose transmission is measured; ``col``:
-    the coordinate whose rate along the steps is bracketed (None: no rate solved).
-    The loop fills ``pos_ok``, ``ok`` (n, N), ``tmin`` (dyads, n) and the brackets
-    (design, step, rate there, rate at the next step) in row-major order as far as
-    the arrays hold them, returning how many there are."""
+    the coordinate whose rate along the steps is returned (None: no rate solved).
+    ``status``: 0 no positions, 1 positions but singular, 3 ok; with positions, ``tr``
+    holds each dyad's transmission ratio; ``rate``: the rate of ``col`` when ok.  The
+    block loop (:mod:`linkage_sym.design.numba_block`) calls it where its own arithmetic
+    does not decide: a direction of length 0 or infinite, a step the screen flags."""
     pattern = [tuple(p) for p in pattern]
-    inner = [f"{directions}(nowhere, nowhere, nowhere, Q[t], QD, QDD, nowhere, P, nowhere, "
-             "nowhere, Hd[t], dout)"]
-    inner += _position_lines(x, forms, m)
-    inner += ["pos_ok[d, t] = valid", "if not valid:", "    ok[d, t] = False",
-              "    pok = False", "    continue"]
+    lines = [f"{directions}(nowhere, nowhere, nowhere, Qt, QD, QDD, nowhere, P, nowhere, "
+             "nowhere, Hdt, dout)"]
+    lines += _position_lines(x, forms, m)
+    lines += ["if not valid:", "    return 0, 0.0"]
     for k, (ia, ib) in enumerate(dyads):
-        inner += [f"cd = C[{ib}] * C[{ia}] + S[{ib}] * S[{ia}]",
+        lines += [f"cd = C[{ib}] * C[{ia}] + S[{ib}] * S[{ia}]",
                   f"sd = S[{ib}] * C[{ia}] - C[{ib}] * S[{ia}]",
-                  f"r = abs((sd * cc[{k}, d] + cd * sc[{k}, d]) / (cd * cc[{k}, d] - sd * sc[{k}, d]))",
-                  f"if r < m{k} or m{k} != m{k}:", f"    m{k} = r"]
-    inner.append(f"{rates}(nowhere, nowhere, nowhere, Q[t], QD, QDD, nowhere, P, C, S, Hr[t], rout)")
-    inner += [f"a{i}_{j} = rout[{p}]" for p, (i, j) in enumerate(pattern)]
-    inner += _screen_lines(blocks, pattern)
-    inner += ["if flag and singular(rout, pattern, M, L[d], rows_length, cols_length, cond_max):",
-              "    ok[d, t] = False", "    pok = False", "    continue", "ok[d, t] = True"]
-    if col is not None:
-        inner += _solve_lines(blocks, pattern, m)
-        inner += [f"r = x{col}",
-                  "if pok and ((pr < 0) != (r < 0) or pr == 0 or r == 0):",
-                  "    if nb < cap:", "        bd[nb], bi[nb], bfa[nb], bfb[nb] = d, t - 1, pr, r",
-                  "    nb += 1",
-                  "pr, pok = r, True"]
-    dy = range(len(dyads))
-    lines = ["def kernel(Pd, Hd, Hr, Q, QD, QDD, assembled, L, cc, sc, screen, rows_length,",
-             "           cols_length, pattern, pos_ok, ok, tmin, bd, bi, bfa, bfb):",
-             "    n, N = pos_ok.shape", "    t2, cond_max = screen[0], screen[1]",
-             "    dout, rout = np.empty(int(screen[2])), np.empty(int(screen[3]))",
-             f"    M = {m}", "    nowhere = np.full(M, np.nan)",
-             "    C, S = np.empty(M), np.empty(M)", "    nb, cap = 0, bd.shape[0]", "    for d in range(n):",
-             "        P = Pd[d]", "        pok, pr = False, 0.0"]
-    lines += [f"        m{k} = nan" for k in dy]
-    lines += ["        if not assembled[d]:", "            for t in range(N):",
-              "                pos_ok[d, t] = False", "                ok[d, t] = False"]
-    lines += [f"            tmin[{k}, d] = nan" for k in dy]
-    lines += ["            continue", "        for t in range(N):"]
-    lines += [f"            {s}" for s in inner]
-    lines += [f"        tmin[{k}, d] = m{k}" for k in dy]
-    lines.append("    return nb")
-    return "\n".join(lines) + "\n"
+                  f"tr[{k}] = abs((sd * cc[{k}, d] + cd * sc[{k}, d]) / (cd * cc[{k}, d] - sd * sc[{k}, d]))"]
+    lines.append(f"{rates}(nowhere, nowhere, nowhere, Qt, QD, QDD, nowhere, P, C, S, Hrt, rout)")
+    lines += [f"a{i}_{j} = rout[{p}]" for p, (i, j) in enumerate(pattern)]
+    lines += screen_lines(blocks, pattern, "fmax")
+    lines += [f"if flag and singular(rout, pattern, {m}, Ld, rows_length, cols_length, cond_max):",
+              "    return 1, 0.0"]
+    if col is None:
+        lines.append("return 3, 0.0")
+    else:
+        lines += solve_lines(blocks, pattern, lambda i: f"rout[{len(pattern) + i}]")
+        lines.append(f"return 3, x{col}")
+    head = ["def entry(P, Qt, QD, QDD, Hdt, Hrt, cc, sc, d, Ld, screen, rows_length, cols_length,",
+            "          pattern, tr, dout, rout, C, S, nowhere):",
+            "    t2, cond_max = screen[0], screen[1]"]
+    return "\n".join(head + [f"    {s}" for s in lines]) + "\n"

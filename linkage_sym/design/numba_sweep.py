@@ -28,6 +28,7 @@ functions are executed from text.
 from __future__ import annotations
 
 import hashlib
+import math
 import re
 
 import numpy as np
@@ -91,9 +92,11 @@ _COMPILED: dict = {}
 """Compiled scalar functions by the generated sources' digest (this process)."""
 
 
-def compiled_functions(art, names) -> dict:
-    """``{name: (function, pre_function, outputs, hoisted)}`` of the artifact's generated
-    functions ``names`` printed as scalar code and compiled by ``numba.njit`` (kept per
+def compiled_functions(art, names) -> tuple:
+    """``({name: (function, pre_function, outputs, hoisted, scalar)}, namespace)``: the
+    artifact's generated functions ``names`` printed as scalar code
+    (:class:`~linkage_sym.codegen.scalar.ScalarFunction` ``scalar``) and compiled by
+    ``numba.njit``, and the namespace that holds them and their helpers (kept per
     artifact for this process)."""
     numba = require_numba()
     digest = hashlib.sha256("\0".join(art.functions[n] for n in names).encode()).hexdigest()
@@ -109,11 +112,11 @@ def compiled_functions(art, names) -> dict:
     ns.update(TANGENT_ULPS=TANGENT_ULPS, EPS=_EPS, nan=np.nan)
     jit = numba.njit(error_model="numpy", inline="always")
     _define(ns, scalar_helpers(arities), jit)
-    got = {}
+    fns = {}
     for n, s in scalars.items():
-        got[n] = (_define(ns, s.source, jit), _define(ns, s.pre_source, jit), s.outputs,
-                  s.hoisted)
-    _COMPILED[digest] = got
+        fns[n] = (_define(ns, s.source, jit), _define(ns, s.pre_source, jit), s.outputs,
+                  s.hoisted, s)
+    got = _COMPILED[digest] = (fns, ns)
     return got
 
 
@@ -129,21 +132,37 @@ def _define(ns: dict, source: str, jit):
 
 def compiled_kernel(model, step, dyads, col):
     """The compiled loop of ``model``'s artifact for the ``dyads`` and the rate of ``col``
-    (:func:`~linkage_sym.design.numba_kernel.kernel_source`; kept per artifact in this
-    process)."""
+    (:func:`~linkage_sym.design.numba_block.block_source`, which calls
+    :func:`~linkage_sym.design.numba_kernel.entry_source`'s ``entry``; kept per artifact in
+    this process)."""
     numba = require_numba()
-    fns = compiled_functions(model.art, [step.directions, "rates"])
-    from linkage_sym.design import numba_kernel
+    names = [step.directions, "rates"]
+    fns, fns_ns = compiled_functions(model.art, names)
+    from linkage_sym.design import numba_block, numba_kernel
 
-    src = numba_kernel.kernel_source(step.directions, "rates", step.x, step.forms,
-                                     model.art.blocks, model.art.pattern, model.m, dyads, col)
-    key = hashlib.sha256((src + "\0".join(model.art.functions[n] for n in fns)).encode()).hexdigest()
+    layout = (step.x, step.forms, model.art.blocks, model.art.pattern, model.m, dyads, col)
+    entry = numba_kernel.entry_source(step.directions, "rates", *layout)
+    scalars = {n: fns[n][4] for n in names}
+    loop = numba_block.block_source(scalars, step.directions, "rates", *layout,
+                                    len(model.params), len(model.Q))
+    key = hashlib.sha256((entry + loop + "\0".join(model.art.functions[n] for n in names))
+                         .encode()).hexdigest()
     got = _COMPILED.get(key)
     if got is None:
-        ns = {"np": np, "nan": np.nan, "unit_direction": numba_kernel.unit_direction,
-              "fmax": numba_kernel.fmax, "singular": numba_kernel.singular}
-        ns.update({n: f[0] for n, f in fns.items()})
-        got = _COMPILED[key] = _define(ns, src, numba.njit(error_model="numpy"))
+        ns = dict(fns_ns)
+        ns.update({"np": np, "nan": np.nan, "inf": np.inf, "sqrt": math.sqrt,
+                   "unit_direction": numba_kernel.unit_direction, "fmax": numba_kernel.fmax,
+                   "fmax_select": numba_kernel.fmax_select, "singular": numba_kernel.singular})
+        _define(ns, entry, numba.njit(error_model="numpy"))
+        # the loop's own helpers: math.sqrt, which the compiler vectorises (NumPy's sqrt,
+        # a library call, it does not); the same correctly rounded square root
+        arities: dict = {}
+        for s in scalars.values():
+            for h, ks in s.arities.items():
+                arities.setdefault(h, set()).update(ks)
+        ns["sqrt"] = math.sqrt
+        _define(ns, scalar_helpers(arities), numba.njit(error_model="numpy", inline="always"))
+        got = _COMPILED[key] = _define(ns, loop, numba.njit(error_model="numpy"))
     return fns, got
 
 
@@ -188,7 +207,7 @@ class NumbaModel(Model):
 
     def _hoisted(self, name):
         """The hoisted terms (N, k) of function ``name`` at every step."""
-        _, pre, _, k = self.fn[name]
+        _, pre, _, k, _ = self.fn[name]
         H = np.zeros((self.N, max(k, 1)))
         for t in range(self.N):
             pre(self.Qs[t], self.QDs, self.QDDs, H[t])
@@ -203,19 +222,21 @@ class NumbaModel(Model):
         model was made)."""
         P, X0, assembled, joints0, L = self.assemble(P, n) if assembly is None else assembly
         N = self.N
-        Pd = np.empty((n, len(P)))
-        for i, v in enumerate(P):
-            Pd[:, i] = v
         offsets = self.plan.transmission_offsets(self, joints0, X0)
         k = len(offsets)
         cc = np.array([c for _, _, c, _ in offsets]).reshape(k, n)
         sc = np.array([s for _, _, _, s in offsets]).reshape(k, n)
-        pos_ok, ok = np.empty((n, N), bool), np.empty((n, N), bool)
+        D = np.empty((len(P) + 2 * k + 1, n))  # what the loop over designs reads
+        for i, v in enumerate(P):
+            D[i] = v
+        D[len(P):len(P) + k], D[len(P) + k:len(P) + 2 * k] = cc, sc
+        D[-1] = assembled
+        pos_ok, ok = np.empty((N, n), bool), np.empty((N, n), bool)  # steps x designs
         tmin = np.empty((k, n))
-        args = (Pd, self.H[self.directions.directions], self.H["rates"], self.Qs, self.QDs,
-                self.QDDs, assembled, np.ascontiguousarray(L, dtype=float), cc, sc,
-                self.screen_args, self.rows_length, self.cols_length, self.pattern_array,
-                pos_ok, ok, tmin)
+        args = (D, np.ascontiguousarray(D[:len(P)].T), self.H[self.directions.directions],
+                self.H["rates"], self.Qs, self.QDs, self.QDDs, assembled,
+                np.ascontiguousarray(L, dtype=float), cc, sc, self.screen_args,
+                self.rows_length, self.cols_length, self.pattern_array, pos_ok, ok, tmin)
         cap = 4 * n + 64  # two limit positions a design, as a rule
         while True:
             bd, bi = np.empty(cap, np.int64), np.empty(cap, np.int64)
@@ -224,7 +245,7 @@ class NumbaModel(Model):
             if nb <= cap:
                 break
             cap = nb  # more brackets than the arrays held: again, with room for all
-        sol = Solution(n, N, P, assembled, X0, joints0, L, None, pos_ok, ok, model=self)
+        sol = Solution(n, N, P, assembled, X0, joints0, L, None, pos_ok.T, ok.T, model=self)
         sol.transmission = tmin if k else None
         if self.col is not None:
             sol.brackets = (bd[:nb].copy(), bi[:nb].copy(), bfa[:nb].copy(), bfb[:nb].copy())
