@@ -87,7 +87,7 @@ def block_source(fns, directions, rates, x, forms, blocks, pattern, m, dyads, co
     1``, designs): the parameters, the transmission offsets' cosines ``cc`` and sines
     ``sc`` and whether assembled (1.0 or 0.0), one array read by the loop over designs;
     ``Pd``: the parameters (design, parameter).  The loop fills
-    ``pos_ok``, ``ok`` (steps, designs), ``tmin`` (dyads, designs) and the brackets
+    ``pos_ok``, ``ok`` (designs, steps), ``tmin`` (dyads, designs) and the brackets
     (design, step, rate there, rate at the next step) in row-major order as far as the
     arrays hold them, returning how many there are."""
     pattern = [tuple(p) for p in pattern]
@@ -110,7 +110,7 @@ def block_source(fns, directions, rates, x, forms, blocks, pattern, m, dyads, co
 
     d_lines, d_out = inline_lines(fns[directions], "dn_", reads("dn"))
     r_lines, r_out = inline_lines(fns[rates], "rt_", reads("rt"))
-    inner = ["d = d0 + j", f"asm = D[{n_p + 2 * k_dy}, d] != 0.0"]
+    inner = ["d = np.uint64(d0 + j)", f"asm = D[{n_p + 2 * k_dy}, d] != 0.0"]
     inner += d_lines + _positions(x, forms, m, d_out)
     inner.append("use = valid & (not rare)")
     for k, (ia, ib) in enumerate(dyads):
@@ -125,17 +125,20 @@ def block_source(fns, directions, rates, x, forms, blocks, pattern, m, dyads, co
     inner += screen_lines(blocks, pattern, "fmax_select")
     if col is not None:
         inner += solve_lines(blocks, pattern, lambda i: r_out[len(pattern) + i])
-        inner.append(f"W[t, j] = x{col}")
+        inner += [f"r = x{col}", "W[t, j] = r"]
+    else:
+        inner.append("r = 1.0")
     inner += ["good = valid & (not flag)",
               "rare = rare | (valid & flag)",
-              "code[t, j] = 4 if rare else (3 if good else (1 if valid else 0))"]
+              "nrare += rare",
+              "code[t, j] = valid + 2 * good + 4 * rare + 8 * (r < 0.0) + 16 * (r == 0.0)"]
     hd, hr = fns[directions].hoisted, fns[rates].hoisted
     step = [f"dn_H{k} = Hd[t, {k}]" for k in range(hd)] + [f"rt_H{k} = Hr[t, {k}]" for k in range(hr)]
     step += [f"Q_{k} = Q[t, {k}]" for k in range(n_q)]
     step += [f"{a}_{k} = {a}[{k}]" for a in ("QD", "QDD") for k in range(n_q)]
     lines = ["def kernel(D, Pd, Hd, Hr, Q, QD, QDD, assembled, L, cc, sc, screen, rows_length,",
              "           cols_length, pattern, pos_ok, ok, tmin, bd, bi, bfa, bfb):",
-             "    N, n = pos_ok.shape",
+             "    n, N = pos_ok.shape",
              "    t2 = screen[0]",
              "    dout, rout = np.empty(int(screen[2])), np.empty(int(screen[3]))",
              f"    nowhere = np.full({m}, np.nan)",
@@ -148,7 +151,7 @@ def block_source(fns, directions, rates, x, forms, blocks, pattern, m, dyads, co
               f"        nj = n - d0 if n - d0 < {BLOCK} else {BLOCK}",
               "        for j in range(nj):"]
     lines += [f"            W[N + {k}, j] = nan" for k in range(k_dy)] or ["            pass"]
-    lines += ["        for t in range(N):"]
+    lines += ["        nrare = 0", "        for t in range(N):"]
     lines += [f"            {s}" for s in step]
     lines += ["            for j in range(nj):"]
     lines += [f"                {s}" for s in inner]
@@ -158,31 +161,35 @@ def block_source(fns, directions, rates, x, forms, blocks, pattern, m, dyads, co
 
 
 def _second_pass(k_dy, col) -> list:
-    """Design by design: the rare entries evaluated exactly, then the brackets."""
-    out = ["        for j in range(nj):",
+    """The rare entries evaluated exactly (:func:`~linkage_sym.design.numba_kernel.entry_source`),
+    then design by design along the steps the statuses and the brackets (from the entries'
+    codes: 1 positions, 2 ok, 4 rare, 8 a rate below 0, 16 a rate of 0)."""
+    out = ["        for j in range(nj if nrare else 0):",
            "            d = d0 + j",
-           "            pok, pr = False, 0.0",
            "            for t in range(N):",
-           "                c = code[t, j]",
-           "                r = W[t, j]",
-           "                if c == 4:",
-           "                    c, r = entry(Pd[d], Q[t], QD, QDD, Hd[t], Hr[t], cc, sc, d, L[d], "
+           "                if not code[t, j] & 4:",
+           "                    continue",
+           "                c, r = entry(Pd[d], Q[t], QD, QDD, Hd[t], Hr[t], cc, sc, d, L[d], "
            "screen, rows_length, cols_length, pattern, tr, dout, rout, C, S, nowhere)",
-           "                    if c > 0:"]
+           "                W[t, j] = r",
+           "                code[t, j] = (c > 0) + 2 * (c == 3) + 8 * (r < 0.0) + 16 * (r == 0.0)",
+           "                if c > 0:"]
     for k in range(k_dy):
-        out += [f"                        if tr[{k}] < W[N + {k}, j] or W[N + {k}, j] != W[N + {k}, j]:",
-                f"                            W[N + {k}, j] = tr[{k}]"]
-    out += ["                        pass",
-            "                pos_ok[t, d] = c > 0",
-            "                ok[t, d] = c == 3"]
-    if col is not None:
-        out += ["                if c != 3:",
-                "                    pok = False",
-                "                    continue",
-                "                if pok and ((pr < 0) != (r < 0) or pr == 0 or r == 0):",
+        out += [f"                    if tr[{k}] < W[N + {k}, j] or W[N + {k}, j] != W[N + {k}, j]:",
+                f"                        W[N + {k}, j] = tr[{k}]"]
+    out += ["                    pass",
+            "        for j in range(nj):",
+            "            d = d0 + j",
+            "            pc = 0",
+            "            for t in range(N):",
+            "                c = code[t, j]",
+            "                pos_ok[d, t] = c & 1",
+            "                ok[d, t] = c & 2"]
+    if col is not None:  # a bracket: two ok steps, the rate's signs differ or one is 0
+        out += ["                if c & pc & 2 and ((c ^ pc) & 8 or (c | pc) & 16):",
                 "                    if nb < cap:",
-                "                        bd[nb], bi[nb], bfa[nb], bfb[nb] = d, t - 1, pr, r",
+                "                        bd[nb], bi[nb], bfa[nb], bfb[nb] = d, t - 1, W[t - 1, j], W[t, j]",
                 "                    nb += 1",
-                "                pr, pok = r, True"]
+                "                pc = c"]
     out += [f"            tmin[{k}, d] = W[N + {k}, j]" for k in range(k_dy)]
     return out

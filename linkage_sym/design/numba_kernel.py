@@ -27,7 +27,7 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["entry_source", "fmax", "fmax_select", "screen_lines", "singular", "solve_lines", "unit_direction"]
+__all__ = ["entry_source", "fmax", "fmax_select", "position_lines", "screen_lines", "singular", "solve_lines", "unit_direction"]
 
 _JIT = numba.njit(error_model="numpy")
 
@@ -118,41 +118,41 @@ def screen_lines(blocks, pattern, fmax) -> list:
     return out
 
 
-def solve_lines(blocks, pattern, rhs) -> list:
-    """``x<c> = ...`` of every coordinate, block by block (``BlockSystem.solve``);
-    ``rhs(i)``: the expression of row ``i`` of ``B qd``."""
+def solve_lines(blocks, pattern, rhs, x="x") -> list:
+    """``<x><c> = ...`` of every coordinate, block by block (``BlockSystem.solve``);
+    ``rhs(i)``: the expression of row ``i`` of the right-hand side (``B qd``)."""
     out = []
     for r0, r1, c0, c1 in blocks:
         b = [rhs(r0 + i) for i in range(r1 - r0)]
         for (i, j) in pattern:
             if r0 <= i < r1 and j < c0:
-                b[i - r0] = f"({b[i - r0]} - a{i}_{j} * x{j})"
+                b[i - r0] = f"({b[i - r0]} - a{i}_{j} * {x}{j})"
         for i, e in enumerate(b):
             out.append(f"b{i} = {e}")
         k = c1 - c0
         g = [[_entry(pattern, r0 + i, c0 + j) for j in range(k)] for i in range(k)]
         if k == 1:
-            out.append(f"x{c0} = b0 / {g[0][0]}")
+            out.append(f"{x}{c0} = b0 / {g[0][0]}")
         elif k == 2:
             (a, bb), (c, d) = g
             out += [f"det = {a} * {d} - {bb} * {c}",
-                    f"x{c0} = (b0 * {d} - b1 * {bb}) / det",
-                    f"x{c0 + 1} = ({a} * b1 - {c} * b0) / det"]
+                    f"{x}{c0} = (b0 * {d} - b1 * {bb}) / det",
+                    f"{x}{c0 + 1} = ({a} * b1 - {c} * b0) / det"]
         else:
             (a, bb, c), (d, e, f), (gg, h, kk) = g
             out += [f"co0, co1, co2 = {e} * {kk} - {f} * {h}, {f} * {gg} - {d} * {kk}, "
                     f"{d} * {h} - {e} * {gg}",
                     f"det = {a} * co0 + {bb} * co1 + {c} * co2",
-                    f"x{c0} = (co0 * b0 + ({c} * {h} - {bb} * {kk}) * b1 + ({bb} * {f} - {c} * {e})"
+                    f"{x}{c0} = (co0 * b0 + ({c} * {h} - {bb} * {kk}) * b1 + ({bb} * {f} - {c} * {e})"
                     " * b2) / det",
-                    f"x{c0 + 1} = (co1 * b0 + ({a} * {kk} - {c} * {gg}) * b1 + ({c} * {d} - {a} * "
+                    f"{x}{c0 + 1} = (co1 * b0 + ({a} * {kk} - {c} * {gg}) * b1 + ({c} * {d} - {a} * "
                     f"{f}) * b2) / det",
-                    f"x{c0 + 2} = (co2 * b0 + ({bb} * {gg} - {a} * {h}) * b1 + ({a} * {e} - {bb} * "
+                    f"{x}{c0 + 2} = (co2 * b0 + ({bb} * {gg} - {a} * {h}) * b1 + ({a} * {e} - {bb} * "
                     f"{d}) * b2) / det"]
     return out
 
 
-def _position_lines(x, forms, m) -> list:
+def position_lines(x, forms, m) -> list:
     """The cosines and sines ``C``, ``S`` from the directions' outputs, and ``valid``
     (``Model._directions_at_steps``)."""
     out, finite, at = [], [], 0
@@ -193,7 +193,7 @@ def entry_source(directions, rates, x, forms, blocks, pattern, m, dyads, col) ->
     pattern = [tuple(p) for p in pattern]
     lines = [f"{directions}(nowhere, nowhere, nowhere, Qt, QD, QDD, nowhere, P, nowhere, "
              "nowhere, Hdt, dout)"]
-    lines += _position_lines(x, forms, m)
+    lines += position_lines(x, forms, m)
     lines += ["if not valid:", "    return 0, 0.0"]
     for k, (ia, ib) in enumerate(dyads):
         lines += [f"cd = C[{ib}] * C[{ia}] + S[{ib}] * S[{ia}]",

@@ -137,8 +137,8 @@ def compiled_kernel(model, step, dyads, col):
     this process)."""
     numba = require_numba()
     names = [step.directions, "rates"]
-    fns, fns_ns = compiled_functions(model.art, names)
-    from linkage_sym.design import numba_block, numba_kernel
+    fns, fns_ns = compiled_functions(model.art, names + ["accelerations", step.function])
+    from linkage_sym.design import numba_block, numba_kernel, numba_newton
 
     layout = (step.x, step.forms, model.art.blocks, model.art.pattern, model.m, dyads, col)
     entry = numba_kernel.entry_source(step.directions, "rates", *layout)
@@ -162,7 +162,10 @@ def compiled_kernel(model, step, dyads, col):
                 arities.setdefault(h, set()).update(ks)
         ns["sqrt"] = math.sqrt
         _define(ns, scalar_helpers(arities), numba.njit(error_model="numpy", inline="always"))
-        got = _COMPILED[key] = _define(ns, loop, numba.njit(error_model="numpy"))
+        _define(ns, numba_newton.newton_source(step.function, step.x, model.art.blocks,
+                                               model.art.pattern, model.m, col, len(model.Q)),
+                numba.njit(error_model="numpy"))
+        got = _COMPILED[key] = (_define(ns, loop, numba.njit(error_model="numpy")), ns["newton"])
     return fns, got
 
 
@@ -194,7 +197,7 @@ class NumbaModel(Model):
         rates = plan.rates(self)
         self.col = rates[0] if rates else None
         self.dyads = [(self.angle_of[a], self.angle_of[b]) for _, _, _, a, b in plan.dyads]
-        self.fn, self.kernel = compiled_kernel(self, step, self.dyads, self.col)
+        self.fn, (self.kernel, self._newton) = compiled_kernel(self, step, self.dyads, self.col)
         self.rows_length = np.array(self.art.rows_length, dtype=bool)
         self.cols_length = np.array(self.art.cols_length, dtype=bool)
         self.pattern_array = np.array(self.art.pattern, dtype=np.int64).reshape(-1, 2)
@@ -202,6 +205,10 @@ class NumbaModel(Model):
         self.QDs = np.array(self.slope, dtype=float)
         self.QDDs = np.zeros(len(self.QDs))
         self.H = {name: self._hoisted(name) for name in (step.directions, "rates")}
+        f = self.fn
+        used = (step.function, "rates", "accelerations")  # by the compiled Newton
+        self.newton_sizes = np.array([max(f[n][3], 1) for n in used] + [f[n][2] for n in used],
+                                     dtype=np.int64)
         self.screen_args = np.array([SCREEN * SCREEN, SINGULAR_COND, self.fn[step.directions][2],
                                      self.fn["rates"][2]], dtype=float)
 
@@ -212,6 +219,24 @@ class NumbaModel(Model):
         for t in range(self.N):
             pre(self.Qs[t], self.QDs, self.QDDs, H[t])
         return H
+
+    def compiled_roots(self, P, a, fa, fb, col):
+        """``(t, kind)`` of :func:`~linkage_sym.design.limits.roots` on the brackets (steps
+        ``a``, rates ``fa``, ``fb``; ``P``: the brackets' designs' parameters) of the
+        output's coordinate ``col`` by the compiled Newton
+        (:mod:`linkage_sym.design.numba_newton`); None for a coordinate other than the
+        output the model was compiled for."""
+        if col != self.col:
+            return None
+        k = len(a)
+        PB = np.empty((k, len(P)))
+        for i, v in enumerate(P):
+            PB[:, i] = v
+        t, kind = np.empty(k), np.empty(k, np.int64)
+        self._newton(PB, np.ascontiguousarray(a, dtype=float), np.ascontiguousarray(fa, dtype=float),
+                     np.ascontiguousarray(fb, dtype=float), self.Qs, self.QDs, self.QDDs, t, kind,
+                     self.newton_sizes)
+        return t, kind
 
     def solve(self, P, n, need, unwrap=(), assembly=None, rates=None) -> Solution:
         """Solve ``n`` designs at the sweep's steps in the compiled loop: the positions'
@@ -231,7 +256,7 @@ class NumbaModel(Model):
             D[i] = v
         D[len(P):len(P) + k], D[len(P) + k:len(P) + 2 * k] = cc, sc
         D[-1] = assembled
-        pos_ok, ok = np.empty((N, n), bool), np.empty((N, n), bool)  # steps x designs
+        pos_ok, ok = np.empty((n, N), bool), np.empty((n, N), bool)
         tmin = np.empty((k, n))
         args = (D, np.ascontiguousarray(D[:len(P)].T), self.H[self.directions.directions],
                 self.H["rates"], self.Qs, self.QDs, self.QDDs, assembled,
@@ -245,7 +270,7 @@ class NumbaModel(Model):
             if nb <= cap:
                 break
             cap = nb  # more brackets than the arrays held: again, with room for all
-        sol = Solution(n, N, P, assembled, X0, joints0, L, None, pos_ok.T, ok.T, model=self)
+        sol = Solution(n, N, P, assembled, X0, joints0, L, None, pos_ok, ok, model=self)
         sol.transmission = tmin if k else None
         if self.col is not None:
             sol.brackets = (bd[:nb].copy(), bi[:nb].copy(), bfa[:nb].copy(), bfb[:nb].copy())
