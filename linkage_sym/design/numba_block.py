@@ -76,6 +76,14 @@ def _positions(x, forms, m, outs) -> list:
 _STEP = ("Q", "QD", "QDD")
 
 
+def _is_number(text) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
 def block_source(fns, directions, rates, x, forms, blocks, pattern, m, dyads, col, n_p,
                  n_q) -> str:
     """Source of ``kernel(D, Pd, Hd, Hr, Q, QD, QDD, assembled, L, cc, sc, screen,
@@ -110,8 +118,27 @@ def block_source(fns, directions, rates, x, forms, blocks, pattern, m, dyads, co
 
     d_lines, d_out = inline_lines(fns[directions], "dn_", reads("dn"))
     r_lines, r_out = inline_lines(fns[rates], "rt_", reads("rt"))
-    inner = ["d = np.uint64(d0 + j)", f"asm = D[{n_p + 2 * k_dy}, d] != 0.0"]
-    inner += d_lines + _positions(x, forms, m, d_out)
+    # two loops over the block's designs: the positions, then the rest; each loop's chain
+    # of square roots and divisions is short enough for the processor to overlap designs
+    s0 = f"N + {k_dy}"  # the rows of W that pass the positions from one loop to the next
+    # (the directions' outputs pass through rows of W from a loop of their own, too)
+    s1 = f"N + {k_dy + 2 * m + 2}"
+    const = {o: v for o, v in (ln.split(" = ", 1) for ln in d_lines if ln.split(" = ", 1)[0] in d_out)
+             if _is_number(v)}
+    zero = ["d = np.uint64(d0 + j)"] + d_lines
+    zero += [f"W[{s1} + {k}, j] = {o}" for k, o in enumerate(d_out) if o not in const]
+    first = ["d = np.uint64(d0 + j)", f"asm = D[{n_p + 2 * k_dy}, d] != 0.0"]
+    first += [f"{o} = {const[o]}" if o in const else f"{o} = W[{s1} + {k}, j]"
+              for k, o in enumerate(d_out)]
+    first += _positions(x, forms, m, d_out)
+    first += [f"W[{s0} + {2 * c}, j] = C{c}\nW[{s0} + {2 * c + 1}, j] = S{c}" for c in range(m)]
+    first += [f"W[{s0} + {2 * m}, j] = 1.0 if valid else 0.0",
+              f"W[{s0} + {2 * m + 1}, j] = 1.0 if rare else 0.0"]
+    first = [t for s in first for t in s.split("\n")]
+    inner = ["d = np.uint64(d0 + j)"]
+    inner += [f"C{c} = W[{s0} + {2 * c}, j]\nS{c} = W[{s0} + {2 * c + 1}, j]" for c in range(m)]
+    inner += [f"valid = W[{s0} + {2 * m}, j] != 0.0", f"rare = W[{s0} + {2 * m + 1}, j] != 0.0"]
+    inner = [t for s in inner for t in s.split("\n")]
     inner.append("use = valid & (not rare)")
     for k, (ia, ib) in enumerate(dyads):
         inner += [f"cd = C{ib} * C{ia} + S{ib} * S{ia}",
@@ -144,7 +171,7 @@ def block_source(fns, directions, rates, x, forms, blocks, pattern, m, dyads, co
              f"    nowhere = np.full({m}, np.nan)",
              f"    C, S = np.empty({m}), np.empty({m})",
              f"    tr = np.empty({max(k_dy, 1)})",
-             f"    W = np.zeros((N + {k_dy}, {BLOCK}))",
+             f"    W = np.zeros((N + {k_dy + 2 * m + 2 + len(d_out)}, {BLOCK}))",
              f"    code = np.zeros((N, {BLOCK}), np.uint8)"]
     lines += ["    nb, cap = 0, bd.shape[0]",
               f"    for d0 in range(0, n, {BLOCK}):",
@@ -153,6 +180,10 @@ def block_source(fns, directions, rates, x, forms, blocks, pattern, m, dyads, co
     lines += [f"            W[N + {k}, j] = nan" for k in range(k_dy)] or ["            pass"]
     lines += ["        nrare = 0", "        for t in range(N):"]
     lines += [f"            {s}" for s in step]
+    lines += ["            for j in range(nj):"]
+    lines += [f"                {s}" for s in zero]
+    lines += ["            for j in range(nj):"]
+    lines += [f"                {s}" for s in first]
     lines += ["            for j in range(nj):"]
     lines += [f"                {s}" for s in inner]
     lines += _second_pass(k_dy, col)
