@@ -1,21 +1,23 @@
-"""The compiled loop of the numba backend over a chunk's designs x steps, printed per artifact.
+"""One design at one step as the NumPy backend evaluates it, and the pieces of the numba
+backend's loops, printed per artifact.
 
-:func:`kernel_source` writes, for one artifact and one set of metrics, the loop that
-:mod:`linkage_sym.design.numba_sweep` compiles with numba: at every entry it does what
-:meth:`linkage_sym.design.evaluate.Model.solve` and the metrics do with arrays -- the
-angles' cosines and sines from the closed step's directions (:func:`unit_direction`,
-the NumPy backend's :func:`~linkage_sym.codegen.evaluator.unit_direction` entry by
-entry), the rate matrix ``A`` and ``B qd`` (the generated ``rates``), the singularity
-screen (each group block's Hadamard ratio against the screen,
-:meth:`~linkage_sym.codegen.blocks.BlockSystem.below`, then the dimensionless condition
-number where it flags, :func:`singular`), the block lower-triangular solve of the
-output's rate along the steps (Cramer's rule, as
-:meth:`~linkage_sym.codegen.blocks.BlockSystem.solve`), the brackets of its sign changes
-(:class:`~linkage_sym.design.limits.Limits`) and each RRR dyad's smallest transmission
+:func:`entry_source` writes, for one artifact and one set of metrics, the function that
+evaluates one entry (design, step) as :meth:`linkage_sym.design.evaluate.Model.solve` and
+the metrics do with arrays -- the angles' cosines and sines from the closed step's
+directions (:func:`unit_direction`, the NumPy backend's
+:func:`~linkage_sym.codegen.evaluator.unit_direction` entry by entry), the rate matrix
+``A`` and ``B qd`` (the generated ``rates``), the singularity screen (each group block's
+Hadamard ratio against the screen, :meth:`~linkage_sym.codegen.blocks.BlockSystem.below`,
+then the dimensionless condition number where it flags, :func:`singular`), the block
+lower-triangular solve of the output's rate along the steps (Cramer's rule, as
+:meth:`~linkage_sym.codegen.blocks.BlockSystem.solve`) and each RRR dyad's transmission
 ratio (:meth:`~linkage_sym.design.metrics.MetricPlan._transmission`), in the same
-formulas and order of operations.  The artifact's layout (the forms of the directions,
-the blocks, the pattern of ``A``, the dyads' coordinates) is written into the loop as
-constants, so that it has no loop over the layout and no branch on it.
+formulas and order of operations.  The block loop (:mod:`linkage_sym.design.numba_block`)
+calls it for the entries its own branch-free arithmetic does not decide, and prints its
+screen and solve by :func:`screen_lines` and :func:`solve_lines`.  The artifact's layout
+(the forms of the directions, the blocks, the pattern of ``A``, the dyads' coordinates)
+is written into the code as constants, so that it has no loop over the layout and no
+branch on it.
 
 This module's own helpers are compiled when it is imported: it imports numba.
 """

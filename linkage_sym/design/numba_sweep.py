@@ -1,16 +1,19 @@
 """The numba backend of the design sweep: the generated closed forms compiled, one loop over
-designs x steps.
+a chunk's designs in blocks, steps outer and designs inner.
 
 :class:`NumbaModel` is :class:`~linkage_sym.design.evaluate.Model` (the NumPy backend of
 the designs) whose :meth:`~NumbaModel.solve` runs the chunk's positions, singularity
 screen, rates along the steps and transmission angles in one compiled loop (printed per
-artifact by :func:`~linkage_sym.design.numba_kernel.kernel_source`), with the artifact's
-own functions printed as scalar code (:mod:`linkage_sym.codegen.scalar`) and compiled by
-``numba.njit``.  The designs' assembly configurations (a few operations per design),
-the limit positions' Newton iteration (:mod:`linkage_sym.design.limits`) and the metric
-columns stay NumPy's.  The numbers are the NumPy backend's within a few rounding errors
-(the same formulas in the same order, evaluated one entry at a time instead of over
-arrays).
+artifact by :func:`~linkage_sym.design.numba_block.block_source`: over a block of designs
+at each step without a branch, so that the compiler vectorises it, the rare entries
+after, one at a time, by :func:`~linkage_sym.design.numba_kernel.entry_source`), with the
+artifact's own functions printed as scalar code (:mod:`linkage_sym.codegen.scalar`) and
+compiled by ``numba.njit``; the limit positions' Newton iteration is compiled too
+(:meth:`~NumbaModel.compiled_roots`, :mod:`linkage_sym.design.numba_newton`).  The
+designs' assembly configurations (a few operations per design) and the metric columns
+stay NumPy's.  The numbers are the NumPy backend's within a few rounding errors (the same
+formulas in the same order, evaluated one entry at a time instead of over arrays;
+observed: equal bit for bit).
 
 It serves the metrics that read positions and the rates along the steps:
 :data:`SUPPORTED` (``assemblable``, ``grashof``, ``K``, ``min_transmission_deg``), for a
