@@ -113,6 +113,10 @@ def test_metrics_statuses_and_limit_positions_equal_numpy(name, make, axes, metr
     assert np.array_equal(np.isnan(t0), np.isnan(t1)) and np.array_equal(k0, k1)
     f = np.isfinite(t0)
     assert np.all(np.abs(t0[f] - t1[f]) <= RTOL * np.abs(t0[f]))
+    # the numba backend's own Newton (compiled) on its brackets: NumPy's roots and kinds
+    tc, kc = model.compiled_roots(l1.P, l1.i.astype(float), l1.fa, l1.fb, col)
+    assert np.array_equal(kc, k0) and np.array_equal(np.isnan(tc), np.isnan(t0))
+    assert np.all(np.abs(tc[f] - t0[f]) <= RTOL * np.abs(t0[f]))
     if name == "crank_rocker":  # the change point: singular at a step, ok elsewhere
         flat = np.flatnonzero((values[:, 0] == 0.063) & (values[:, 1] == 0.039))[0]
         assert s0.pos_ok[flat].all() and not s0.ok[flat].all() and s0.ok[flat].any()
