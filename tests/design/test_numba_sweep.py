@@ -136,6 +136,18 @@ def test_refusals_say_why(example, metrics, why):
     assert "--" not in err.value.reason
 
 
+def test_default_metrics_refusal_names_the_metric():
+    # no metric named: the default metrics include swing, which the numba backend does not
+    # compute; the refusal says so, and that naming the metrics is the way
+    with pytest.raises(SweepError) as err:
+        linkage_sym.sweep(linkage_sym.load_example("crank_rocker"), {"l_AB": [0.02, 0.03]},
+                          execution=NUMBA)
+    assert err.value.field == "backend"
+    assert ("the numba backend computes assemblable, grashof, K, min_transmission_deg; not "
+            "swing, which the default metrics include: name the metrics, or use the NumPy "
+            "backend") in err.value.reason
+
+
 def test_unknown_backend_and_missing_numba(monkeypatch, capsys):
     scene = linkage_sym.load_example("crank_rocker")
     with pytest.raises(SweepError, match="backend: unknown backend 'jax'; the backends are numpy, numba"):
