@@ -122,6 +122,25 @@ def test_metrics_statuses_and_limit_positions_equal_numpy(name, make, axes, metr
         assert s0.pos_ok[flat].all() and not s0.ok[flat].all() and s0.ok[flat].any()
 
 
+@pytest.mark.slow
+def test_rare_entries_past_the_first_block():
+    # the compiled loop takes the designs in blocks of numba_block.BLOCK (64); the change point
+    # (l_BC 0.063, l_CD 0.039: flat at a step, where the screen flags and the condition
+    # number decides) is design 65 here, in the second block, at its second design
+    from linkage_sym.design.numba_block import BLOCK
+
+    scene = _crank_rocker()
+    axes = {"l_BC": [0.045, 0.048, 0.05, 0.053, 0.055, 0.058, 0.06, 0.063, 0.07],
+            "l_CD": [0.02, 0.03, 0.039, 0.045, 0.05, 0.055, 0.06, 0.075, 0.1]}
+    metrics = ["assemblable", "K", "min_transmission_deg"]
+    a = linkage_sym.sweep(scene, axes, metrics)
+    b = linkage_sym.sweep(scene, axes, metrics, execution=NUMBA)
+    _same(a, b)
+    flat = 7 * 9 + 2
+    assert flat > BLOCK and np.asarray(a["K_note"])[flat] != ""  # singular at a step: no K
+    assert 0 < np.asarray(a["assemblable"])[flat] < 1
+
+
 @pytest.mark.parametrize("example, metrics, why", [
     ("sixbar_class3", ["assemblable"], "groups without one (triad (class III)"),
     ("shaper", ["assemblable"], "read the angles themselves"),
