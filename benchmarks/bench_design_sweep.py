@@ -17,9 +17,12 @@ metrics ``K`` and ``min_transmission_deg``.  Contenders, timed in this run, best
   process (one worker): the compiled mechanism's positions, the singularity screen, the
   rates along the sweep, the limit positions located by Newton between steps;
 * ``numba``: the same call with ``execution=Execution(backend="numba")``: the generated
-  closed forms printed as scalar code and compiled with numba, one loop over designs x
-  steps (linkage_sym/design/numba_sweep.py); its compilation (the first, small sweep, numba's
-  import included) is timed apart, ``numba_compile``, and kept out of its rate;
+  closed forms printed as scalar code and compiled with numba, one loop over blocks of
+  designs, steps outer and designs inner, vectorised by the compiler
+  (linkage_sym/design/numba_block.py), and the limit positions' Newton compiled
+  (linkage_sym/design/numba_newton.py); one process, one thread (no ``prange``); its
+  compilation (the first, small sweep, numba's import included) is timed apart,
+  ``numba_compile``, and kept out of its rate;
 * ``numpy``: ``sweep_fourbar`` of tests/support/fourbar_sweep_numpy.py, written from the
   textbook's formulas (closed-form positions of C at every step, the transmission angle at
   every step, ``K`` from the two toggle positions in closed form), blocks of 1024 designs.

@@ -143,11 +143,12 @@ def sweep(scene, parameters, metrics=None, *, output=None, trace=None, scenes=No
     refuse_meshes(scene)
     designs = _designs(scene, parameters)
     check_choices(scene, output, trace)
+    defaulted = metrics is None
     if metrics is None:
         metrics = default_metrics(scene, output)
     metrics = [metrics] if isinstance(metrics, str) else list(metrics)
     plan = MetricPlan(scene, metrics, output, trace)
-    backend = _backend(execution.backend)
+    backend = _backend(execution.backend, plan.metrics if defaulted else ())
     spec = Spec(scene, tuple(designs.names), tuple(plan.metrics), plan.output,
                 None if trace is None else tuple([trace] if isinstance(trace, str) else trace),
                 backend=backend)
@@ -237,15 +238,21 @@ def _designs(scene, parameters) -> Designs:
     return parameters.designs(base)
 
 
-def _backend(backend) -> str:
-    """The backend's name, checked (numba's, that numba is installed), before any work."""
-    from linkage_sym.design.numba_sweep import BACKENDS, require_numba
+def _backend(backend, defaults=()) -> str:
+    """The backend's name, checked (numba's, that numba is installed, and that it computes
+    the default metrics ``defaults`` when no metric was named), before any work."""
+    from linkage_sym.design.numba_sweep import BACKENDS, SUPPORTED, require_numba
 
     if backend not in BACKENDS:
         raise SweepError("backend", f"unknown backend {backend!r}; the backends are "
                                     f"{', '.join(BACKENDS)}")
     if backend == "numba":
         require_numba()
+        other = [m for m in defaults if m not in SUPPORTED]
+        if other:
+            raise SweepError("backend", f"the numba backend computes {', '.join(SUPPORTED)}; "
+                                        f"not {', '.join(other)}, which the default metrics "
+                                        "include: name the metrics, or use the NumPy backend")
     return backend
 
 

@@ -177,8 +177,11 @@ def locate(model, items) -> list:
         else:
             rate = own
         a = np.concatenate([it.i for it in its]).astype(float)
-        t, kind = roots(rate, a, np.concatenate([it.fa for it in its]),
-                        np.concatenate([it.fb for it in its]))
+        fa, fb = np.concatenate([it.fa for it in its]), np.concatenate([it.fb for it in its])
+        # a model with its own compiled Newton (the numba backend's) locates them itself
+        own_newton = getattr(model, "compiled_roots", None) if own is None else None
+        got = None if own_newton is None else own_newton(P, a, fa, fb, col)
+        t, kind = roots(rate, a, fa, fb) if got is None else got
         swing = any(it.rot is not None for it in its)
         raw = (rate(np.arange(len(t)), t)[2] if len(t) else np.zeros(0)) if swing else None
         at = np.cumsum([0] + [len(it.d) for it in its])

@@ -1,21 +1,23 @@
-"""The compiled loop of the numba backend over a chunk's designs x steps, printed per artifact.
+"""One design at one step as the NumPy backend evaluates it, and the pieces of the numba
+backend's loops, printed per artifact.
 
-:func:`kernel_source` writes, for one artifact and one set of metrics, the loop that
-:mod:`linkage_sym.design.numba_sweep` compiles with numba: at every entry it does what
-:meth:`linkage_sym.design.evaluate.Model.solve` and the metrics do with arrays -- the
-angles' cosines and sines from the closed step's directions (:func:`unit_direction`,
-the NumPy backend's :func:`~linkage_sym.codegen.evaluator.unit_direction` entry by
-entry), the rate matrix ``A`` and ``B qd`` (the generated ``rates``), the singularity
-screen (each group block's Hadamard ratio against the screen,
-:meth:`~linkage_sym.codegen.blocks.BlockSystem.below`, then the dimensionless condition
-number where it flags, :func:`singular`), the block lower-triangular solve of the
-output's rate along the steps (Cramer's rule, as
-:meth:`~linkage_sym.codegen.blocks.BlockSystem.solve`), the brackets of its sign changes
-(:class:`~linkage_sym.design.limits.Limits`) and each RRR dyad's smallest transmission
+:func:`entry_source` writes, for one artifact and one set of metrics, the function that
+evaluates one entry (design, step) as :meth:`linkage_sym.design.evaluate.Model.solve` and
+the metrics do with arrays -- the angles' cosines and sines from the closed step's
+directions (:func:`unit_direction`, the NumPy backend's
+:func:`~linkage_sym.codegen.evaluator.unit_direction` entry by entry), the rate matrix
+``A`` and ``B qd`` (the generated ``rates``), the singularity screen (each group block's
+Hadamard ratio against the screen, :meth:`~linkage_sym.codegen.blocks.BlockSystem.below`,
+then the dimensionless condition number where it flags, :func:`singular`), the block
+lower-triangular solve of the output's rate along the steps (Cramer's rule, as
+:meth:`~linkage_sym.codegen.blocks.BlockSystem.solve`) and each RRR dyad's transmission
 ratio (:meth:`~linkage_sym.design.metrics.MetricPlan._transmission`), in the same
-formulas and order of operations.  The artifact's layout (the forms of the directions,
-the blocks, the pattern of ``A``, the dyads' coordinates) is written into the loop as
-constants, so that it has no loop over the layout and no branch on it.
+formulas and order of operations.  The block loop (:mod:`linkage_sym.design.numba_block`)
+calls it for the entries its own branch-free arithmetic does not decide, and prints its
+screen and solve by :func:`screen_lines` and :func:`solve_lines`.  The artifact's layout
+(the forms of the directions, the blocks, the pattern of ``A``, the dyads' coordinates)
+is written into the code as constants, so that it has no loop over the layout and no
+branch on it.
 
 This module's own helpers are compiled when it is imported: it imports numba.
 """
@@ -27,7 +29,7 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["kernel_source", "singular", "unit_direction"]
+__all__ = ["entry_source", "fmax", "fmax_select", "position_lines", "screen_lines", "singular", "solve_lines", "unit_direction"]
 
 _JIT = numba.njit(error_model="numpy")
 
@@ -59,6 +61,12 @@ def fmax(a, b):
     return a if a >= b else b
 
 
+@numba.njit(error_model="numpy", inline="always")
+def fmax_select(a, b):
+    """NumPy's ``fmax`` of two numbers (a NaN loses) as selections, no branch."""
+    return b if a != a else (a if (b != b) | (a >= b) else b)
+
+
 @_JIT
 def singular(rout, pattern, m, L, rows_length, cols_length, cond_max):
     """Whether the dimensionless condition number of ``A`` (the entries ``rout`` at
@@ -85,8 +93,9 @@ def _entry(pattern, i, j):
     return f"a{i}_{j}" if (i, j) in pattern else "0.0"
 
 
-def _screen_lines(blocks, pattern) -> list:
-    """``flag = ...`` of every block of 2 or 3 coordinates (``BlockSystem.below``)."""
+def screen_lines(blocks, pattern, fmax) -> list:
+    """``flag = ...`` of every block of 2 or 3 coordinates (``BlockSystem.below``), the
+    larger of two numbers by the function named ``fmax``."""
     out = ["flag = False"]
     for r0, _, c0, c1 in blocks:
         k = c1 - c0
@@ -95,7 +104,7 @@ def _screen_lines(blocks, pattern) -> list:
             (a, b), (c, d) = g
             out += [f"det = {a} * {d} - {b} * {c}",
                     f"q0, q1, q2, q3 = {a} * {a}, {b} * {b}, {c} * {c}, {d} * {d}",
-                    "norms = fmax((q0 + q1) * (q2 + q3), (q0 + q2) * (q1 + q3))"]
+                    f"norms = {fmax}((q0 + q1) * (q2 + q3), (q0 + q2) * (q1 + q3))"]
         elif k == 3:
             (a, b, c), (d, e, f), (gg, h, kk) = g
             out += [f"det = {a} * ({e} * {kk} - {f} * {h}) + {b} * ({f} * {gg} - {d} * {kk})"
@@ -104,47 +113,48 @@ def _screen_lines(blocks, pattern) -> list:
                     f"{f} * {f}) * ({gg} * {gg} + {h} * {h} + {kk} * {kk}))",
                     f"cols = (({a} * {a} + {d} * {d} + {gg} * {gg}) * ({b} * {b} + {e} * {e} + "
                     f"{h} * {h}) * ({c} * {c} + {f} * {f} + {kk} * {kk}))",
-                    "norms = fmax(rows, cols)"]
+                    f"norms = {fmax}(rows, cols)"]
         else:
             continue
-        out.append("flag = flag or det * det < t2 * norms")
+        out.append("flag = flag | (det * det < t2 * norms)")
     return out
 
 
-def _solve_lines(blocks, pattern, m) -> list:
-    """``x<c> = ...`` of every coordinate, block by block (``BlockSystem.solve``)."""
+def solve_lines(blocks, pattern, rhs, x="x") -> list:
+    """``<x><c> = ...`` of every coordinate, block by block (``BlockSystem.solve``);
+    ``rhs(i)``: the expression of row ``i`` of the right-hand side (``B qd``)."""
     out = []
     for r0, r1, c0, c1 in blocks:
-        b = [f"rout[{len(pattern) + r0 + i}]" for i in range(r1 - r0)]
+        b = [rhs(r0 + i) for i in range(r1 - r0)]
         for (i, j) in pattern:
             if r0 <= i < r1 and j < c0:
-                b[i - r0] = f"({b[i - r0]} - a{i}_{j} * x{j})"
+                b[i - r0] = f"({b[i - r0]} - a{i}_{j} * {x}{j})"
         for i, e in enumerate(b):
             out.append(f"b{i} = {e}")
         k = c1 - c0
         g = [[_entry(pattern, r0 + i, c0 + j) for j in range(k)] for i in range(k)]
         if k == 1:
-            out.append(f"x{c0} = b0 / {g[0][0]}")
+            out.append(f"{x}{c0} = b0 / {g[0][0]}")
         elif k == 2:
             (a, bb), (c, d) = g
             out += [f"det = {a} * {d} - {bb} * {c}",
-                    f"x{c0} = (b0 * {d} - b1 * {bb}) / det",
-                    f"x{c0 + 1} = ({a} * b1 - {c} * b0) / det"]
+                    f"{x}{c0} = (b0 * {d} - b1 * {bb}) / det",
+                    f"{x}{c0 + 1} = ({a} * b1 - {c} * b0) / det"]
         else:
             (a, bb, c), (d, e, f), (gg, h, kk) = g
             out += [f"co0, co1, co2 = {e} * {kk} - {f} * {h}, {f} * {gg} - {d} * {kk}, "
                     f"{d} * {h} - {e} * {gg}",
                     f"det = {a} * co0 + {bb} * co1 + {c} * co2",
-                    f"x{c0} = (co0 * b0 + ({c} * {h} - {bb} * {kk}) * b1 + ({bb} * {f} - {c} * {e})"
+                    f"{x}{c0} = (co0 * b0 + ({c} * {h} - {bb} * {kk}) * b1 + ({bb} * {f} - {c} * {e})"
                     " * b2) / det",
-                    f"x{c0 + 1} = (co1 * b0 + ({a} * {kk} - {c} * {gg}) * b1 + ({c} * {d} - {a} * "
+                    f"{x}{c0 + 1} = (co1 * b0 + ({a} * {kk} - {c} * {gg}) * b1 + ({c} * {d} - {a} * "
                     f"{f}) * b2) / det",
-                    f"x{c0 + 2} = (co2 * b0 + ({bb} * {gg} - {a} * {h}) * b1 + ({a} * {e} - {bb} * "
+                    f"{x}{c0 + 2} = (co2 * b0 + ({bb} * {gg} - {a} * {h}) * b1 + ({a} * {e} - {bb} * "
                     f"{d}) * b2) / det"]
     return out
 
 
-def _position_lines(x, forms, m) -> list:
+def position_lines(x, forms, m) -> list:
     """The cosines and sines ``C``, ``S`` from the directions' outputs, and ``valid``
     (``Model._directions_at_steps``)."""
     out, finite, at = [], [], 0
@@ -169,54 +179,39 @@ def _position_lines(x, forms, m) -> list:
     return out
 
 
-def kernel_source(directions, rates, x, forms, blocks, pattern, m, dyads, col) -> str:
-    """Source of ``kernel(Pd, Hd, Hr, Q, QD, QDD, assembled, L, cc, sc, screen,
-    rows_length, cols_length, pos_ok, ok, tmin, bd, bi, bfa, bfb) -> brackets``.
+def entry_source(directions, rates, x, forms, blocks, pattern, m, dyads, col) -> str:
+    """Source of ``entry(P, Qt, QD, QDD, Hdt, Hrt, cc, sc, d, Ld, screen, rows_length,
+    cols_length, pattern, tr, dout, rout, C, S, nowhere) -> (status, rate)``: one design
+    (parameters ``P``) at one step, as the NumPy backend evaluates it.
 
     ``directions``, ``rates``: the compiled scalar functions' names; ``x``, ``forms``:
     the closed step's coordinates and forms; ``blocks``, ``pattern``: the artifact's;
     ``dyads``: ``(ia, ib)`` of each RRR dyad whose transmission is measured; ``col``:
-    the coordinate whose rate along the steps is bracketed (None: no rate solved).
-    The loop fills ``pos_ok``, ``ok`` (n, N), ``tmin`` (dyads, n) and the brackets
-    (design, step, rate there, rate at the next step) in row-major order as far as
-    the arrays hold them, returning how many there are."""
+    the coordinate whose rate along the steps is returned (None: no rate solved).
+    ``status``: 0 no positions, 1 positions but singular, 3 ok; with positions, ``tr``
+    holds each dyad's transmission ratio; ``rate``: the rate of ``col`` when ok.  The
+    block loop (:mod:`linkage_sym.design.numba_block`) calls it where its own arithmetic
+    does not decide: a direction of length 0 or infinite, a step the screen flags."""
     pattern = [tuple(p) for p in pattern]
-    inner = [f"{directions}(nowhere, nowhere, nowhere, Q[t], QD, QDD, nowhere, P, nowhere, "
-             "nowhere, Hd[t], dout)"]
-    inner += _position_lines(x, forms, m)
-    inner += ["pos_ok[d, t] = valid", "if not valid:", "    ok[d, t] = False",
-              "    pok = False", "    continue"]
+    lines = [f"{directions}(nowhere, nowhere, nowhere, Qt, QD, QDD, nowhere, P, nowhere, "
+             "nowhere, Hdt, dout)"]
+    lines += position_lines(x, forms, m)
+    lines += ["if not valid:", "    return 0, 0.0"]
     for k, (ia, ib) in enumerate(dyads):
-        inner += [f"cd = C[{ib}] * C[{ia}] + S[{ib}] * S[{ia}]",
+        lines += [f"cd = C[{ib}] * C[{ia}] + S[{ib}] * S[{ia}]",
                   f"sd = S[{ib}] * C[{ia}] - C[{ib}] * S[{ia}]",
-                  f"r = abs((sd * cc[{k}, d] + cd * sc[{k}, d]) / (cd * cc[{k}, d] - sd * sc[{k}, d]))",
-                  f"if r < m{k} or m{k} != m{k}:", f"    m{k} = r"]
-    inner.append(f"{rates}(nowhere, nowhere, nowhere, Q[t], QD, QDD, nowhere, P, C, S, Hr[t], rout)")
-    inner += [f"a{i}_{j} = rout[{p}]" for p, (i, j) in enumerate(pattern)]
-    inner += _screen_lines(blocks, pattern)
-    inner += ["if flag and singular(rout, pattern, M, L[d], rows_length, cols_length, cond_max):",
-              "    ok[d, t] = False", "    pok = False", "    continue", "ok[d, t] = True"]
-    if col is not None:
-        inner += _solve_lines(blocks, pattern, m)
-        inner += [f"r = x{col}",
-                  "if pok and ((pr < 0) != (r < 0) or pr == 0 or r == 0):",
-                  "    if nb < cap:", "        bd[nb], bi[nb], bfa[nb], bfb[nb] = d, t - 1, pr, r",
-                  "    nb += 1",
-                  "pr, pok = r, True"]
-    dy = range(len(dyads))
-    lines = ["def kernel(Pd, Hd, Hr, Q, QD, QDD, assembled, L, cc, sc, screen, rows_length,",
-             "           cols_length, pattern, pos_ok, ok, tmin, bd, bi, bfa, bfb):",
-             "    n, N = pos_ok.shape", "    t2, cond_max = screen[0], screen[1]",
-             "    dout, rout = np.empty(int(screen[2])), np.empty(int(screen[3]))",
-             f"    M = {m}", "    nowhere = np.full(M, np.nan)",
-             "    C, S = np.empty(M), np.empty(M)", "    nb, cap = 0, bd.shape[0]", "    for d in range(n):",
-             "        P = Pd[d]", "        pok, pr = False, 0.0"]
-    lines += [f"        m{k} = nan" for k in dy]
-    lines += ["        if not assembled[d]:", "            for t in range(N):",
-              "                pos_ok[d, t] = False", "                ok[d, t] = False"]
-    lines += [f"            tmin[{k}, d] = nan" for k in dy]
-    lines += ["            continue", "        for t in range(N):"]
-    lines += [f"            {s}" for s in inner]
-    lines += [f"        tmin[{k}, d] = m{k}" for k in dy]
-    lines.append("    return nb")
-    return "\n".join(lines) + "\n"
+                  f"tr[{k}] = abs((sd * cc[{k}, d] + cd * sc[{k}, d]) / (cd * cc[{k}, d] - sd * sc[{k}, d]))"]
+    lines.append(f"{rates}(nowhere, nowhere, nowhere, Qt, QD, QDD, nowhere, P, C, S, Hrt, rout)")
+    lines += [f"a{i}_{j} = rout[{p}]" for p, (i, j) in enumerate(pattern)]
+    lines += screen_lines(blocks, pattern, "fmax")
+    lines += [f"if flag and singular(rout, pattern, {m}, Ld, rows_length, cols_length, cond_max):",
+              "    return 1, 0.0"]
+    if col is None:
+        lines.append("return 3, 0.0")
+    else:
+        lines += solve_lines(blocks, pattern, lambda i: f"rout[{len(pattern) + i}]")
+        lines.append(f"return 3, x{col}")
+    head = ["def entry(P, Qt, QD, QDD, Hdt, Hrt, cc, sc, d, Ld, screen, rows_length, cols_length,",
+            "          pattern, tr, dout, rout, C, S, nowhere):",
+            "    t2, cond_max = screen[0], screen[1]"]
+    return "\n".join(head + [f"    {s}" for s in lines]) + "\n"

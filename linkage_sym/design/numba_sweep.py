@@ -1,16 +1,19 @@
 """The numba backend of the design sweep: the generated closed forms compiled, one loop over
-designs x steps.
+a chunk's designs in blocks, steps outer and designs inner.
 
 :class:`NumbaModel` is :class:`~linkage_sym.design.evaluate.Model` (the NumPy backend of
 the designs) whose :meth:`~NumbaModel.solve` runs the chunk's positions, singularity
 screen, rates along the steps and transmission angles in one compiled loop (printed per
-artifact by :func:`~linkage_sym.design.numba_kernel.kernel_source`), with the artifact's
-own functions printed as scalar code (:mod:`linkage_sym.codegen.scalar`) and compiled by
-``numba.njit``.  The designs' assembly configurations (a few operations per design),
-the limit positions' Newton iteration (:mod:`linkage_sym.design.limits`) and the metric
-columns stay NumPy's.  The numbers are the NumPy backend's within a few rounding errors
-(the same formulas in the same order, evaluated one entry at a time instead of over
-arrays).
+artifact by :func:`~linkage_sym.design.numba_block.block_source`: over a block of designs
+at each step without a branch, so that the compiler vectorises it, the rare entries
+after, one at a time, by :func:`~linkage_sym.design.numba_kernel.entry_source`), with the
+artifact's own functions printed as scalar code (:mod:`linkage_sym.codegen.scalar`) and
+compiled by ``numba.njit``; the limit positions' Newton iteration is compiled too
+(:meth:`~NumbaModel.compiled_roots`, :mod:`linkage_sym.design.numba_newton`).  The
+designs' assembly configurations (a few operations per design) and the metric columns
+stay NumPy's.  The numbers are the NumPy backend's within a few rounding errors (the same
+formulas in the same order, evaluated one entry at a time instead of over arrays;
+observed: equal bit for bit).
 
 It serves the metrics that read positions and the rates along the steps:
 :data:`SUPPORTED` (``assemblable``, ``grashof``, ``K``, ``min_transmission_deg``), for a
@@ -28,6 +31,7 @@ functions are executed from text.
 from __future__ import annotations
 
 import hashlib
+import math
 import re
 
 import numpy as np
@@ -91,9 +95,11 @@ _COMPILED: dict = {}
 """Compiled scalar functions by the generated sources' digest (this process)."""
 
 
-def compiled_functions(art, names) -> dict:
-    """``{name: (function, pre_function, outputs, hoisted)}`` of the artifact's generated
-    functions ``names`` printed as scalar code and compiled by ``numba.njit`` (kept per
+def compiled_functions(art, names) -> tuple:
+    """``({name: (function, pre_function, outputs, hoisted, scalar)}, namespace)``: the
+    artifact's generated functions ``names`` printed as scalar code
+    (:class:`~linkage_sym.codegen.scalar.ScalarFunction` ``scalar``) and compiled by
+    ``numba.njit``, and the namespace that holds them and their helpers (kept per
     artifact for this process)."""
     numba = require_numba()
     digest = hashlib.sha256("\0".join(art.functions[n] for n in names).encode()).hexdigest()
@@ -109,11 +115,11 @@ def compiled_functions(art, names) -> dict:
     ns.update(TANGENT_ULPS=TANGENT_ULPS, EPS=_EPS, nan=np.nan)
     jit = numba.njit(error_model="numpy", inline="always")
     _define(ns, scalar_helpers(arities), jit)
-    got = {}
+    fns = {}
     for n, s in scalars.items():
-        got[n] = (_define(ns, s.source, jit), _define(ns, s.pre_source, jit), s.outputs,
-                  s.hoisted)
-    _COMPILED[digest] = got
+        fns[n] = (_define(ns, s.source, jit), _define(ns, s.pre_source, jit), s.outputs,
+                  s.hoisted, s)
+    got = _COMPILED[digest] = (fns, ns)
     return got
 
 
@@ -129,21 +135,40 @@ def _define(ns: dict, source: str, jit):
 
 def compiled_kernel(model, step, dyads, col):
     """The compiled loop of ``model``'s artifact for the ``dyads`` and the rate of ``col``
-    (:func:`~linkage_sym.design.numba_kernel.kernel_source`; kept per artifact in this
-    process)."""
+    (:func:`~linkage_sym.design.numba_block.block_source`, which calls
+    :func:`~linkage_sym.design.numba_kernel.entry_source`'s ``entry``; kept per artifact in
+    this process)."""
     numba = require_numba()
-    fns = compiled_functions(model.art, [step.directions, "rates"])
-    from linkage_sym.design import numba_kernel
+    names = [step.directions, "rates"]
+    fns, fns_ns = compiled_functions(model.art, names + ["accelerations", step.function])
+    from linkage_sym.design import numba_block, numba_kernel, numba_newton
 
-    src = numba_kernel.kernel_source(step.directions, "rates", step.x, step.forms,
-                                     model.art.blocks, model.art.pattern, model.m, dyads, col)
-    key = hashlib.sha256((src + "\0".join(model.art.functions[n] for n in fns)).encode()).hexdigest()
+    layout = (step.x, step.forms, model.art.blocks, model.art.pattern, model.m, dyads, col)
+    entry = numba_kernel.entry_source(step.directions, "rates", *layout)
+    scalars = {n: fns[n][4] for n in names}
+    loop = numba_block.block_source(scalars, step.directions, "rates", *layout,
+                                    len(model.params), len(model.Q))
+    key = hashlib.sha256((entry + loop + "\0".join(model.art.functions[n] for n in names))
+                         .encode()).hexdigest()
     got = _COMPILED.get(key)
     if got is None:
-        ns = {"np": np, "nan": np.nan, "unit_direction": numba_kernel.unit_direction,
-              "fmax": numba_kernel.fmax, "singular": numba_kernel.singular}
-        ns.update({n: f[0] for n, f in fns.items()})
-        got = _COMPILED[key] = _define(ns, src, numba.njit(error_model="numpy"))
+        ns = dict(fns_ns)
+        ns.update({"np": np, "nan": np.nan, "inf": np.inf, "sqrt": math.sqrt,
+                   "unit_direction": numba_kernel.unit_direction, "fmax": numba_kernel.fmax,
+                   "fmax_select": numba_kernel.fmax_select, "singular": numba_kernel.singular})
+        _define(ns, entry, numba.njit(error_model="numpy"))
+        # the loop's own helpers: math.sqrt, which the compiler vectorises (NumPy's sqrt,
+        # a library call, it does not); the same correctly rounded square root
+        arities: dict = {}
+        for s in scalars.values():
+            for h, ks in s.arities.items():
+                arities.setdefault(h, set()).update(ks)
+        ns["sqrt"] = math.sqrt
+        _define(ns, scalar_helpers(arities), numba.njit(error_model="numpy", inline="always"))
+        _define(ns, numba_newton.newton_source(step.function, step.x, model.art.blocks,
+                                               model.art.pattern, model.m, col, len(model.Q)),
+                numba.njit(error_model="numpy"))
+        got = _COMPILED[key] = (_define(ns, loop, numba.njit(error_model="numpy")), ns["newton"])
     return fns, got
 
 
@@ -161,10 +186,12 @@ class NumbaModel(Model):
         calls are the same).
     """
 
-    chunk_entries = 1 << 20
-    """Designs x steps per chunk by default: the loop keeps no array over the coordinates,
-    so chunks larger than the NumPy backend's (:data:`~linkage_sym.design.execute.TARGET_ENTRIES`)
-    cost no cache, and spare Python's overhead per chunk."""
+    chunk_entries = 1 << 22
+    """Designs x steps per chunk by default: the loop keeps no array over the coordinates
+    (a block of designs' rates and codes only), so chunks larger than the NumPy backend's
+    (:data:`~linkage_sym.design.execute.TARGET_ENTRIES`) cost no cache, and spare Python's
+    overhead per chunk (measured, the benchmark's 40,000 crank-rockers at load 6, best of 4:
+    2^20 entries 0.34-0.38 CPU s, 2^22 0.33-0.35 s)."""
 
     def __init__(self, scene, plan, forces: bool = False):
         require_numba()
@@ -175,7 +202,7 @@ class NumbaModel(Model):
         rates = plan.rates(self)
         self.col = rates[0] if rates else None
         self.dyads = [(self.angle_of[a], self.angle_of[b]) for _, _, _, a, b in plan.dyads]
-        self.fn, self.kernel = compiled_kernel(self, step, self.dyads, self.col)
+        self.fn, (self.kernel, self._newton) = compiled_kernel(self, step, self.dyads, self.col)
         self.rows_length = np.array(self.art.rows_length, dtype=bool)
         self.cols_length = np.array(self.art.cols_length, dtype=bool)
         self.pattern_array = np.array(self.art.pattern, dtype=np.int64).reshape(-1, 2)
@@ -183,16 +210,38 @@ class NumbaModel(Model):
         self.QDs = np.array(self.slope, dtype=float)
         self.QDDs = np.zeros(len(self.QDs))
         self.H = {name: self._hoisted(name) for name in (step.directions, "rates")}
+        f = self.fn
+        used = (step.function, "rates", "accelerations")  # by the compiled Newton
+        self.newton_sizes = np.array([max(f[n][3], 1) for n in used] + [f[n][2] for n in used],
+                                     dtype=np.int64)
         self.screen_args = np.array([SCREEN * SCREEN, SINGULAR_COND, self.fn[step.directions][2],
                                      self.fn["rates"][2]], dtype=float)
 
     def _hoisted(self, name):
         """The hoisted terms (N, k) of function ``name`` at every step."""
-        _, pre, _, k = self.fn[name]
+        _, pre, _, k, _ = self.fn[name]
         H = np.zeros((self.N, max(k, 1)))
         for t in range(self.N):
             pre(self.Qs[t], self.QDs, self.QDDs, H[t])
         return H
+
+    def compiled_roots(self, P, a, fa, fb, col):
+        """``(t, kind)`` of :func:`~linkage_sym.design.limits.roots` on the brackets (steps
+        ``a``, rates ``fa``, ``fb``; ``P``: the brackets' designs' parameters) of the
+        output's coordinate ``col`` by the compiled Newton
+        (:mod:`linkage_sym.design.numba_newton`); None for a coordinate other than the
+        output the model was compiled for."""
+        if col != self.col:
+            return None
+        k = len(a)
+        PB = np.empty((k, len(P)))
+        for i, v in enumerate(P):
+            PB[:, i] = v
+        t, kind = np.empty(k), np.empty(k, np.int64)
+        self._newton(PB, np.ascontiguousarray(a, dtype=float), np.ascontiguousarray(fa, dtype=float),
+                     np.ascontiguousarray(fb, dtype=float), self.Qs, self.QDs, self.QDDs, t, kind,
+                     self.newton_sizes)
+        return t, kind
 
     def solve(self, P, n, need, unwrap=(), assembly=None, rates=None) -> Solution:
         """Solve ``n`` designs at the sweep's steps in the compiled loop: the positions'
@@ -203,19 +252,21 @@ class NumbaModel(Model):
         model was made)."""
         P, X0, assembled, joints0, L = self.assemble(P, n) if assembly is None else assembly
         N = self.N
-        Pd = np.empty((n, len(P)))
-        for i, v in enumerate(P):
-            Pd[:, i] = v
         offsets = self.plan.transmission_offsets(self, joints0, X0)
         k = len(offsets)
         cc = np.array([c for _, _, c, _ in offsets]).reshape(k, n)
         sc = np.array([s for _, _, _, s in offsets]).reshape(k, n)
+        D = np.empty((len(P) + 2 * k + 1, n))  # what the loop over designs reads
+        for i, v in enumerate(P):
+            D[i] = v
+        D[len(P):len(P) + k], D[len(P) + k:len(P) + 2 * k] = cc, sc
+        D[-1] = assembled
         pos_ok, ok = np.empty((n, N), bool), np.empty((n, N), bool)
         tmin = np.empty((k, n))
-        args = (Pd, self.H[self.directions.directions], self.H["rates"], self.Qs, self.QDs,
-                self.QDDs, assembled, np.ascontiguousarray(L, dtype=float), cc, sc,
-                self.screen_args, self.rows_length, self.cols_length, self.pattern_array,
-                pos_ok, ok, tmin)
+        args = (D, np.ascontiguousarray(D[:len(P)].T), self.H[self.directions.directions],
+                self.H["rates"], self.Qs, self.QDs, self.QDDs, assembled,
+                np.ascontiguousarray(L, dtype=float), cc, sc, self.screen_args,
+                self.rows_length, self.cols_length, self.pattern_array, pos_ok, ok, tmin)
         cap = 4 * n + 64  # two limit positions a design, as a rule
         while True:
             bd, bi = np.empty(cap, np.int64), np.empty(cap, np.int64)

@@ -113,9 +113,32 @@ def test_metrics_statuses_and_limit_positions_equal_numpy(name, make, axes, metr
     assert np.array_equal(np.isnan(t0), np.isnan(t1)) and np.array_equal(k0, k1)
     f = np.isfinite(t0)
     assert np.all(np.abs(t0[f] - t1[f]) <= RTOL * np.abs(t0[f]))
+    # the numba backend's own Newton (compiled) on its brackets: NumPy's roots and kinds
+    tc, kc = model.compiled_roots(l1.P, l1.i.astype(float), l1.fa, l1.fb, col)
+    assert np.array_equal(kc, k0) and np.array_equal(np.isnan(tc), np.isnan(t0))
+    assert np.all(np.abs(tc[f] - t0[f]) <= RTOL * np.abs(t0[f]))
     if name == "crank_rocker":  # the change point: singular at a step, ok elsewhere
         flat = np.flatnonzero((values[:, 0] == 0.063) & (values[:, 1] == 0.039))[0]
         assert s0.pos_ok[flat].all() and not s0.ok[flat].all() and s0.ok[flat].any()
+
+
+@pytest.mark.slow
+def test_rare_entries_past_the_first_block():
+    # the compiled loop takes the designs in blocks of numba_block.BLOCK (64); the change point
+    # (l_BC 0.063, l_CD 0.039: flat at a step, where the screen flags and the condition
+    # number decides) is design 65 here, in the second block, at its second design
+    from linkage_sym.design.numba_block import BLOCK
+
+    scene = _crank_rocker()
+    axes = {"l_BC": [0.045, 0.048, 0.05, 0.053, 0.055, 0.058, 0.06, 0.063, 0.07],
+            "l_CD": [0.02, 0.03, 0.039, 0.045, 0.05, 0.055, 0.06, 0.075, 0.1]}
+    metrics = ["assemblable", "K", "min_transmission_deg"]
+    a = linkage_sym.sweep(scene, axes, metrics)
+    b = linkage_sym.sweep(scene, axes, metrics, execution=NUMBA)
+    _same(a, b)
+    flat = 7 * 9 + 2
+    assert flat > BLOCK and np.asarray(a["K_note"])[flat] != ""  # singular at a step: no K
+    assert 0 < np.asarray(a["assemblable"])[flat] < 1
 
 
 @pytest.mark.parametrize("example, metrics, why", [
@@ -130,6 +153,18 @@ def test_refusals_say_why(example, metrics, why):
     assert err.value.field == "backend"
     assert why in err.value.reason and "use the NumPy backend" in err.value.reason
     assert "--" not in err.value.reason
+
+
+def test_default_metrics_refusal_names_the_metric():
+    # no metric named: the default metrics include swing, which the numba backend does not
+    # compute; the refusal says so, and that naming the metrics is the way
+    with pytest.raises(SweepError) as err:
+        linkage_sym.sweep(linkage_sym.load_example("crank_rocker"), {"l_AB": [0.02, 0.03]},
+                          execution=NUMBA)
+    assert err.value.field == "backend"
+    assert ("the numba backend computes assemblable, grashof, K, min_transmission_deg; not "
+            "swing, which the default metrics include: name the metrics, or use the NumPy "
+            "backend") in err.value.reason
 
 
 def test_unknown_backend_and_missing_numba(monkeypatch, capsys):
