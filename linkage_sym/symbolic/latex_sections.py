@@ -15,6 +15,7 @@ import sympy as sp
 
 from linkage_sym.symbolic.latex_blocks import block_matrix, rate_matrix
 from linkage_sym.symbolic.latex_figures import loop_figure
+from linkage_sym.symbolic.latex_radicands import position_rows
 from linkage_sym.symbolic.latex_notation import (
     MAX_EQUATION,
     MAX_MATRIX,
@@ -253,11 +254,10 @@ def _positions(doc, nm, eqs) -> None:
             "projection $a$ and the half-chord $h$ of its inner joint (Heron's form, accurate "
             "near a dead centre), then its inner joint and its angles:"
         )
-        rows, keys = [], []
-        for s, e in eqs.position_steps:
-            r = nm.sum_rows(nm(s), e)
-            rows += r
-            keys += [f"pos-{s.name}"] + [None] * (len(r) - 1)
+        rows, keys, named = position_rows(nm, eqs.position_steps)
+        if named:
+            listed = ", ".join(f"${r}$ of ${s}$" for r, s in named)
+            doc.text(f"A square root too wide for a row has its radicand named: {listed}.")
         doc.align(rows, keys)
     for ge in eqs.groups:
         if not ge.closed:
