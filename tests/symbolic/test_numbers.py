@@ -91,7 +91,8 @@ def test_a_root_too_wide_for_a_row_has_its_radicand_named():
     ``H_{3}`` is a row of its own, broken between its factors; rounded, it fits a row."""
     eqs = linkage_sym.derive(load_example("fivebar"), symbolic=False)
     full, rounded = latex_document(eqs, digits=FULL), latex_document(eqs, digits=DIGITS)
-    assert "its radicand named: $H_{3}$ of $h_{3}$" in full
+    assert "its angles. A square root too wide for a row has its radicand named as a row of its " \
+           "own ($H_{3}$ of $h_{3}$):" in full
     assert re.search(r"^H_\{3\} &= .*\n&\\quad \\cdot ", full, re.M)
     assert r"h_{3} &= \frac{\sqrt{H_{3}}}{2 d_{3}}" in full
     assert "H_{3}" not in rounded and r"h_{3} &= \frac{\sqrt{\left(0.24 - d_{3}\right)" in rounded
