@@ -17,13 +17,13 @@ from __future__ import annotations
 import argparse
 
 from linkage_sym.cli.common import OptionError, check_outputs as _check_outputs, emit, load as _load
-from linkage_sym.symbolic.numbers import DIGITS, FULL, MAX_DIGITS, check_digits
 
 __all__ = ["cmd_derive", "register"]
 
 
 def cmd_derive(args) -> int:
     from linkage_sym.symbolic import derive
+    from linkage_sym.symbolic.numbers import DIGITS
 
     if args.latex and args.markdown:
         raise OptionError("--latex and --markdown write the same equations in two markups: "
@@ -63,6 +63,8 @@ def cmd_derive(args) -> int:
 
 def _digits(text: str):
     """``--digits``: a whole number of significant digits, or ``full``."""
+    from linkage_sym.symbolic.numbers import FULL, MAX_DIGITS, check_digits  # SymPy: on use
+
     if text == FULL:
         return FULL
     try:
@@ -82,9 +84,11 @@ def register(sub) -> None:
                    "for notebooks and documentation pages")
     v.add_argument("--numeric", action="store_true", help="the scene's numbers instead of parameter symbols")
     v.add_argument("--digits", type=_digits, metavar="N|full",
-                   help=f"with --numeric: print each number correctly rounded to N significant "
-                   f"digits (1 to {MAX_DIGITS}; default {DIGITS}, and the output says so), or "
-                   f"'{FULL}': the shortest decimal that reads back as the scene's number")
+                   # the numbers of linkage_sym.symbolic.numbers (DIGITS, MAX_DIGITS, FULL; it
+                   # imports SymPy, which the command line loads only when used: tested equal)
+                   help="with --numeric: print each number correctly rounded to N significant "
+                   "digits (1 to 17; default 6, and the output says so), or 'full': the "
+                   "shortest decimal that reads back as the scene's number")
     v.add_argument("--standalone", action="store_true",
                    help="with --latex: a complete document (preamble, bibliography) instead of a fragment")
     v.add_argument("--symbols", action="store_true",

@@ -23,12 +23,7 @@ from __future__ import annotations
 
 from decimal import ROUND_HALF_EVEN, Context, Decimal
 
-import sympy as sp
-from mpmath.libmp import prec_to_dps
-from sympy.printing.str import StrPrinter
-
-__all__ = ["DIGITS", "FULL", "MAX_DIGITS", "RoundedStr", "check_digits", "float_text",
-           "rounding_note"]
+__all__ = ["DIGITS", "FULL", "MAX_DIGITS", "check_digits", "float_text", "rounding_note"]
 
 DIGITS = 6
 """The significant digits of a printed number by default: a publication's precision, far
@@ -64,9 +59,13 @@ def _digits(x, digits) -> tuple[str, str, int]:
         text = repr(v) if digits == FULL else f"{v:.{digits - 1}e}"
         d = Decimal(text)
     else:  # finer than a double: all its digits, or rounded from its exact value
-        r = sp.Rational(x)
+        from mpmath.libmp import prec_to_dps
+
+        sign, man, exp, _ = x._mpf_  # the value (-1)**sign * man * 2**exp, exactly
+        p, q = (man << exp, 1) if exp >= 0 else (man, 1 << -exp)
         prec = prec_to_dps(x._prec) if digits == FULL else digits
-        d = Context(prec=prec, rounding=ROUND_HALF_EVEN).divide(Decimal(r.p), Decimal(r.q))
+        d = Context(prec=prec, rounding=ROUND_HALF_EVEN).divide(Decimal(-p if sign else p),
+                                                                Decimal(q))
     sign, ds, exp = d.as_tuple()
     significant = "".join(map(str, ds)).lstrip("0")
     if not significant:
@@ -93,21 +92,3 @@ def rounding_note(digits) -> str:
         return ("Numbers are printed in full: each the shortest decimal that reads back as the "
                 "scene's double.")
     return f"Numbers are rounded to {digits} significant digits."
-
-
-class RoundedStr(StrPrinter):
-    """SymPy's text with every ``Float`` as :func:`float_text` prints it.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> RoundedStr(4).doprint(sp.Float(0.123456) * sp.Symbol("d") + 2)
-    '0.1235*d + 2'
-    """
-
-    def __init__(self, digits, settings=None):
-        super().__init__(settings)
-        self.digits = check_digits(digits)
-
-    def _print_Float(self, expr):
-        return float_text(expr, self.digits)

@@ -20,13 +20,33 @@ from __future__ import annotations
 
 import textwrap
 
-from linkage_sym.symbolic.mechanism import MechanismEquations
-from linkage_sym.symbolic.numbers import DIGITS, RoundedStr, rounding_note
+from sympy.printing.str import StrPrinter
 
-__all__ = ["MIN_WIDTH", "plain_text", "wrap"]
+from linkage_sym.symbolic.mechanism import MechanismEquations
+from linkage_sym.symbolic.numbers import DIGITS, check_digits, float_text, rounding_note
+
+__all__ = ["MIN_WIDTH", "RoundedStr", "plain_text", "wrap"]
 
 MIN_WIDTH = 40
 """The narrowest width :func:`plain_text` wraps to (a narrower one is taken as this)."""
+
+
+class RoundedStr(StrPrinter):
+    """SymPy's text with every ``Float`` as :func:`float_text` prints it.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> RoundedStr(4).doprint(sp.Float(0.123456) * sp.Symbol("d") + 2)
+    '0.1235*d + 2'
+    """
+
+    def __init__(self, digits, settings=None):
+        super().__init__(settings)
+        self.digits = check_digits(digits)
+
+    def _print_Float(self, expr):
+        return float_text(expr, self.digits)
 
 
 def wrap(head: str, body: str, width: int, indent: str = "    ") -> list[str]:

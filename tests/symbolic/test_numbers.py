@@ -21,7 +21,7 @@ from linkage_sym.cli import main
 from linkage_sym.examples import example_path, load_example
 from linkage_sym.symbolic.latex import latex_document
 from linkage_sym.symbolic.markdown import markdown_document
-from linkage_sym.symbolic.numbers import DIGITS, FULL, check_digits, float_text
+from linkage_sym.symbolic.numbers import DIGITS, FULL, MAX_DIGITS, check_digits, float_text
 from linkage_sym.symbolic.text import plain_text
 
 DOUBLES = st.floats(allow_nan=False, allow_infinity=False, min_value=-1e300, max_value=1e300)
@@ -113,3 +113,11 @@ def test_the_command_line_takes_digits(tmp_path, capsys):
             main(["derive", scene, "--numeric", "--digits", bad])
         assert err.value.code == 2
         assert "argument --digits: a whole number from 1 to 17, or 'full'" in capsys.readouterr().err
+
+
+def test_the_help_states_the_library_numbers(capsys):
+    """The command line writes them out (importing them would load SymPy at start-up)."""
+    with pytest.raises(SystemExit):
+        main(["derive", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert f"(1 to {MAX_DIGITS}; default {DIGITS}, and the output says so), or '{FULL}'" in text
