@@ -22,6 +22,7 @@ from linkage_sym.symbolic import derive
 from linkage_sym.symbolic.figure_labels import free_directions
 from linkage_sym.symbolic.latex import latex_document
 from tests.support.example_sets import symbolic_examples
+from tests.support.marks import fast_cases
 
 CHAR, SCRIPT, HEIGHT, PIN = 0.14, 0.7, 0.30, 0.07
 NUM = r"(-?[0-9.]+)"
@@ -106,7 +107,7 @@ def test_the_largest_free_angle_is_looked_along_first():
     assert abs(d[0] - complex(-0.7071067811865476, -0.7071067811865476)) < 1e-12
 
 
-@pytest.mark.parametrize("name", symbolic_examples())
+@pytest.mark.parametrize("name", fast_cases(symbolic_examples(), {"shaper", "gear_linkage"}))
 def test_no_two_labels_overlap_and_none_covers_a_joint(name):
     eqs = derive(load_example(name))
     figs = re.findall(r"\\begin\{figure\}.*?\\end\{figure\}", latex_document(eqs, figures=True),
