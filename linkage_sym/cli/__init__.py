@@ -27,7 +27,7 @@ analyze SCENE.json [-o RESULT.json | -o -] [--format json|csv|npz|parquet]
     solver.  The summary ends with the worst step's estimated accuracy;
     ``--precision DIGITS`` evaluates the derived equations in mpmath and
     ``--extremes`` locates the sweep's extremes (``linkage_sym.cli.accuracy``).
-derive SCENE.json [--latex [--no-figures] | --markdown] [--numeric] [-o FILE]
+derive SCENE.json [--latex [--no-figures] | --markdown] [--numeric [--digits N|full]] [-o FILE]
     Derive the scene's equations with SymPy (loops, closed forms, velocity,
     acceleration and force equations) and print them as SymPy text (the positions as
     named steps, every line within the terminal's width), or with
@@ -36,7 +36,8 @@ derive SCENE.json [--latex [--no-figures] | --markdown] [--numeric] [-o FILE]
     in a document that loads amsmath; a TikZ figure of each vector loop
     unless ``--no-figures``), or with ``--markdown`` as Markdown with
     MathJax math.  ``--numeric`` puts the scene's numbers in place of the
-    parameter symbols.
+    parameter symbols, each correctly rounded to ``--digits`` significant digits
+    (default 6, said in the output; ``full``: the exact double's shortest decimal).
 balance SCENE.json [-o BALANCE.json | -o -] [--latex [FILE.tex]] [--plots DIR]
         [--balanced-scene FILE] [--optimize FILE [--weights F,M,T] [--max-mass KG]
         [--links L1,L2]]

@@ -28,6 +28,7 @@ import sympy as sp
 from linkage_sym.model import GROUND
 from linkage_sym.structure.parameters import COINCIDENT, driver_q0
 from linkage_sym.symbolic.closed_forms import other_link
+from linkage_sym.symbolic.figure_labels import Box, Placer, around, free_directions, label_size
 from linkage_sym.symbolic.latex_notation import escape_text
 from linkage_sym.symbolic.vectors import Vec
 
@@ -167,20 +168,6 @@ def _pt(z: complex) -> str:
     return f"({_f(z.real)}, {_f(z.imag)})"
 
 
-def _away(z: complex, centre: complex) -> complex:
-    """The unit vector from ``centre`` toward ``z`` (up where they coincide)."""
-    d = z - centre
-    return d / abs(d) if abs(d) > 1e-9 else 1j
-
-
-def _anchor(direction: complex) -> str:
-    """The node anchor that puts a label on the side ``direction`` points to."""
-    deg = math.degrees(cmath.phase(direction)) % 360
-    names = ["west", "south west", "south", "south east", "east", "north east", "north",
-             "north west"]
-    return names[int(((deg + 22.5) % 360) // 45)]
-
-
 class _Figure:
     """The picture of one loop: points, scale and the TikZ lines."""
 
@@ -201,6 +188,22 @@ class _Figure:
         self.scale = min(WIDTH / w, HEIGHT / h)
         self.lines: list[str] = []
         self.arcs: dict[complex, int] = {}  # arcs drawn at each point
+        self.placer = Placer()
+        # labels placed once every line is known: (line index, size, candidates(), line(centre))
+        self.pending: list[list] = [[], [], []]  # joints, vectors, angles: placed in this order
+
+    def _label(self, rank: int, size, candidates, line) -> None:
+        """A line to write once its label is placed (:meth:`place_labels`)."""
+        self.pending[rank].append((len(self.lines), size, candidates, line))
+        self.lines.append("")
+
+    def place_labels(self) -> None:
+        """Place every label (joints', then vectors', then angles') clear of the others, of
+        the joints' dots and, where it can, of the lines
+        (:class:`~linkage_sym.symbolic.figure_labels.Placer`), and write its line."""
+        for rank in self.pending:
+            for index, size, candidates, line in rank:
+                self.lines[index] = line(self.placer.place(size, candidates()))
 
     def z(self, scene_point: complex) -> complex:
         return scene_point * self.scale
@@ -217,9 +220,12 @@ class _Figure:
                         pts.append(p)
             if len(pts) == 2:
                 self.lines.append(rf"\draw[link] {_pt(pts[0])} -- {_pt(pts[1])}; % link {link}")
+                self.placer.segment(*pts)
             elif len(pts) > 2:
                 c = sum(pts) / len(pts)
                 pts.sort(key=lambda p: cmath.phase(p - c))
+                for a, b in zip(pts, pts[1:] + pts[:1]):
+                    self.placer.segment(a, b)
                 path = " -- ".join(_pt(p) for p in pts)
                 self.lines.append(rf"\draw[plate] {path} -- cycle; % link {link}")
         for j in scene.meshes:
@@ -229,9 +235,9 @@ class _Figure:
                                   f"% gear {gear}")
 
     def joints(self) -> None:
-        """Ground pivots hatched, sliders as blocks, every joint a pin, named once."""
+        """Ground pivots hatched, sliders as blocks, every joint a pin, named once (on the
+        side free of its lines)."""
         scene = self.eqs.scene
-        centre = sum(self.at.values()) / len(self.at) * self.scale
         named: dict[complex, list[str]] = {}
         for j in scene.joints:
             p = self.z(self.at[j.name])
@@ -243,8 +249,10 @@ class _Figure:
                                   r"-- (0.16,-0.3) -- cycle; \draw (-0.3,-0.3) -- (0.3,-0.3); "
                                   r"\foreach \k in {-0.24,-0.12,...,0.3} \draw (\k,-0.3) -- "
                                   r"(\k-0.12,-0.42); \end{scope}")
+                self.placer.block(Box(p - 0.23j, 0.34, 0.2))  # the hatched base
             elif j.type == "P":
                 axis = math.degrees(j.axis + _num(self.eqs.theta(j.links[0]), self.values))
+                self._slider(p, math.radians(axis), GROUND in j.links)
                 hatch = (r" \draw (-0.9,-0.13) -- (0.9,-0.13); \foreach \k in {-0.84,-0.66,...,0.9}"
                          r" \draw (\k,-0.13) -- (\k-0.12,-0.25);") if GROUND in j.links else ""
                 self.lines.append(rf"\begin{{scope}}[shift={{{_pt(p)}}}, rotate={_f(axis)}]"
@@ -252,17 +260,46 @@ class _Figure:
                                   + hatch + r" \end{scope}")
             if j.type in ("R", "P"):
                 self.lines.append(rf"\node[pin] at {_pt(p)} {{}};")
+                self.placer.dot(p)
         for p, names in named.items():
-            d = _away(p, centre)
-            text = ", ".join(escape_text(n) for n in names)
-            self.lines.append(rf"\node[anchor={_anchor(d)}] at {_pt(p + 0.22 * d)} {{{text}}};")
+            self._point_label(p, ", ".join(escape_text(n) for n in names), math_mode=False)
+
+    def _point_label(self, p: complex, text: str, math_mode: bool) -> None:
+        """A point's name, first along the bisector of the largest angle free of its lines."""
+        size = label_size(text, math_mode)
+
+        def candidates():
+            return around(p, size, free_directions(p, self.placer.angles_at(p)))
+
+        body = f"${text}$" if math_mode else text
+        self._label(0, size, candidates, lambda c: rf"\node[anchor=center] at {_pt(c)} {{{body}}};")
+
+    def _slider(self, p: complex, axis: float, grounded: bool) -> None:
+        """A slider's block (and a ground guide's hatched line) kept clear of the labels."""
+        u, n = cmath.exp(1j * axis), cmath.exp(1j * axis) * 1j
+        corners = [p + a * u + b * n for a in (-0.22, 0.22) for b in (-0.13, 0.13)]
+        xs, ys = [c.real for c in corners], [c.imag for c in corners]
+        self.placer.block(Box(p, (max(xs) - min(xs)) / 2, (max(ys) - min(ys)) / 2))
+        if grounded:
+            self.placer.segment(p - 0.9 * u - 0.13 * n, p + 0.9 * u - 0.13 * n)
+            self.placer.segment(p - 0.9 * u - 0.25 * n, p + 0.9 * u - 0.25 * n)
 
     def origin(self) -> None:
         """The origin and the axes, where the ground points' vectors start there."""
         if self.start is None:
-            self.lines.append(r"\draw[axis] (0,0) -- (0.8,0) node[right] {$x$}; "
-                              r"\draw[axis] (0,0) -- (0,0.8) node[above] {$y$}; "
-                              r"\node[anchor=north east] at (0,0) {$O$};")
+            self.lines.append(r"\draw[axis] (0,0) -- (0.8,0); \draw[axis] (0,0) -- (0,0.8);")
+            for end, name in ((0.8 + 0j, "x"), (0.8j, "y")):
+                self.placer.segment(0j, end)
+                self._axis_label(end, name)
+            self._point_label(0j, "O", math_mode=True)
+
+    def _axis_label(self, end: complex, name: str) -> None:
+        """An axis's name past its arrow's tip (or beside it, where lines cross there)."""
+        size = label_size(name)
+        u = end / abs(end)
+        directions = [u, u * 1j, -u * 1j, u * cmath.exp(0.6j), u * cmath.exp(-0.6j)]
+        self._label(0, size, lambda: around(end, size, directions, (0.04, 0.2, 0.4)),
+                    lambda c: rf"\node[anchor=center] at {_pt(c)} {{${name}$}};")
 
     def _value(self, t: LoopTerm) -> complex:
         if t.angle is None:
@@ -290,9 +327,7 @@ class _Figure:
         if t.angle is None:
             if abs(b - a) < 1e-6:
                 return
-            label = nm(t.coef + sp.I * t.y)
-            self.lines.append(rf"\draw[ground vec] {_pt(a)} -- {_pt(b)} node[pos=0.5, sloped, "
-                              rf"above] {{${label}$}};")
+            self._vector_label("ground vec", a, b, 0.5, nm(t.coef + sp.I * t.y), centre)
             return
         neg = sp.sympify(t.coef).could_extract_minus_sign()
         mag = -t.coef if neg else t.coef
@@ -302,12 +337,37 @@ class _Figure:
         pos = 0.55
         if abs(head - tail) < 1e-6:  # a slide at 0: its axis, the direction it counts
             self.lines.append(rf"\draw[ref] {_pt(a - 0.5 * u)} -- {_pt(a + 0.9 * u)};")
+            self.placer.segment(a - 0.5 * u, a + 0.9 * u)
             tail, head, pos = a, a + 0.9 * u, 1.0
-        m = tail + pos * (head - tail)
-        n = u * 1j if abs(m + u * 1j - centre) > abs(m - u * 1j - centre) else -u * 1j
-        self.lines.append(rf"\draw[vec] {_pt(tail)} -- {_pt(head)} node[pos={pos}, "
-                          rf"anchor={_anchor(n)}] {{${nm(mag)}$}};")
+        self._vector_label("vec", tail, head, pos, nm(mag), centre)
         self._arc(tail, phi, abs(head - tail), nm(t.angle))
+
+    def _vector_label(self, style: str, tail: complex, head: complex, pos: float, label: str,
+                      centre: complex) -> None:
+        """The arrow from ``tail`` to ``head`` and its name: beside it, on the side away from
+        the loop's centre first, near the point ``pos`` along it (its head: at ``pos`` 1)."""
+        self.placer.segment(tail, head)
+        size = label_size(label)
+        u = (head - tail) / abs(head - tail)
+        base = tail + pos * (head - tail)
+        n = u * 1j if abs(base + u * 1j - centre) > abs(base - u * 1j - centre) else -u * 1j
+
+        def candidates():
+            if pos == 1.0:  # a slide at 0: round its axis's end
+                return around(base, size, free_directions(base, self.placer.angles_at(base)))
+            out = []
+            for dist in (0.08, 0.22, 0.4):
+                for t in (pos, 0.4, 0.7, 0.25, 0.85):
+                    out += around(tail + t * (head - tail), size, [n, -n], (dist,))
+            # a short vector among others: round its middle, farther out
+            return out + around(base, size, free_directions(base, []), (0.3, 0.55, 0.8, 1.1))
+
+        def line(c):
+            shift = c - base
+            return (rf"\draw[{style}] {_pt(tail)} -- {_pt(head)} node[pos={pos}, anchor=center, "
+                    rf"xshift={_f(shift.real)}cm, yshift={_f(shift.imag)}cm] {{${label}$}};")
+
+        self._label(1, size, candidates, line)
 
     def _arc(self, tail: complex, phi: float, length: float, name: str) -> None:
         """The arc of angle ``phi`` at ``tail`` from the ``x``-direction, named ``name``;
@@ -316,12 +376,27 @@ class _Figure:
         self.arcs[key] = k = self.arcs.get(key, -1) + 1
         deg = math.degrees(math.remainder(phi, 2 * math.pi))
         r = min(0.5, 0.35 * length) + 0.32 * k
-        at = deg / 2 if abs(deg) >= 36 else deg + math.copysign(18, deg)  # clear of the arrow
-        mid = tail + (r + 0.1) * cmath.exp(1j * math.radians(at))
-        self.lines.append(rf"\draw[ref] {_pt(tail)} -- {_pt(tail + r + 0.2)}; "
-                          rf"\draw[angle] {_pt(tail + r)} arc[start angle=0, end angle={_f(deg)}, "
-                          rf"radius={_f(r)}]; \node[anchor={_anchor(mid - tail)}] at {_pt(mid)} "
-                          rf"{{${name}$}};")
+        self.placer.segment(tail, tail + r + 0.2)
+        steps = [math.radians(deg) * i / 8 for i in range(9)]
+        for x, y in zip(steps, steps[1:]):
+            self.placer.segment(tail + r * cmath.exp(1j * x), tail + r * cmath.exp(1j * y))
+        size = label_size(name)
+
+        def candidates():
+            out = []
+            for extra in (0.08, 0.25, 0.45):
+                for f in (0.5, 0.3, 0.7, 1.15, -0.2, 0.1, 0.9):
+                    d = cmath.exp(1j * math.radians(f * deg))
+                    out += around(tail + r * d, size, [d], (extra,))
+            mid = tail + r * cmath.exp(1j * math.radians(deg / 2))  # a small arc: round it
+            return out + around(mid, size, free_directions(mid, []), (0.08, 0.25, 0.45, 0.7))
+
+        def line(c):
+            return (rf"\draw[ref] {_pt(tail)} -- {_pt(tail + r + 0.2)}; "
+                    rf"\draw[angle] {_pt(tail + r)} arc[start angle=0, end angle={_f(deg)}, "
+                    rf"radius={_f(r)}]; \node[anchor=center] at {_pt(c)} {{${name}$}};")
+
+        self._label(2, size, candidates, line)
 
 
 def loop_figure(eqs, nm, jname: str, label: str, equation_label: str) -> str:
@@ -360,6 +435,7 @@ def loop_figure(eqs, nm, jname: str, label: str, equation_label: str) -> str:
     fig.joints()
     fig.origin()
     fig.vectors()
+    fig.place_labels()
     caption = (
         rf"The vector loop closed at joint {escape_text(jname)}, "
         rf"equation~\eqref{{{equation_label}}}, in the scene's assembly configuration: its "

@@ -27,6 +27,7 @@ import sympy as sp
 from sympy.printing.latex import LatexPrinter
 
 from linkage_sym.symbolic.mechanism import MechanismEquations
+from linkage_sym.symbolic.numbers import DIGITS, check_digits, float_text
 from linkage_sym.structure.parameters import ident
 
 __all__ = [
@@ -163,6 +164,19 @@ class _WrittenOrder(LatexPrinter):
     \\left(x_{D} - x_{B} - y\\right) \\operatorname{atan}_{2}{\\left(y,x_{D} - x_{B} \\right)}
     """
 
+    def __init__(self, settings=None, digits=None):
+        super().__init__(settings)
+        self.digits = digits
+
+    def _print_Float(self, expr):
+        """A number to :attr:`digits` significant digits (SymPy's own: None), ``a \\cdot
+        10^{e}`` beyond the fixed-point range (:func:`~linkage_sym.symbolic.numbers.float_text`)."""
+        if self.digits is None:
+            return super()._print_Float(expr)
+        text = float_text(expr, self.digits)
+        mant, _, exp = text.partition("e")
+        return rf"{mant} \cdot 10^{{{exp}}}" if exp else text
+
     def _as_ordered_terms(self, expr, order=None):
         terms = super()._as_ordered_terms(expr, order=order)
         if not isinstance(expr, sp.Add):
@@ -171,9 +185,21 @@ class _WrittenOrder(LatexPrinter):
 
 
 class Namer:
-    """``symbol_names`` for :func:`sympy.latex`, from the equations' structure."""
+    """``symbol_names`` for :func:`sympy.latex`, from the equations' structure, and the
+    numbers' significant digits.
 
-    def __init__(self, eqs: MechanismEquations):
+    Parameters
+    ----------
+    eqs : MechanismEquations
+        The derived equations.
+    digits : int or str
+        Each number (the scene's, where ``derive(..., symbolic=False)`` put them in place of
+        the parameters) correctly rounded to this many significant digits, or ``"full"``
+        (:func:`linkage_sym.symbolic.numbers.float_text`).
+    """
+
+    def __init__(self, eqs: MechanismEquations, digits=DIGITS):
+        self.digits = check_digits(digits)
         names: dict = {}
         links = {f"theta_{s.name[6:]}" for s in eqs.x if s.name.startswith("theta_")}
         for s, sd, sdd in zip(eqs.x, eqs.xd, eqs.xdd):
@@ -250,7 +276,7 @@ class Namer:
         for s in getattr(expr, "free_symbols", ()):
             if s not in self.names:  # pragma: no cover - every symbol is named above
                 self.names[s] = self.param(s.name)
-        return _WrittenOrder({"symbol_names": self.names}).doprint(expr).replace(
+        return _WrittenOrder({"symbol_names": self.names}, self.digits).doprint(expr).replace(
             r"\operatorname{atan}_{2}", r"\operatorname{atan2}")
 
     def terms(self, expr) -> list:

@@ -15,6 +15,7 @@ import sympy as sp
 
 from linkage_sym.symbolic.latex_blocks import block_matrix, rate_matrix
 from linkage_sym.symbolic.latex_figures import loop_figure
+from linkage_sym.symbolic.latex_radicands import position_rows
 from linkage_sym.symbolic.latex_notation import (
     MAX_EQUATION,
     MAX_MATRIX,
@@ -246,18 +247,17 @@ def _positions(doc, nm, eqs) -> None:
     numerically."""
     doc.text(r"\paragraph{Positions.}")
     if eqs.closed_forms:
+        rows, keys, named = position_rows(nm, eqs.position_steps)
+        listed = ", ".join(f"${r}$ of ${s}$" for r, s in named)
         doc.text(
             "Explicit positions of the input links and dyads, in solving order "
             r"(each may use those above it; $\sigma = \pm 1$ selects the assembly mode). "
             "Each dyad first names its outer joints, the distance $d$ between them, the "
             "projection $a$ and the half-chord $h$ of its inner joint (Heron's form, accurate "
-            "near a dead centre), then its inner joint and its angles:"
+            "near a dead centre), then its inner joint and its angles"
+            + (f". A square root too wide for a row has its radicand named as a row of its own "
+               f"({listed}):" if named else ":")
         )
-        rows, keys = [], []
-        for s, e in eqs.position_steps:
-            r = nm.sum_rows(nm(s), e)
-            rows += r
-            keys += [f"pos-{s.name}"] + [None] * (len(r) - 1)
         doc.align(rows, keys)
     for ge in eqs.groups:
         if not ge.closed:

@@ -18,6 +18,7 @@ import re
 from linkage_sym.symbolic.latex import BIBLIOGRAPHY, write_document
 from linkage_sym.symbolic.latex_notation import Doc
 from linkage_sym.symbolic.mechanism import MechanismEquations
+from linkage_sym.symbolic.numbers import DIGITS
 
 __all__ = ["MarkdownDoc", "markdown_document", "markdown_text"]
 
@@ -133,7 +134,7 @@ class MarkdownDoc(Doc):
         self.out += ["$$", r"\begin{aligned}", " \\\\\n".join(rows), r"\end{aligned}", "$$", ""]
 
 
-def markdown_document(eqs: MechanismEquations, symbols: bool = False) -> str:
+def markdown_document(eqs: MechanismEquations, symbols: bool = False, digits=DIGITS) -> str:
     r"""A mechanism's equations as Markdown with MathJax math (``$$`` blocks).
 
     Parameters
@@ -142,6 +143,9 @@ def markdown_document(eqs: MechanismEquations, symbols: bool = False) -> str:
         The result of :func:`linkage_sym.symbolic.derive`.
     symbols : bool
         A table of every symbol with its meaning and unit instead of the list of symbols.
+    digits : int or str
+        The numbers' significant digits, or ``"full"``: as
+        :func:`linkage_sym.symbolic.latex.latex_document`'s.
 
     Returns
     -------
@@ -161,7 +165,7 @@ def markdown_document(eqs: MechanismEquations, symbols: bool = False) -> str:
     True
     """
     doc = MarkdownDoc("eq:" + eqs.scene.name)
-    write_document(doc, eqs, symbols=symbols, figures=False)
+    write_document(doc, eqs, symbols=symbols, figures=False, digits=digits)
     doc.out += ["## References", ""]
     doc.out += [f"{n}. {markdown_text(BIBLIOGRAPHY[key])}" for key, n in _REFERENCES.items()]
     return "\n".join(doc.out) + "\n"

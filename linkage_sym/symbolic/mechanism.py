@@ -205,6 +205,11 @@ class MechanismEquations(ClosedForms, ForceEquations):
         """The parameters kept symbolic, in registration order."""
         return [s for s in self._syms.values() if isinstance(s, sp.Symbol)]
 
+    @property
+    def substituted(self) -> list[str]:
+        """The names of the parameters put in as the scene's numbers (not kept symbolic)."""
+        return [n for n, s in self._syms.items() if not isinstance(s, sp.Symbol)]
+
     def parameter_values(self) -> dict:
         """``{symbol: value}`` of the symbolic parameters (the scene's numbers)."""
         return {

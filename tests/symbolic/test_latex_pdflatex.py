@@ -1,6 +1,10 @@
 """Every derivable shipped example's ``derive --latex --standalone --symbols`` typesets
 within the page, its TikZ figure of each vector loop included: compiled with ``pdflatex``,
-its log names no overfull box (horizontal or vertical) of more than 1 pt.
+its log names no overfull box (horizontal or vertical) of more than 1 pt.  So does its
+``--numeric`` document (the scene's numbers in place of the parameters), at the default
+significant digits and in full (``--digits full``: 17-digit numbers, four of them under a
+dyad's Heron root, which ran 67 pt past the margin before that root's radicand got a row of
+its own).
 
 TeX is not a Python dependency: the test is skipped, saying so, where ``pdflatex`` is not
 on PATH (Debian: ``apt-get install texlive-latex-base texlive-latex-extra texlive-pictures``).  The
@@ -55,16 +59,21 @@ def _compile(folder) -> str:
     return log
 
 
+MODES = {"symbolic": [], "numeric": ["--numeric"], "numeric-full": ["--numeric", "--digits", "full"]}
+"""The documents compiled: ``derive --latex --standalone --symbols`` and these options."""
+
+
+@pytest.mark.parametrize("mode", MODES)
 @pytest.mark.skipif(PDFLATEX is None, reason="pdflatex is not on PATH (Debian: apt-get install "
                     "texlive-latex-base texlive-latex-extra texlive-pictures): the typesetting is not checked")
 @pytest.mark.slow
-def test_every_example_typesets_without_an_overfull_box(tmp_path, capsys):
+def test_every_example_typesets_without_an_overfull_box(tmp_path, capsys, mode):
     folders = {}
     for name in symbolic_examples():
         folder = tmp_path / name
         folder.mkdir()
         assert main(["derive", str(example_path(name)), "--latex", "--standalone", "--symbols",
-                     "-o", str(folder / "eqs.tex")]) == 0
+                     *MODES[mode], "-o", str(folder / "eqs.tex")]) == 0
         folders[name] = folder
         tex = (folder / "eqs.tex").read_text()  # the loops' figures are part of what compiles
         assert r"\begin{tikzpicture}" in tex or "no closed vector loop" in tex, name
