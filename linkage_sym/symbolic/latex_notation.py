@@ -17,6 +17,8 @@ Examples
 \\omega_{\\mathrm{crank}} + \\theta_{\\mathrm{crank}}
 >>> print(escape_text("a_b & c"))
 a\\_b \\& c
+>>> print(escape_text("angle of B->D, x > 0"))
+angle of B\\ensuremath{\\to}D, x \\ensuremath{>} 0
 """
 
 from __future__ import annotations
@@ -93,12 +95,16 @@ _TEXT_ESCAPES = {
     "}": r"\}",
     "~": r"\textasciitilde{}",
     "^": r"\textasciicircum{}",
+    # in the default (OT1) text font these two characters print as inverted marks
+    "<": r"\ensuremath{<}",
+    ">": r"\ensuremath{>}",
 }
 
 
 def escape_text(s: str) -> str:
     """``s`` safe in LaTeX text mode (and inside ``\\mathrm``)."""
-    return "".join(_TEXT_ESCAPES.get(c, c) for c in s)
+    parts = s.split("->")  # an arrow as an arrow, in text and in math alike
+    return r"\ensuremath{\to}".join("".join(_TEXT_ESCAPES.get(c, c) for c in p) for p in parts)
 
 
 def typeset_width(tex: str) -> float:

@@ -26,6 +26,9 @@ _MATH = re.compile(r"(?<!\\)\$(.*?)(?<!\\)\$")
 _CITE = re.compile(r"\\cite(?:\[([^\]]*)\])?\{([^}]*)\}")
 _TEXT = [  # LaTeX text-mode markup the section writers use, and its Markdown
     (re.compile(r"\\emph\{([^}]*)\}"), r"*\1*"),
+    (re.compile(r"\\ensuremath\{\\to\}"), "\u2192"),
+    (re.compile(r"\\ensuremath\{<\}"), "&lt;"),
+    (re.compile(r"\\ensuremath\{>\}"), "&gt;"),
     (re.compile(r"\\textbackslash\{\}"), r"\\\\"),
     (re.compile(r"\\textasciitilde\{\}"), r"\\~"),
     (re.compile(r"\\textasciicircum\{\}"), r"\\^"),

@@ -122,7 +122,8 @@ def test_environments_balance_and_labels_are_unique(documents, name):
 
 
 def escape(s):
-    return s.replace("_", r"\_")
+    # the LaTeX's text escapes the meanings use: an underscore, an arrow as math
+    return s.replace("_", r"\_").replace("->", r"\ensuremath{\to}")
 
 
 def test_notation_of_the_kinematics_chapter():

@@ -142,3 +142,14 @@ def test_a_block_of_numbers_wide_on_the_page_is_written_entry_by_entry():
     assert block_matrix(namer, wide) is None
     assert block_matrix(namer, wide, force=True) is not None
     assert block_matrix(namer, narrow) is not None
+
+
+def test_the_symbol_table_prints_arrows_and_comparisons_as_math():
+    """In LaTeX's default text font ``<`` and ``>`` print as inverted marks (the shaper's
+    ``angle of B_slide->D`` read ``B_slide¿D`` in the compiled symbol table): outside
+    math, no such character is left in the table's text."""
+    doc = latex_document(derive(load_example("shaper")), symbols=True)
+    table = doc[doc.index(r"\begin{longtable}"):doc.index(r"\end{longtable}")]
+    text = re.sub(r"\$[^$]*\$|\\ensuremath\{[^{}]*\}", "", table)
+    assert "<" not in text and ">" not in text
+    assert r"B\_slide\ensuremath{\to}D" in table

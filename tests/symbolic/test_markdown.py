@@ -91,3 +91,11 @@ def test_cli_derive_markdown_and_its_refusals(tmp_path, capsys):
     assert "--latex and --markdown" in err and "give one of them" in err
     assert main(["derive", scene, "--markdown", "--standalone"]) == 2
     assert "--standalone" in capsys.readouterr().err
+
+
+def test_an_arrow_in_the_symbol_table_is_an_arrow():
+    """The LaTeX prints ``->`` of a parameter's meaning as math (its text font has no
+    ``>``); the Markdown as the character, with no LaTeX command left in its text."""
+    md = markdown_document(derive(load_example("shaper")), symbols=True)
+    assert "B\\_slide\u2192D" in md
+    assert "ensuremath" not in md
