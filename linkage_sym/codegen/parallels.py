@@ -29,11 +29,13 @@ __all__ = ["two_slides"]
 _TOL = PARALLEL_ULPS * float(np.finfo(float).eps)
 
 
-def two_slides(cm, step, X: list, Qpath: np.ndarray, failed: np.ndarray) -> list:
+def two_slides(cm, step, X: list, Qpath: np.ndarray, failed: np.ndarray,
+               why: dict) -> list:
     """After the closed step ``step``: mark the path points where a dyad of two slides it
-    solved has parallel slides as failed (its group, unless an earlier group failed there)
-    and return the notes of its joint's passages through infinity, ``(first path point
-    past it, text(step))``.
+    solved has parallel slides as failed (its group, unless an earlier group failed there),
+    each with its message in ``why`` (path point -> text, the numeric solver's wording), and
+    return the notes of its joint's passages through infinity, ``(first path point past it,
+    text(step))``.
 
     Parameters
     ----------
@@ -47,6 +49,8 @@ def two_slides(cm, step, X: list, Qpath: np.ndarray, failed: np.ndarray) -> list
         Driver values (D, K) along the path.
     failed : ndarray
         Each path point's first failing group (-1: none); updated in place.
+    why : dict
+        The messages of the path points failed here; updated in place.
     """
     art = cm.art
     K = Qpath.shape[1]
@@ -66,6 +70,8 @@ def two_slides(cm, step, X: list, Qpath: np.ndarray, failed: np.ndarray) -> list
             cross = np.array(full(cross, K))
             parallel = np.abs(cross) <= _TOL
         failed[parallel & ((failed < 0) | (failed > g))] = g
+        for i in np.flatnonzero(parallel & (failed == g)):
+            why[int(i)] = messages.parallel_failure(group.title, (a, b))
         # the points where the dyad is solved: its coordinates numbers, its slides not parallel
         solved = np.isfinite(cross) & ~parallel
         for c in group.cols:

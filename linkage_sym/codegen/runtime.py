@@ -209,7 +209,7 @@ class CompiledMechanism(NumpyEvaluator):
         failing group at each point (-1 where every group is solved)."""
         K = Qpath.shape[1]
         failed = np.full(K, -1)
-        self.newton_messages, self.path_notes = {}, []
+        self.newton_messages, self.path_notes, self.parallel_messages = {}, [], {}
         ctx = PathContext(self.params, list(Qpath), Qpath, K, failed)
         with np.errstate(invalid="ignore", divide="ignore"):
             X = self.walk([None] * self.m, ctx)
@@ -220,7 +220,8 @@ class CompiledMechanism(NumpyEvaluator):
         fail, a passage of a joint through infinity is noted: :mod:`.parallels`)."""
         super().closed_step(step, X, ctx)
         if self.art.parallels and ctx.failed is not None:
-            self.path_notes += two_slides(self, step, X, ctx.Qpath, ctx.failed)
+            self.path_notes += two_slides(self, step, X, ctx.Qpath, ctx.failed,
+                                          self.parallel_messages)
 
     def coordinate(self, c, value, ctx):
         """A closed form's values along the path; where it has none (NaN), the step's
@@ -384,6 +385,8 @@ class CompiledMechanism(NumpyEvaluator):
 
         def message_of(i):
             g = art.group(int(failed[i]))
+            if int(out[i]) in self.parallel_messages:  # a dyad of two slides, parallel
+                return self.parallel_messages[int(out[i])]
             if g.closed:
                 return f"{g.title} cannot be assembled: its closed form has no real solution"
             return self.newton_messages[int(out[i])]

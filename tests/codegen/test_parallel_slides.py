@@ -50,16 +50,20 @@ def test_the_symbolic_runtime_words_the_passage_as_the_numeric_solver(steps):
         assert abs(got[0] - x) <= POS_TOL * abs(x) and abs(got[1] - y) <= POS_TOL * H, k
 
 
-def test_the_parallel_step_has_the_symbolic_runtimes_message():
-    sym = compile_mechanism(linkage_sym.load_scene(guide_slider(11))).run()
-    assert sym.messages[5] == ("dyad PRP (rod, block) cannot be assembled: its closed form "
-                               "has no real solution")
+def test_the_parallel_step_has_the_numeric_solvers_message():
+    scene = linkage_sym.load_scene(guide_slider(11))
+    sym = compile_mechanism(scene).run()
+    assert sym.messages[5] == ("dyad PRP (rod, block): the slides of joints A_slide and "
+                               "C_guide are parallel")
+    assert sym.messages == linkage_sym.analyze(scene).messages
     assert "at step 6 (reached from step 5) it is on the far side" in sym.warnings[0]
 
 
 def test_an_rpp_dyad_parallel_to_rounding_is_unassemblable_everywhere():
     sym = compile_mechanism(linkage_sym.load_scene(pinned_rod(20.0))).run()
     assert set(sym.status) == {"unassemblable"} and sym.warnings == []
+    assert set(sym.messages) == {"dyad RPP (rod, block): the slides of joints B_rod and "
+                                 "B_guide are parallel"}
     ok = compile_mechanism(linkage_sym.load_scene(pinned_rod(110.0))).run()
     assert set(ok.status) == {"ok"} and ok.warnings == []
 

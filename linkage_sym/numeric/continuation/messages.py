@@ -5,7 +5,8 @@ reached without a continuous path (:func:`note_message`), the driver values
 they name (:func:`driver_values_text`), and the run's warnings of those jumps
 at the steps that see them (:func:`step_warnings`); and the jump of a dyad of two slides
 whose joint passes through infinity between two path points (:func:`parallel_note`), which
-both runtimes find by their own means.
+both runtimes find by their own means, and the failure where they are parallel
+(:func:`parallel_failure`).
 """
 
 from __future__ import annotations
@@ -73,6 +74,12 @@ def parallel_note(head: str, slides, joint: str, before: str, after: str,
         f"{before} and {after}: joint {joint} passes through infinity there; at {step_text} "
         "it is on the far side of its slides"
     )
+
+
+def parallel_failure(head: str, slides) -> str:
+    """The message of a path point where a dyad of two slides has them parallel (its joint
+    at infinity: unassemblable), both runtimes."""
+    return f"{head}: the slides of joints {slides[0]} and {slides[1]} are parallel"
 
 
 def driver_values_text(q: dict, kinds: dict, i: int, t: float | None = None) -> str:

@@ -414,5 +414,4 @@ class DyadSolver:
                 f"{head}: joints {e0} and {e1} are closer than the offset "
                 f"{abs(self.h):.6g} m of the slide of joint {ji}"
             )
-        a, b = self.slides
-        return f"{head}: the slides of joints {a} and {b} are parallel"
+        return messages.parallel_failure(head, self.slides)
