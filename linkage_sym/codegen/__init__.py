@@ -17,7 +17,8 @@ without SymPy.
 - ``runtime``: :class:`~linkage_sym.codegen.runtime.CompiledMechanism`, the NumPy
   backend run over a scene's sweep (the solving path and its continuation, the
   singularity screen, the result; the bookkeeping the numeric plan shares:
-  :mod:`linkage_sym.numeric.engine`);
+  :mod:`linkage_sym.numeric.engine`); ``parallels`` its dyads of two slides along the
+  path (parallel slides, a joint passing through infinity);
 - ``precision``: the mpmath backend, at any precision (``--precision``);
 - ``javascript``: the JavaScript backend (``evaluator.js``: the walk, Newton's
   continuation, the statuses and the recipes of joint positions, in a browser), written

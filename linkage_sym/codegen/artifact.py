@@ -198,6 +198,9 @@ class Artifact:
     ``friction``: the joints whose friction acts (:class:`FrictionJoint`), whose
     frictions follow the reactions and efforts in :attr:`force_names` (and in the force
     blocks' ``C``); their relative rates are the ``points`` outputs under ``"frate:<joint>"``.
+    ``parallels``: each dyad of two slides (``PRP``, ``RPP``) as ``(group, slide joint,
+    slide joint, joint at their intersection)``, whose slides' cross product the function
+    ``parallels_<group>`` gives.
     """
 
     scene: str
@@ -219,6 +222,7 @@ class Artifact:
     key: str | None = None
     signature: dict | None = None
     friction: tuple = ()
+    parallels: tuple = ()
     _derived: dict = field(default_factory=dict, repr=False, compare=False)
 
     # -- the cache's edge ----------------------------------------------------------------
@@ -246,7 +250,8 @@ class Artifact:
                          for f in d["forces"]),
             force_names=tuple(d["force_names"]), functions=dict(d["functions"]),
             key=d.get("key"), signature=d.get("signature"),
-            friction=tuple(FrictionJoint(**f) for f in d.get("friction", ())))
+            friction=tuple(FrictionJoint(**f) for f in d.get("friction", ())),
+            parallels=tuple((int(g), a, b, j) for g, a, b, j in d.get("parallels", ())))
 
     def to_dict(self) -> dict:
         """The JSON the cache stores (:meth:`from_dict` reads it back)."""
@@ -265,6 +270,8 @@ class Artifact:
         }
         if self.friction:  # only where friction acts: other artifacts keep their JSON
             out["friction"] = [f.to_dict() for f in self.friction]
+        if self.parallels:  # only with a dyad of two slides: other artifacts keep their JSON
+            out["parallels"] = [list(p) for p in self.parallels]
         if self.key is not None:
             out["key"] = self.key
         if self.signature is not None:

@@ -338,6 +338,18 @@ class _Builder:
                 forms.append("atan2")
         return outs
 
+    def parallels(self) -> list:
+        """Each dyad of two slides (``PRP``, ``RPP``) as ``[group, slide joint, slide joint,
+        joint at their intersection]``, with its function ``parallels_<group>`` giving the
+        cross product of its slides' directions (the closed form's denominator: zero where
+        the slides are parallel, its sign the side of infinity the joint is on) from the
+        cosines and sines of the angles (``CX``, ``SX``: what a design sweep has); an empty
+        list for a mechanism without such a dyad."""
+        for g, _, _, den in self.eqs.two_slides:
+            self.add(f"parallels_{g}", [den], "cross product of the directions of the dyad's "
+                     "two slides (its closed form's denominator)", True)
+        return [[g, a, b, joint] for g, (a, b), joint, _ in self.eqs.two_slides]
+
     def rates(self):
         """``A``'s non-zero entries and ``B qd``; the accelerations' right-hand side."""
         eqs = self.eqs
@@ -401,6 +413,7 @@ class _Builder:
         eqs, scene = self.eqs, self.scene
         steps, groups = self.positions()
         pattern = self.rates()
+        parallels = self.parallels()
         layout, force_layout = self.points()
         table = eqs.table
         return Artifact.from_dict({
@@ -422,6 +435,7 @@ class _Builder:
             "force_names": _names(self.F),
             "functions": self.funcs,
             "friction": [f.to_dict() for f in self.friction],
+            "parallels": parallels,
             "key": key,
             "signature": signature,
         })

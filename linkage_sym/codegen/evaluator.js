@@ -21,8 +21,10 @@
 //   steps, the nearest root of the assembly's sign).  Simpler than the policy: one point
 //   at a time (no batched walk), and no notes (a jump or an ambiguous re-entry is taken
 //   silently: the page has no warnings list; the result file has them);
-// - statuses: `unassemblable` where a closed form has no real value or the continuation
-//   fails; `singular` where a group block of A (the rate matrix) has a Hadamard ratio below
+// - statuses: `unassemblable` where a closed form has no real value, a dyad of two slides
+//   has them parallel (to rounding: its joint at infinity) or the continuation fails (the
+//   joint of such a dyad passing through infinity between two points is not reported: no
+//   warnings list); `singular` where a group block of A (the rate matrix) has a Hadamard ratio below
 //   SCREEN and the dimensionless A's condition number (one-sided Jacobi SVD) exceeds
 //   SINGULAR_COND, the runtime's screen and test.
 "use strict";
@@ -358,6 +360,8 @@ const LinkageEvaluator = (function () {
             const v = this.call(st.function, X, Q);
             st.x.forEach((c, j) => { X[c] = v[j]; });
             for (const c of st.x) if (!Number.isFinite(X[c])) { failed = this.groupOf[c]; break; }
+            const par = this.parallelAt(st, X, Q);
+            if (par >= 0 && (failed < 0 || par < failed)) failed = par;
           } else {
             const u = this.newtonAt(this.newton[st.group], walks[st.group], i, { Q: Q, X: X.slice() });
             if (u === null) failed = st.group;
@@ -367,6 +371,23 @@ const LinkageEvaluator = (function () {
         out.push({ X: X, failed: failed, Q: Q });
       }
       return out;
+    }
+
+    parallelAt(st, X, Q) {
+      // the first dyad of two slides solved by closed step `st` whose slides are parallel to
+      // rounding (codegen.parallels: its joint at infinity): its group, else -1
+      let CX = null, SX = null;
+      for (const [g, , , ] of this.art.parallels || []) {
+        const cols = this.art.groups.find((gr) => gr.index === g).cols;
+        if (!cols.every((c) => st.x.includes(c))) continue;
+        if (CX === null) {
+          CX = X.map((v, c) => (v === null || !this.isAngle[c] ? null : Math.cos(v)));
+          SX = X.map((v, c) => (v === null || !this.isAngle[c] ? null : Math.sin(v)));
+        }
+        const cross = this.call("parallels_" + g, X, Q, null, CX, SX)[0];
+        if (Math.abs(cross) <= this.art.parallel_tol) return g;
+      }
+      return -1;
     }
 
     newtonAt(pb, w, i, ctx) {

@@ -40,7 +40,7 @@ from linkage_sym.model import Scene
 from linkage_sym.numeric.continuation import roots
 from linkage_sym.numeric.forces.loads import ACTIVE_END
 from linkage_sym.numeric.engine.run import MAX_ANGLE_STEP, MAX_SLIDE_STEP, SINGULAR_COND
-from linkage_sym.numeric.kinematics.loci import TANGENT_ULPS
+from linkage_sym.numeric.kinematics.loci import PARALLEL_ULPS, TANGENT_ULPS
 from linkage_sym.numeric.results.transmission import rrr_dyads
 from linkage_sym.scene.load import dump_scene
 from linkage_sym.structure.parameters import driver_q0, ident, link_frames
@@ -66,11 +66,13 @@ POSITION_POINTS = "position_points"
 then the link frames' origins, as its layout places them), all a step of the sweep needs:
 the whole ``points`` (velocities, accelerations, the force blocks) only for the layers."""
 
-PAGE_FUNCTIONS = ("positions_", "newton_", "rates", "accelerations", "points", POSITION_POINTS)
+PAGE_FUNCTIONS = ("positions_", "newton_", "parallels_", "rates", "accelerations", "points",
+                  POSITION_POINTS)
 """The generated functions a page calls (by name or prefix): the positions' steps, ``A``'s
 entries and ``B qd`` (the singularity screen, the velocities), the accelerations'
 right-hand side and the points (joints, frame origins, centres of mass by level, the force
-blocks' entries)."""
+blocks' entries); the cross products of the slides of dyads of two slides (parallel slides
+cannot be assembled: :mod:`linkage_sym.codegen.parallels`)."""
 
 FORCE_OUTPUTS = ("reactions", "driving")
 """The outputs a page's artifact adds for a scene with masses, inertias or loads (the
@@ -230,6 +232,9 @@ def mechanism_model(scene: Scene, art: Artifact) -> dict:
             "forces": [f.to_dict() for f in art.forces],
             "flanks": list(art.flanks),
             "load_entries": {str(k): v for k, v in art.load_entries().items()},
+            # the dyads of two slides, where the mechanism has one (other pages unchanged)
+            **({"parallels": [list(p) for p in art.parallels],
+                "parallel_tol": PARALLEL_ULPS * float(2.0 ** -52)} if art.parallels else {}),
         },
     }
 
@@ -253,9 +258,9 @@ def mechanism_script(scene: Scene, art: Artifact | None = None) -> str:
     (``LinkageEvaluator``) and ``MODEL`` (:func:`mechanism_model`)."""
     art = page_artifact(scene) if art is None else art
     funcs = [src for name, src in art.functions.items()
-             if name.startswith(PAGE_FUNCTIONS[:2]) or name in PAGE_FUNCTIONS[2:]]
+             if name.startswith(PAGE_FUNCTIONS[:3]) or name in PAGE_FUNCTIONS[3:]]
     names = [name for name in art.functions
-             if name.startswith(PAGE_FUNCTIONS[:2]) or name in PAGE_FUNCTIONS[2:]]
+             if name.startswith(PAGE_FUNCTIONS[:3]) or name in PAGE_FUNCTIONS[3:]]
     consts = {k: (v if math.isfinite(v) else None) for k, v in CONSTANTS.items()}
     return "\n".join([
         f"const CONST = {_json(consts)};",

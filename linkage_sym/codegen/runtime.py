@@ -40,6 +40,7 @@ from linkage_sym.codegen.blocks import full
 from linkage_sym.codegen.evaluator import NumpyEvaluator, frame_motion, load_functions, rigid_point
 from linkage_sym.codegen.force_records import force_records
 from linkage_sym.codegen.friction import mark_locked
+from linkage_sym.codegen.parallels import two_slides
 from linkage_sym.codegen.path import GroupPathProblem, PathContext
 from linkage_sym.errors import SceneError
 from linkage_sym.numeric.results import accuracy
@@ -208,11 +209,19 @@ class CompiledMechanism(NumpyEvaluator):
         failing group at each point (-1 where every group is solved)."""
         K = Qpath.shape[1]
         failed = np.full(K, -1)
-        self.newton_messages, self.newton_notes = {}, []
+        self.newton_messages, self.path_notes, self.parallel_messages = {}, [], {}
         ctx = PathContext(self.params, list(Qpath), Qpath, K, failed)
         with np.errstate(invalid="ignore", divide="ignore"):
             X = self.walk([None] * self.m, ctx)
         return np.array(X), failed
+
+    def closed_step(self, step, X, ctx):
+        """A run of closed forms along the path; then its dyads of two slides (parallel slides
+        fail, a passage of a joint through infinity is noted: :mod:`.parallels`)."""
+        super().closed_step(step, X, ctx)
+        if self.art.parallels and ctx.failed is not None:
+            self.path_notes += two_slides(self, step, X, ctx.Qpath, ctx.failed,
+                                          self.parallel_messages)
 
     def coordinate(self, c, value, ctx):
         """A closed form's values along the path; where it has none (NaN), the step's
@@ -243,7 +252,7 @@ class CompiledMechanism(NumpyEvaluator):
             failed[i] = g
             self.newton_messages[i] = continuation_messages.failure_message(
                 group.label, group.links, f, where(i))
-        self.newton_notes += [
+        self.path_notes += [
             (n[0], lambda step_text, n=n: continuation_messages.note_message(
                 group.label, group.links, n, step_text, where(n[0])))
             for n in sol.notes
@@ -346,7 +355,8 @@ class CompiledMechanism(NumpyEvaluator):
         Xp, failed_p = self.positions(Qpath)
         valid = failed_p < 0
         every = bool(valid.all())
-        for c in self._wrapped:
+        # (no point solved: a mechanism that cannot be assembled even at its assembly)
+        for c in self._wrapped if valid.any() else ():
             th = unwrap_angles(Xp[c] if every else Xp[c, valid])
             # continuous from the assembly configuration (path point 0)
             th = th - 2 * np.pi * np.round((th[0] - self.x0[c]) / (2 * np.pi))
@@ -375,6 +385,8 @@ class CompiledMechanism(NumpyEvaluator):
 
         def message_of(i):
             g = art.group(int(failed[i]))
+            if int(out[i]) in self.parallel_messages:  # a dyad of two slides, parallel
+                return self.parallel_messages[int(out[i])]
             if g.closed:
                 return f"{g.title} cannot be assembled: its closed form has no real solution"
             return self.newton_messages[int(out[i])]
@@ -439,7 +451,7 @@ class CompiledMechanism(NumpyEvaluator):
                              q, qd, qdd)
         if self._decomposition is None:  # for the transmission angles, made once
             self._decomposition = decompose(self.scene)
-        finish(res, self.scene, self.newton_notes, out, self._decomposition)
+        finish(res, self.scene, self.path_notes, out, self._decomposition)
         # accuracy (numeric.results.accuracy): K of the pose Jacobian (the numeric solver's), exact
         # where a block was screened, else from the blocks' ratios calibrated on it
         indicator = np.full(N, np.inf)

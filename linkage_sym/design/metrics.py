@@ -40,6 +40,12 @@
 ``path``                    a traced point's ``x``, ``y`` at every step with positions: ``ok``
                             and singular steps (whose positions are defined, as ``analyze``
                             keeps them); NaN at unassemblable steps
+``through_infinity``        (a column of every sweep of a scene with a dyad of two slides,
+                            ``PRP`` or ``RPP``) how many times the joint of such a dyad
+                            passes through infinity between two steps, its slides parallel
+                            there (:mod:`linkage_sym.design.parallels`): a design with
+                            passages has metrics over the sweep (efforts, shaking) read from
+                            steps on both sides of an unbounded motion
 ==========================  ===============================================================
 
 Forces are those of the scene's effects (inertia, gravity, loads) at its
@@ -63,10 +69,12 @@ import numpy as np
 from linkage_sym.design.errors import SweepError
 from linkage_sym.design.limits import K_NOTES, Limits, locate
 from linkage_sym.design.names import DEFAULT_METRICS, METRICS
+from linkage_sym.design.parallels import passages
 from linkage_sym.errors import POINTERS
 from linkage_sym.model import GROUND
 from linkage_sym.numeric.results.cycle_average import cycle_rms, whole_period
 from linkage_sym.numeric.results.transmission import rrr_dyads
+from linkage_sym.structure import decompose
 from linkage_sym.structure.grashof import classify, four_bar_loops
 from linkage_sym.structure.parameters import ParameterTable, evaluate
 
@@ -154,6 +162,8 @@ class MetricPlan:
         self.locks = self.forces and scene.effects.friction and any(
             j.friction is not None for j in scene.joints)
         refuse_meshes(scene)
+        # a dyad of two slides may pass through infinity: its column says how many times
+        self.two_slides = any(g.dyad_type in ("PRP", "RPP") for g in decompose(scene).groups)
         self.output = self._output(output) if "rate_t" in self.need else None
         if "K" in self.metrics and not (len(scene.drivers) == 1
                                         and scene.joint(scene.drivers[0].joint).type == "R"):
@@ -236,6 +246,8 @@ class MetricPlan:
                 out.append(m)
         if self.locks:
             out.append("self_locking")
+        if self.two_slides:
+            out.append("through_infinity")
         return out
 
     def _grashof_names(self):
@@ -272,6 +284,8 @@ class MetricPlan:
         locked = np.zeros(ok.shape, bool) if sol.locked is None else sol.locked
         if self.locks:
             cols["self_locking"] = locked.sum(axis=1) / sol.N
+        if self.two_slides:
+            cols["through_infinity"] = passages(model, sol)
         # no finite effort drives a design through a self-locking step: its efforts and
         # reactions over the cycle are unbounded (never the largest of its other steps)
         unbounded = locked.any(axis=1)

@@ -361,12 +361,20 @@ class Plan:
                 st.th = nearest_across_gaps(st.th, solved, broken)
 
     def condition_numbers(self, S, idx) -> np.ndarray:
-        """Exact dimensionless condition number of the full constraint Jacobian at steps ``idx``."""
+        """Exact dimensionless condition number of the full constraint Jacobian at steps ``idx``
+        (infinite where the Jacobian is not finite)."""
         Si = {n: st.take(idx) if n != GROUND else st for n, st in S.items()}
         J = jacobian(self.all_constraints, Si, list(self.scene.link_names), len(idx), self.L)
-        sv = np.linalg.svd(J, compute_uv=False)
-        with np.errstate(divide="ignore"):
-            return sv[:, 0] / sv[:, -1]
+        # a step whose Jacobian is not finite (a joint at infinity) has no condition number:
+        # infinite, so the step is singular, and never handed to the SVD
+        good = np.isfinite(J).all(axis=(1, 2))
+        every = bool(good.all())
+        cond = np.full(len(J), np.inf)
+        if good.any():
+            sv = np.linalg.svd(J if every else J[good], compute_uv=False)
+            with np.errstate(divide="ignore"):
+                cond[good] = sv[:, 0] / sv[:, -1]
+        return cond
 
     def _analysis(self, S, block, q, qd, qdd, status, messages, condition, forces) -> Analysis:
         """Assemble the result arrays in ``block`` (see :class:`ResultLayout`).

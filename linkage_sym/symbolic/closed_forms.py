@@ -51,7 +51,8 @@ class ClosedForms:
     A mixin: it reads the geometry (``pos``, ``rel``, ``dist_arg``, ``slide_unit``,
     ``theta0``, ``sym``) and the symbols (``th``, ``slide``, ``q_of``) of the class
     that inherits it, and appends to its ``closed_forms``, ``position_steps``,
-    ``intermediates`` and ``sigmas``.
+    ``intermediates`` and ``sigmas`` (and ``two_slides``: each dyad of two slides, with the
+    cross product of its slides' directions, the denominator of its closed form).
     """
 
     def _copied(self, b, J):
@@ -134,11 +135,13 @@ class ClosedForms:
         elif t == "PRP":
             self._define(self.th[b0], self._copied(b0, e0))
             self._define(self.th[b1], self._copied(b1, e1))
-            self._two_lines((e0, b0, ji.name), (e1, b1, ji.name))
+            den = self._two_lines((e0, b0, ji.name), (e1, b1, ji.name))
+            self.two_slides.append((gi, (e0.name, e1.name), ji.name, den))
         elif t == "RPP":
             self._define(self.th[b1], self._copied(b1, e1))
             self._define(self.th[b0], self._copied(b0, ji))
-            self._two_lines((ji, b1, ji.name), (e1, b1, ji.name))
+            den = self._two_lines((ji, b1, ji.name), (e1, b1, ji.name))
+            self.two_slides.append((gi, (ji.name, e1.name), ji.name, den))
         else:  # pragma: no cover - the structure refuses other types
             raise ValueError(t)
         return sigma
@@ -255,11 +258,14 @@ class ClosedForms:
         self._define(self.slide[ji.name], ss * (sigma * w - Kx), ss * (sigma * nw - nc))
 
     def _two_lines(self, first, second):
+        """The slides of two lines' intersection; returns their denominator, the cross
+        product of the lines' directions (zero where they are parallel)."""
         (Q0, u0, s0), (Q1, u1, s1) = self._line(*first), self._line(*second)
         den = cross(u0, u1)
         dQ = (Q1[0] - Q0[0], Q1[1] - Q0[1])
         self._define(self.slide[first[0].name], s0 * cross(dQ, u1) / den)
         self._define(self.slide[second[0].name], s1 * cross(dQ, u0) / den)
+        return den
 
     def nested_closed_forms(self) -> dict:
         """Each closed-form coordinate in terms of drivers, parameters and the

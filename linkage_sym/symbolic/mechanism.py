@@ -168,6 +168,7 @@ class MechanismEquations(ClosedForms, ForceEquations):
         self.position_steps: list = []
         self.intermediates: list = []
         self.sigmas: list = []
+        self.two_slides: list = []  # (group, slide joints, joint, cross product of the slides)
         self.row_is_length: list[bool] = []
         rows = []
         for gi, g in enumerate(self.decomposition.groups):

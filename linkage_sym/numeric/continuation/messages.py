@@ -3,7 +3,10 @@
 A path point the policy could not solve (:func:`failure_message`), a point
 reached without a continuous path (:func:`note_message`), the driver values
 they name (:func:`driver_values_text`), and the run's warnings of those jumps
-at the steps that see them (:func:`step_warnings`).
+at the steps that see them (:func:`step_warnings`); and the jump of a dyad of two slides
+whose joint passes through infinity between two path points (:func:`parallel_note`), which
+both runtimes find by their own means, and the failure where they are parallel
+(:func:`parallel_failure`).
 """
 
 from __future__ import annotations
@@ -51,6 +54,32 @@ def note_message(label: str, links, note, step_text: str, where) -> str:
     if n_same > 1:
         text += f": the assembly mode is ambiguous there ({n_same} solutions with that sign)"
     return text
+
+
+def parallel_note(head: str, slides, joint: str, before: str, after: str,
+                  step_text: str) -> str:
+    """The warning of a dyad of two slides (``PRP``, ``RPP``) whose slides become parallel
+    between two solved path points, where the driver values are ``before`` and ``after``
+    (:func:`driver_values_text`): the intersection of the slides, ``joint``, passes through
+    infinity and comes back from the other end of the slides (both runtimes).
+
+    Examples
+    --------
+    >>> parallel_note("dyad PRP (rod, block)", ("A_slide", "C_guide"), "C", "A = 1°",
+    ...               "A = -1°", "step 5 (reached from step 4)")[:79]
+    'dyad PRP (rod, block): the slides of joints A_slide and C_guide become parallel'
+    """
+    return (
+        f"{head}: the slides of joints {slides[0]} and {slides[1]} become parallel between "
+        f"{before} and {after}: joint {joint} passes through infinity there; at {step_text} "
+        "it is on the far side of its slides"
+    )
+
+
+def parallel_failure(head: str, slides) -> str:
+    """The message of a path point where a dyad of two slides has them parallel (its joint
+    at infinity: unassemblable), both runtimes."""
+    return f"{head}: the slides of joints {slides[0]} and {slides[1]} are parallel"
 
 
 def driver_values_text(q: dict, kinds: dict, i: int, t: float | None = None) -> str:

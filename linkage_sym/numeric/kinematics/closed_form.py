@@ -22,6 +22,7 @@ import numpy as np
 
 from linkage_sym.errors import SceneError
 from linkage_sym.model import GROUND, Scene
+from linkage_sym.numeric.continuation import messages
 from linkage_sym.numeric.kinematics.loci import (
     Circle,
     Line,
@@ -153,7 +154,9 @@ class DyadSolver:
 
     notes = ()
     wraps = True  # rotations from atan2
-    """Jumps worth a warning: none (a closed form keeps its assembly mode by its sign)."""
+    """Jumps worth a warning: none (a closed form keeps its assembly mode by its sign), but
+    for a dyad of two slides (``PRP``, ``RPP``) the passages of its joint through infinity
+    (the slides parallel) between two solved path points of the last ``position`` call."""
 
     def __init__(self, scene: Scene, group: Group):
         self.group = group
@@ -180,9 +183,11 @@ class DyadSolver:
         elif t == "PRP":
             self.loci = (Line(self.k0, J0, e0.axis), Line(self.k1, J0, e1.axis))
             self.sigma = 1.0
+            self.slides = (e0.name, e1.name)
         elif t == "RPP":
             self.loci = (Line(b0, J0, ji.axis), Line(self.k1, J0, e1.axis))
             self.sigma = 1.0
+            self.slides = (ji.name, e1.name)
         elif t == "RPR":
             self.n0 = (-math.sin(ji.axis), math.cos(ji.axis))
             D0 = _sub(E1, E0)
@@ -191,6 +196,7 @@ class DyadSolver:
         else:  # pragma: no cover - structure refuses other types
             raise ValueError(t)
         self.pivots = {"RRR": (0, 1), "RRP": (0,)}.get(t, ())
+        self.driver_kinds = {d.joint: scene.joint(d.joint).type for d in scene.drivers}
         # links (by index) whose rotation a prismatic joint copies from a known link
         self.copied = {
             "RRP": ((1, self.k1),),
@@ -236,8 +242,9 @@ class DyadSolver:
             Yx, Yy, h = circle_line(C0, c0.r, *c1.frame(S), self.sigma)
             ind = h / c0.r  # cosine of the angle between link and slide normal
             centres = (C0,)
-        else:  # PRP, RPP: two lines
+        else:  # PRP, RPP: two lines (NaN where they are parallel)
             Yx, Yy, ind = line_line(*c0.frame(S), *c1.frame(S))
+            self.notes = self._crossings(ind, q)
             centres = ()
         for i, C in zip(self.pivots, centres):
             v = (Yx - C[0], Yy - C[1])
@@ -252,6 +259,26 @@ class DyadSolver:
         if t != "RPP":
             _set_from_point(b0, (Yx, Yy), self.J0)
         return np.abs(ind)
+
+    def _crossings(self, cross, q) -> list:
+        """The notes of the sign changes of the slides' cross product ``cross`` between
+        consecutive solved path points (the slides parallel between them: the joint
+        passes through infinity), each ``(first point past it, text(step))``."""
+        cross = np.asarray(cross)
+        if cross.ndim == 0:
+            return []  # two fixed slide directions: never parallel along the path
+        solved = np.flatnonzero(np.isfinite(cross))
+        side = cross[solved] > 0
+        kinds = {k: self.driver_kinds.get(k, "R") for k in q}
+        head = f"dyad {self.type} ({self.links[0]}, {self.links[1]})"
+        out = []
+        for k in np.flatnonzero(side[1:] != side[:-1]):
+            a, b = int(solved[k]), int(solved[k + 1])
+            before = messages.driver_values_text(q, kinds, a)
+            after = messages.driver_values_text(q, kinds, b)
+            out.append((b, lambda step, before=before, after=after: messages.parallel_note(
+                head, self.slides, self.names[1], before, after, step)))
+        return out
 
     def _rpr_position(self, S, b0, b1):
         E0 = S[self.k0].point(self.E0)
@@ -387,4 +414,4 @@ class DyadSolver:
                 f"{head}: joints {e0} and {e1} are closer than the offset "
                 f"{abs(self.h):.6g} m of the slide of joint {ji}"
             )
-        return f"{head}: the slides of joints {ji} and {e1} are parallel"
+        return messages.parallel_failure(head, self.slides)

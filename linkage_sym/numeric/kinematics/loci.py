@@ -229,19 +229,36 @@ def circle_line(C, r, Qx, Qy, ux, uy, sigma):
     return Fx + sigma * h * ux, Fy + sigma * h * uy, h
 
 
+PARALLEL_ULPS = 8.0
+"""Two slide directions (unit vectors) whose cross product is within this many units of
+rounding of zero are parallel: their intersection is at infinity, and the dyad cannot be
+assembled there (a rounding-level cross product of lines that are parallel would put the
+joint some 1e15 sizes away)."""
+
+
 def line_line(Q1x, Q1y, u1x, u1y, Q2x, Q2y, u2x, u2y):
-    """Intersection of two lines; returns ``(Yx, Yy, sin_angle)``.
+    """Intersection of two lines (``u1``, ``u2`` unit directions); returns
+    ``(Yx, Yy, sin_angle)``, the signed sine ``cross(u1, u2)`` NaN where the lines are
+    parallel (within :data:`PARALLEL_ULPS`) or the point is not finite.
 
     Examples
     --------
     >>> Yx, Yy, s = line_line(0.0, 1.0, 1.0, 0.0, 2.0, 0.0, 0.0, 1.0)
     >>> float(Yx), float(Yy), float(s)
     (2.0, 1.0, 1.0)
+    >>> float(line_line(0.0, 1.0, 1.0, 0.0, 2.0, 0.0, -1.0, 0.0)[2])
+    nan
     """
     cr = u1x * u2y - u1y * u2x
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        if np.any(np.abs(cr) <= PARALLEL_ULPS * _EPS):
+            cr = np.where(np.abs(cr) <= PARALLEL_ULPS * _EPS, np.nan, cr)
         t = ((Q2x - Q1x) * u2y - (Q2y - Q1y) * u2x) / cr
-    return Q1x + t * u1x, Q1y + t * u1y, cr
+        Yx, Yy = Q1x + t * u1x, Q1y + t * u1y
+        lost = ~(np.isfinite(Yx) & np.isfinite(Yy))
+        if np.any(lost & np.isfinite(cr)):
+            cr = np.where(lost, np.nan, cr)
+    return Yx, Yy, cr
 
 
 def solve2(a1x, a1y, b1, a2x, a2y, b2):
