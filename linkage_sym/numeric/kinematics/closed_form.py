@@ -37,6 +37,10 @@ from linkage_sym.structure import Group
 
 ASSEMBLY_TOL = 1e-12
 """Relative size below which the assembly configuration's branch sign is undefined."""
+EPS = float(np.finfo(float).eps)
+COINCIDE_ULPS = 64.0
+"""An RRR dyad's outer joints closer than this many units of rounding of the mechanism's
+coordinates coincide: its inner joint's position is undefined there (unassemblable)."""
 
 
 def _other(joint, link):
@@ -172,6 +176,13 @@ class DyadSolver:
         if t == "RRR":
             self.loci = (Circle(self.k0, E0, math.dist(J0, E0)), Circle(self.k1, E1, math.dist(J0, E1)))
             self.sigma = self._branch(_cross(_sub(E1, E0), _sub(J0, E0)), math.dist(E0, E1) ** 2)
+            # outer joints that coincide to rounding (equal links crossing a change point):
+            # the two circles are one, the inner joint anywhere on it, and the half-chord's
+            # formula has lost every digit (the distance is at the rounding of the radii);
+            # no configuration is defined there, as where the distance is exactly zero
+            size = max(abs(v) for j in scene.joints for v in j.at) + math.dist(J0, E0) \
+                + math.dist(J0, E1)
+            self.coincide_tol = COINCIDE_ULPS * EPS * size
         elif t == "RRP":
             circle, line = Circle(self.k0, E0, math.dist(J0, E0)), Line(self.k1, J0, e1.axis)
             self.loci = (circle, line)
@@ -236,6 +247,9 @@ class DyadSolver:
             C0, C1 = c0.center(S), c1.center(S)
             Yx, Yy, h, d = circle_circle(C0, c0.r, C1, c1.r, self.sigma)
             ind = h * d / (c0.r * c1.r)  # sine of the angle between the two links
+            coincide = d <= self.coincide_tol
+            if np.any(coincide):
+                ind = np.where(coincide, np.nan, ind)
             centres = (C0, C1)
         elif t == "RRP":
             C0 = c0.center(S)
@@ -403,6 +417,11 @@ class DyadSolver:
             C0, C1 = (_at(c.center(S), i) for c in self.loci)
             d = math.hypot(C1[0] - C0[0], C1[1] - C0[1])
             r0, r1 = self.loci[0].r, self.loci[1].r
+            if d <= self.coincide_tol:
+                return (
+                    f"{head}: joints {e0} and {e1} coincide (to rounding): joint {ji} can be "
+                    f"anywhere on one circle about them, so no configuration is defined here"
+                )
             return (
                 f"{head}: joints {e0} and {e1} are {d:.6g} m apart, outside the reach "
                 f"[{abs(r0 - r1):.6g}, {r0 + r1:.6g}] m of links {b0} and {b1}"
