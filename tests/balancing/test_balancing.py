@@ -410,12 +410,14 @@ def test_cli_balance_refuses_latex_for_a_slider_crank(tmp_path):
     assert not out.exists() and not opt.exists()
 
 
+# a command line each: the --weights and --max-mass refusals also run in the fast lane in
+# tests/cli/test_cli_robustness.py, here in the default run
 @pytest.mark.parametrize("args, message", [
-    (["--weights", "1,0"], "--weights"),
-    (["--weights", "0,0,0"], "--weights"),
+    pytest.param(["--weights", "1,0"], "--weights", marks=pytest.mark.slow),
+    pytest.param(["--weights", "0,0,0"], "--weights", marks=pytest.mark.slow),
     (["--links", "crank,cuopler"], "--links: 'cuopler' not among"),
     (["--links", "crank,crank"], "listed twice"),
-    (["--max-mass", "-1"], "--max-mass"),
+    pytest.param(["--max-mass", "-1"], "--max-mass", marks=pytest.mark.slow),
 ])
 def test_cli_balance_refuses_bad_optimise_options_and_writes_nothing(tmp_path, args, message):
     out, bal, opt = tmp_path / "b.json", tmp_path / "bal.json", tmp_path / "opt.json"

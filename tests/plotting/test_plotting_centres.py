@@ -47,11 +47,11 @@ def _texts(fig):
 
 CASES = [("crank_rocker", k) for k in range(0, 361, 10)] + [
     ("shaper", k) for k in (0, 135, 180, 360)]
-# over 3 s each on a loaded 2-core machine, and the four slowest of the rest (160, 290, 340,
-# 350: about 1 s each): the default run only (-m "not slow" leaves them out)
+# over 3 s each on a loaded 2-core machine, and all but three of the rest (about 1 s each): the
+# default run only (-m "not slow" leaves them out)
 SLOW_CASES = {("crank_rocker", k) for k in (0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120,
-                                           130, 140, 150, 160, 180, 190, 230, 240, 260, 280, 290,
-                                           300, 310, 320, 330, 340, 350, 360)} | {
+                                           130, 140, 150, 160, 180, 190, 200, 220, 230, 240, 250,
+                                           260, 280, 290, 300, 310, 320, 330, 340, 350, 360)} | {
     ("shaper", k) for k in (0, 135, 180, 360)}
 
 
