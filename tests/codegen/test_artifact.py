@@ -55,7 +55,8 @@ def test_unknown_recipe_and_step_kind_are_refused():
 
 
 @pytest.mark.parametrize("name", slow_cases(symbolic_examples(), {
-    "hydraulic_boom", "fivebar", "shaper", "planetary_train", "song_wang_sixbar", "printing_mechanism"}))
+    "hydraulic_boom", "fivebar", "shaper", "planetary_train", "song_wang_sixbar", "printing_mechanism",
+    "watt_sixbar", "shaper_flywheel", "stephenson_sixbar", "printing_mechanism_stroke"}))
 def test_recipes_in_mpmath_agree_with_float64(name):
     """Every parameter of every shipped example by its recipe in binary64 and in mpmath at
     40 digits (the same scene numbers, another arithmetic): within 4 ulps of the parameter's
