@@ -115,7 +115,7 @@ def test_module_moment_of_a_rigid_body_in_plane_motion():
 
 # -- the assembled moment and force ----------------------------------------------
 @pytest.mark.parametrize("name", slow_cases(HINGED, {"watt_sixbar", "song_wang_sixbar",
-                                                     "sixbar_class3"}))
+                                                     "sixbar_class3", "stephenson_sixbar"}))
 def test_assembled_identities(name):
     sm = shaking_moment(load_example(name))
     msub = {sp.Symbol(n, real=True): e for n, e in sm.mass_parameters.items()}
@@ -126,7 +126,8 @@ def test_assembled_identities(name):
     assert sp.expand(reg.xreplace(dsub).xreplace(msub) - sm.explicit) == 0
 
 
-@pytest.mark.parametrize("name", slow_cases(HINGED, {"sixbar_class3", "song_wang_sixbar"}))
+@pytest.mark.parametrize("name", slow_cases(HINGED, {"sixbar_class3", "song_wang_sixbar",
+                                                     "watt_sixbar"}))
 def test_module_series_equal_frame_loads(name):
     """The issue's check: the modules' moment equals the kinetostatic frame
     moment (inertia only) at every step, <= 1e-9 of its peak; force likewise."""
@@ -410,12 +411,14 @@ def test_cli_balance_refuses_latex_for_a_slider_crank(tmp_path):
     assert not out.exists() and not opt.exists()
 
 
+# a command line each: the --weights and --max-mass refusals also run in the fast lane in
+# tests/cli/test_cli_robustness.py, here in the default run
 @pytest.mark.parametrize("args, message", [
-    (["--weights", "1,0"], "--weights"),
-    (["--weights", "0,0,0"], "--weights"),
+    pytest.param(["--weights", "1,0"], "--weights", marks=pytest.mark.slow),
+    pytest.param(["--weights", "0,0,0"], "--weights", marks=pytest.mark.slow),
     (["--links", "crank,cuopler"], "--links: 'cuopler' not among"),
     (["--links", "crank,crank"], "listed twice"),
-    (["--max-mass", "-1"], "--max-mass"),
+    pytest.param(["--max-mass", "-1"], "--max-mass", marks=pytest.mark.slow),
 ])
 def test_cli_balance_refuses_bad_optimise_options_and_writes_nothing(tmp_path, args, message):
     out, bal, opt = tmp_path / "b.json", tmp_path / "bal.json", tmp_path / "opt.json"

@@ -66,6 +66,7 @@ from linkage_sym.examples import example_names
 
 from tests.support import reference_kinematics as ref  # noqa: E402
 from tests.support import scenes  # noqa: E402
+from tests.support.marks import slow_cases  # noqa: E402
 
 POS = 1e-9
 VEL_ROUNDING = 1e-13
@@ -182,7 +183,14 @@ def check_rebuilt_velocities(scene, res):
 # ------------------------------------------------------------------ shipped examples
 
 
-@pytest.mark.parametrize("name", example_names())
+# the Watt, Stephenson and Song-Wang six-bars, the printing mechanisms and the flywheel shaper in
+# the default run only (the class-3 six-bar, the shaper and the rest in the fast lane too)
+CENTRES_SLOW = {
+    "printing_mechanism", "printing_mechanism_stroke", "shaper_flywheel", "stephenson_sixbar",
+    "watt_sixbar", "song_wang_sixbar"}
+
+
+@pytest.mark.parametrize("name", slow_cases(example_names(), CENTRES_SLOW))
 def test_examples_kennedy_against_velocities(name):
     scene = linkage_sym.load_example(name)
     res = linkage_sym.analyze(scene)
@@ -190,7 +198,7 @@ def test_examples_kennedy_against_velocities(name):
     check_rebuilt_velocities(scene, res)
 
 
-@pytest.mark.parametrize("name", example_names())
+@pytest.mark.parametrize("name", slow_cases(example_names(), CENTRES_SLOW))
 def test_count_on_every_step(name):
     """N(N-1)/2 records at every step with velocities (eq. 3-5), one per unordered pair."""
     scene = linkage_sym.load_example(name)

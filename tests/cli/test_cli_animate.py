@@ -143,6 +143,7 @@ def test_mp4_where_ffmpeg_is_found(tmp_path):
     assert out.read_bytes()[4:8] == b"ftyp"
 
 
+@pytest.mark.slow
 def test_bad_input_ends_without_a_traceback(tmp_path):
     p = subprocess.run([sys.executable, "-m", "linkage_sym", "animate", scene_file(tmp_path),
                         "-o", str(tmp_path / "m.gif"), "--frames", "99", "--fps", "-2"],

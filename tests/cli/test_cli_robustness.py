@@ -208,7 +208,8 @@ def test_balance_of_a_slider_crank_points_to_optimize(tmp_path):
     (["--max-mass", "nan"], "--max-mass"),
     (["--links", "crank,nosuch"], "--links"),
 ])
-@pytest.mark.parametrize("scene", [CRANK_ROCKER, SLIDER_CRANK])
+# a command line each: the crank-rocker's in the fast lane, the slider-crank's in the default run
+@pytest.mark.parametrize("scene", [CRANK_ROCKER, pytest.param(SLIDER_CRANK, marks=pytest.mark.slow)])
 def test_balance_bad_optimize_options_are_option_errors(tmp_path, args, option, scene):
     out, opt = tmp_path / "b.json", tmp_path / "opt.json"
     p = run("balance", scene, "-o", str(out), "--optimize", str(opt), *args)
@@ -359,7 +360,10 @@ def test_summary_names_shaking_loads_and_warnings(tmp_path):
 # -- found by fuzzing the commands: sizes no machine holds, and malformed sweep options --------
 
 @pytest.mark.parametrize("command", ["analyze", "centres", "balance", "sweep --list"])
-@pytest.mark.parametrize("steps", [10**12, 2**63, 10**20])
+# a command line each: 10**12 in the fast lane, the sizes past int64 and float's exact range
+# in the default run
+@pytest.mark.parametrize("steps", [10**12, pytest.param(2**63, marks=pytest.mark.slow),
+                                   pytest.param(10**20, marks=pytest.mark.slow)])
 def test_a_sweep_too_large_for_memory_is_refused_by_its_field(tmp_path, command, steps):
     """Each of these ended in a MemoryError, ValueError or IndexError of numpy's linspace."""
     scene = small_scene(tmp_path, steps=steps)

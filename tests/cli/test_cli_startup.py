@@ -14,6 +14,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.support.marks import fast_cases
+
 ROOT = Path(__file__).resolve().parents[2]
 HEAVY = ("scipy", "sympy", "matplotlib", "linkage_sym.design")
 
@@ -35,13 +37,14 @@ def loaded_after(argv, watched=HEAVY):
     return json.loads(p.stdout.strip().splitlines()[-1])
 
 
-@pytest.mark.parametrize("argv", [
+# a Python process each: four in the fast lane, every command's help in the default run
+@pytest.mark.parametrize("argv", fast_cases([
     ["--version"], ["--help"], ["analyze", "--help"], ["derive", "--help"],
     ["structure", "--help"], ["demo", "--help"], ["examples", "--help"],
     ["new", "fourbar", "--help"], ["synthesize", "crank-rocker", "--help"],
     ["balance", "--help"], ["centres", "--help"], ["animate", "--help"],
     ["view", "--help"],
-])
+], {"--version", "--help", "analyze --help", "view --help"}, key=" ".join))
 def test_version_and_help_import_no_library(argv):
     code, loaded = loaded_after(argv, HEAVY + ("numpy",))
     assert code == 0

@@ -14,6 +14,7 @@ from linkage_sym.codegen.compile import compile_mechanism
 from linkage_sym.structure.parameters import link_frames
 from linkage_sym.structure.recipes import FLOAT, Numbers, Recipe
 from tests.support.example_sets import symbolic_examples
+from tests.support.marks import slow_cases
 
 
 class _Mp(Numbers):
@@ -24,7 +25,9 @@ class _Mp(Numbers):
     sin = staticmethod(mp.sin)
 
 
-@pytest.mark.parametrize("name", ["crank_rocker", "watt_sixbar", "gear_linkage", "guide_bar_quick_return", "sixbar_class3"])
+@pytest.mark.parametrize("name", slow_cases(["crank_rocker", "watt_sixbar", "gear_linkage",
+                                              "guide_bar_quick_return", "sixbar_class3"],
+                                             {"watt_sixbar", "guide_bar_quick_return"}))
 def test_artifact_round_trips_through_json(name):
     """The records written as the cache's JSON and read back are the same records, and the
     JSON the same text: nothing is lost at the cache's edge."""
@@ -51,7 +54,9 @@ def test_unknown_recipe_and_step_kind_are_refused():
         Artifact.from_dict({"steps": [{"kind": "spline", "function": "f", "x": []}]})
 
 
-@pytest.mark.parametrize("name", symbolic_examples())
+@pytest.mark.parametrize("name", slow_cases(symbolic_examples(), {
+    "hydraulic_boom", "fivebar", "shaper", "planetary_train", "song_wang_sixbar", "printing_mechanism",
+    "watt_sixbar", "shaper_flywheel", "stephenson_sixbar", "printing_mechanism_stroke"}))
 def test_recipes_in_mpmath_agree_with_float64(name):
     """Every parameter of every shipped example by its recipe in binary64 and in mpmath at
     40 digits (the same scene numbers, another arithmetic): within 4 ulps of the parameter's

@@ -95,6 +95,7 @@ def test_an_unusable_cache_folder_warns_once_and_is_not_used(fresh_cache, monkey
     assert blocker.read_text() == "not a folder"
 
 
+@pytest.mark.slow
 def test_the_page_artifact_is_cached_apart_from_numpys(fresh_cache, monkeypatch):
     """The page's JavaScript artifact is stored under its own key (never served as the
     NumPy one, nor the reverse); read back from disk it prints the same page script as a

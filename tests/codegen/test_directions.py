@@ -10,11 +10,13 @@ import pytest
 from linkage_sym.codegen.evaluator import unit_direction
 from linkage_sym.design.evaluate import compiled
 from linkage_sym.examples import load_example
+from tests.support.marks import slow_cases
 
 EXAMPLES = ["crank_rocker", "slider_crank_offset", "stephenson_sixbar", "watt_sixbar", "shaper"]
 
 
-@pytest.mark.parametrize("name", EXAMPLES)
+# the six-bars and the shaper (a derivation each, about 0.5 s) in the default run only
+@pytest.mark.parametrize("name", slow_cases(EXAMPLES, {"stephenson_sixbar", "watt_sixbar", "shaper"}))
 def test_directions_give_the_cosines_and_sines_of_the_positions_angles(name):
     """At 50 driver values around the scene's, every closed step's directions function gives
     each angle's cosine and sine within 2e-15 of ``cos``/``sin`` of the positions function's

@@ -81,7 +81,7 @@ HARD = {  # as tests/codegen/test_javascript.py's: their rates at every step
 
 
 @pytest.mark.parametrize("name", fast_cases(symbolic_examples() + sorted(HARD),
-                                             {"crank_rocker", "sixbar_class3", "triad jump"}))
+                                             {"crank_rocker", "sixbar_class3"}))
 def test_the_javascript_rates_and_forces_equal_the_numpy_evaluator(name, tmp_path):
     """At 12 steps of a shipped example; at every step of a sweep with a singular step, a
     run of unassemblable steps, or a Newton group's re-entry."""

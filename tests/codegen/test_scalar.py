@@ -29,8 +29,10 @@ def _scalar(art, name):
     return s, ns[name], ns["pre_" + name]
 
 
-@pytest.mark.parametrize("example", ["crank_rocker", "slider_crank_offset", "watt_sixbar",
-                                     "shaper"])
+# the six-bar and the shaper (a derivation each, about 1 s) in the default run only
+@pytest.mark.parametrize("example", ["crank_rocker", "slider_crank_offset",
+                                     pytest.param("watt_sixbar", marks=pytest.mark.slow),
+                                     pytest.param("shaper", marks=pytest.mark.slow)])
 def test_scalar_functions_equal_numpy_entry_by_entry(example):
     model = Model(linkage_sym.load_example(example))
     art, m = model.art, model.m

@@ -29,6 +29,7 @@ from tests.support.example_sets import example_names, joint_types
 from tests.support.force_checks import max_rel, reaction_scale
 from tests.support.friction_scenes import (assert_zero_friction_is_frictionless, inclined_slider,
                                            with_friction)
+from tests.support.marks import fast_cases
 
 PRESS = "slider_crank_press_friction"
 TOL = 1e-9
@@ -85,7 +86,8 @@ def test_press_symbolic_equals_dyad_and_global():
         _agree(scene, s, ref)
 
 
-@pytest.mark.parametrize("name", _derivable_with_forces())
+# a dyad and a triad mechanism in the fast lane, every example in the default run
+@pytest.mark.parametrize("name", fast_cases(_derivable_with_forces(), {"crank_rocker", "sixbar_class3"}))
 def test_every_derivable_example_with_friction_everywhere(name):
     scene = linkage_sym.load_scene(with_friction(name))
     plan = compile_plan(scene)

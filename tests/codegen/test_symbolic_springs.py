@@ -103,6 +103,7 @@ def test_precision_50_equals_float64():
     _same_forces(scene, mp50, f64, 1e-12)
 
 
+@pytest.mark.slow
 def test_scenes_differing_only_in_a_spring_do_not_share_an_artifact():
     base = example_dict("crank_rocker_spring")
     variants = [copy.deepcopy(base) for _ in range(4)]

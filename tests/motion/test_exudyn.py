@@ -19,13 +19,14 @@ import linkage_sym
 from linkage_sym.examples import example_dict
 from linkage_sym.motion.simulate import simulate
 
-exudyn = pytest.importorskip(
-    "exudyn", reason="Exudyn is not installed (pip install linkage-sym[exudyn]): the comparison "
-                     "with its forward dynamics needs it")
-
 
 @pytest.mark.slow
 def test_crank_speed_agrees_with_exudyn_forward_dynamics_to_1e_6():
+    # here, not at import: collecting the fast lane (which leaves this test out) in every
+    # worker would otherwise import Exudyn
+    pytest.importorskip(
+        "exudyn", reason="Exudyn is not installed (pip install linkage-sym[exudyn]): the "
+                         "comparison with its forward dynamics needs it")
     from tests.support.exudyn_model import driver_speed
 
     data = example_dict("crank_rocker_motor")

@@ -160,6 +160,7 @@ def test_two_uncoupled_parts_move_as_each_alone():
     assert res.motion["drivers"]["S"] == {"reason": "a P driver: its motion has no turns"}
 
 
+@pytest.mark.slow
 def test_a_weak_motor_stalls_with_a_message_naming_it():
     scene = fivebar((2.0, 0.0), loads=True, duration=1.0, speeds=(5.0, 1.0))
     res = simulate(scene)

@@ -168,6 +168,7 @@ def test_a_block_lifted_by_a_constant_force_moves_as_the_closed_form():
     assert "P joint" in res.motion["reason"]
 
 
+@pytest.mark.slow
 def test_a_crank_that_cannot_turn_round_ends_the_simulation_where_it_fails():
     data = copy.deepcopy(example_dict("crank_rocker"))
     data["joints"][1]["at"] = [0.04, 0.0]  # a crank too long to turn round (not Grashof)

@@ -371,7 +371,8 @@ def test_sweeps_ending_near_or_past_a_limit_batched_equal_point_by_point(past_de
 @pytest.mark.parametrize("name,n",
                          slow_cases([(name, 19) for name in NEWTON_EXAMPLES]
                                     + [("sixbar_class3", 181)],
-                                    {"gear_linkage"}, key=lambda c: c[0] if c[1] == 19 else None))
+                                    {"gear_linkage", "printing_mechanism", "printing_mechanism_stroke",
+                                     "planetary_train"}, key=lambda c: c[0] if c[1] == 19 else None))
 def test_shipped_examples_batched_do_not_depend_on_the_step_count(name, n):
     d = json.loads(example_path(name).read_text())
     coarse = linkage_sym.load_scene(_steps_of(d, n))

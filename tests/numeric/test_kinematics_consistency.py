@@ -19,6 +19,7 @@ import pytest
 
 from tests.support import reference_kinematics as ref  # noqa: E402
 from tests.support import scenes  # noqa: E402
+from tests.support.marks import slow_cases  # noqa: E402
 
 EPS = np.finfo(float).eps
 
@@ -157,7 +158,7 @@ def _closure(scene, res):
     return ref.closure_failures(scene, res, POS_TOL, RATE_TOL)
 
 
-@pytest.mark.parametrize("name", _examples())
+@pytest.mark.parametrize("name", slow_cases(_examples(), {"shaper_flywheel", "watt_sixbar", "fivebar_motors"}))
 def test_closure_on_shipped_examples(name):
     """Every R joint's two points coincide, every P joint keeps its links
     parallel with the reference point on the axis line, the reported joint
@@ -206,7 +207,9 @@ def _check_signs(scene, res, what):
             f"{int(bad.sum())} step(s) in all; cond there {conds[i, k]:.2e})")
 
 
-@pytest.mark.parametrize("name", _examples())
+@pytest.mark.parametrize("name", slow_cases(_examples(), {
+    "printing_mechanism", "printing_mechanism_stroke", "shaper_flywheel", "watt_sixbar",
+    "stephenson_sixbar", "song_wang_sixbar"}))
 def test_assembly_mode_kept_on_shipped_examples(name):
     """For every ok step, each Assur group's constraint-Jacobian determinant
     (own FD Jacobian) has the sign it has in the assembly configuration."""

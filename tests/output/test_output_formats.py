@@ -322,7 +322,8 @@ def _flat(record, prefix=""):
     "engine_four_stroke", "song_wang_sixbar", "watt_sixbar", "shaper", "stephenson_sixbar",
     "fivebar", "cam_cycloidal_roller", "slider_crank_offset", "gear_linkage", "planetary_train",
     "crank_rocker", "guide_bar_quick_return", "shaper_flywheel", "crank_rocker_motor", "fivebar_motors",
-    "printing_mechanism_stroke"}))
+    "printing_mechanism_stroke", "crank_rocker_spring", "printing_mechanism",
+    "slider_crank_press_friction"}))
 def test_json_file_is_byte_identical_to_the_contract_writer(name, tmp_path):
     d = example_dict(name)
     if name in NEWTON:

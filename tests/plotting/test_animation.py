@@ -133,6 +133,7 @@ def test_a_slider_is_drawn_at_its_joint(tmp_path):
         assert np.max(np.abs(centre - analysis.joints[joint.name].position[step])) <= 1e-12
 
 
+@pytest.mark.slow
 def test_an_unassemblable_step_is_marked_with_the_last_solved_pose_faded(unassemblable):
     scene, analysis = unassemblable
     bad = np.flatnonzero(analysis.status == UNASSEMBLABLE)

@@ -268,7 +268,7 @@ def _json_clean(res):
 @pytest.mark.parametrize("name", slow_cases(EXAMPLES, {
     "stephenson_sixbar", "song_wang_sixbar", "shaper", "fivebar", "engine_four_stroke",
     "sixbar_class3", "printing_mechanism", "guide_bar_quick_return", "printing_mechanism_stroke",
-    "crank_rocker", "watt_sixbar"}))
+    "crank_rocker", "watt_sixbar", "shaper_flywheel", "fivebar_motors", "gear_linkage"}))
 def test_examples_match_numeric(name):
     """Contract: the compiled symbolic run equals the numeric solver on every
     shipped example (arrays and JSON)."""

@@ -65,7 +65,7 @@ def test_three_points_exact(timing):
                 assert np.allclose(np.diff(d.thetas), np.diff(th), rtol=0, atol=1e-12)
 
 
-@pytest.mark.parametrize("n, timing", [(5, False), (6, True)])
+@pytest.mark.parametrize("n, timing", [(5, False), pytest.param(6, True, marks=pytest.mark.slow)])
 def test_points_of_a_known_slider_crank_are_met_exactly(n, timing):
     rng = np.random.default_rng(20 + n)
     T, th = _targets(rng, n, 200.0)

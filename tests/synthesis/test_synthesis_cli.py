@@ -11,6 +11,7 @@ import pytest
 import linkage_sym
 from linkage_sym.cli import main
 
+from tests.support.marks import fast_cases
 from tests.support.synthesis_checks import rocker_swing_and_K
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -103,7 +104,8 @@ def test_synthesize_slider_crank_guide_bar_positions_equations(tmp_path, capsys)
     assert capsys.readouterr().out.splitlines()[1].startswith("theta = pi*(K - 1)/(K + 1)")
 
 
-@pytest.mark.parametrize("args, message", [
+# a Python process each: one refusal of each command in the fast lane, all in the default run
+@pytest.mark.parametrize("args, message", fast_cases([
     (["new", "fourbar", "--crank", "1", "--coupler", "1", "--rocker", "1", "--ground", "2.5",
       "--crank-deg", "180"], "--crank-deg: at 180° the four-bar cannot be assembled"),
     (["new", "fourbar", "--crank", "0", "--coupler", "1", "--rocker", "1", "--ground", "1.5"],
@@ -125,7 +127,10 @@ def test_synthesize_slider_crank_guide_bar_positions_equations(tmp_path, capsys)
      "--offset: too large for the stroke"),
     (["synthesize", "slider-crank", "--K", "3.5", "--stroke", "0.1"], "--K: K = 3.5 gives θ"),
     (["synthesize", "guide-bar", "--K", "1", "--ground", "0.4"], "--K: K = 1 means no quick return"),
-])
+], {
+    "--crank-deg: at 180° the four-bar cannot be assembled", "--crank-deg: at -90° the connecting rod",
+    "--crank: equals ground", "--ground: no admissible crank pivot is 0.13 m from D",
+    "--offset: too large for the stroke", "--K: K = 1 means no quick return"}, key=lambda c: c[1]))
 def test_refusals_exit_2_name_the_option_and_write_nothing(tmp_path, args, message):
     out = tmp_path / "never.json"
     p = run(*args, "-o", str(out))
