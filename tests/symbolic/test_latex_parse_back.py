@@ -69,7 +69,11 @@ def case(request):
 
 def _meaning(text: str) -> str:
     m = re.fullmatch(r"\\parbox\[t\]\{[^}]*\}\{\\raggedright (.*)\}", text.strip())
-    return (m.group(1) if m else text.strip()).replace(r"\_", "_")
+    text = m.group(1) if m else text.strip()
+    for tex, plain in ((r"\_", "_"), (r"\ensuremath{\to}", "->"), (r"\ensuremath{<}", "<"),
+                       (r"\ensuremath{>}", ">")):
+        text = text.replace(tex, plain)
+    return text
 
 
 def _symbol_table(doc: str) -> list[tuple[str, str]]:
