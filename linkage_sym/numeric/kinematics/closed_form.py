@@ -417,7 +417,7 @@ class DyadSolver:
             C0, C1 = (_at(c.center(S), i) for c in self.loci)
             d = math.hypot(C1[0] - C0[0], C1[1] - C0[1])
             r0, r1 = self.loci[0].r, self.loci[1].r
-            if d <= self.coincide_tol:
+            if d <= self.coincide_tol and abs(r0 - r1) <= self.coincide_tol:
                 return (
                     f"{head}: joints {e0} and {e1} coincide (to rounding): joint {ji} can be "
                     f"anywhere on one circle about them, so no configuration is defined here"
