@@ -46,10 +46,12 @@ RTOL = 1e-10
 class Case:
     """One example: its scene, equations, document, numeric result and symbol table."""
 
-    def __init__(self, name):
+    def __init__(self, name, derive=None, document=None):
+        """``derive``, ``document``: keywords of :func:`linkage_sym.derive` and of
+        ``latex_document`` beyond the defaults (the numeric mode's, for instance)."""
         self.scene = load_example(name)
-        self.eqs = linkage_sym.derive(self.scene, forces=True)
-        self.doc = latex_document(self.eqs, symbols=True)
+        self.eqs = linkage_sym.derive(self.scene, forces=True, **(derive or {}))
+        self.doc = latex_document(self.eqs, symbols=True, **(document or {}))
         self.res = linkage_sym.analyze(self.scene)
         self.parts = tex.sections(self.doc)
         table = _symbol_table(self.doc)
@@ -70,9 +72,9 @@ def case(request):
 def _meaning(text: str) -> str:
     m = re.fullmatch(r"\\parbox\[t\]\{[^}]*\}\{\\raggedright (.*)\}", text.strip())
     text = m.group(1) if m else text.strip()
-    for tex, plain in ((r"\_", "_"), (r"\ensuremath{\to}", "->"), (r"\ensuremath{<}", "<"),
+    for escaped, plain in ((r"\_", "_"), (r"\ensuremath{\to}", "->"), (r"\ensuremath{<}", "<"),
                        (r"\ensuremath{>}", ">")):
-        text = text.replace(tex, plain)
+        text = text.replace(escaped, plain)
     return text
 
 

@@ -33,9 +33,8 @@ import linkage_sym
 from linkage_sym.examples import load_example
 from linkage_sym.symbolic.latex import latex_document
 from linkage_sym.symbolic.latex_notation import Namer
-from tests.support import latex_reader as tex
-from tests.symbolic.test_latex_parse_back import (_matrix, _numbers, _phi_jacobians, _positions,
-                                                  _read_forces, _rows, _symbol_table, _vector)
+from tests.symbolic.test_latex_parse_back import (Case, _matrix, _numbers, _phi_jacobians,
+                                                  _positions, _read_forces, _rows, _vector)
 
 EXAMPLES = ["crank_rocker", "fivebar", "watt_sixbar", "sixbar_class3"]
 """Four-bar, five-bar (its Heron radicand named in full digits), six-bar and a class-III triad;
@@ -50,25 +49,12 @@ positions, its rocker near a dead centre)."""
 DIGITS = ("full", 6, 4)
 
 
-class NumericCase:
+class NumericCase(Case):
     """One example in the numeric mode: the attributes ``test_latex_parse_back``'s readers use."""
 
     def __init__(self, name, digits):
         self.digits = digits
-        self.scene = load_example(name)
-        self.eqs = linkage_sym.derive(self.scene, symbolic=False, forces=True)
-        self.doc = latex_document(self.eqs, symbols=True, digits=digits)
-        self.res = linkage_sym.analyze(self.scene)
-        self.parts = tex.sections(self.doc)
-        table = _symbol_table(self.doc)
-        self.table = [(sym, meaning) for sym, meaning, _ in table]
-        self.units = {sym: unit for sym, _, unit in table}
-        ok = np.flatnonzero(self.res.status == "ok")
-        self.steps = ok[[len(ok) // 7, len(ok) // 2, (5 * len(ok)) // 6]]
-        pos = [j.position for j in self.res.joints.values()]
-        self.L = max(self.scene.characteristic_length(), float(np.nanmax(np.abs(pos))))
-        self.F = float(np.nanmax([np.nanmax(np.hypot(*r.T))
-                                  for r in self.res.forces.reactions.values()]))
+        super().__init__(name, derive={"symbolic": False}, document={"digits": digits})
 
 
 _CASES: dict = {}
