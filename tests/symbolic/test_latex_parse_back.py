@@ -73,7 +73,7 @@ def _meaning(text: str) -> str:
     m = re.fullmatch(r"\\parbox\[t\]\{[^}]*\}\{\\raggedright (.*)\}", text.strip())
     text = m.group(1) if m else text.strip()
     for escaped, plain in ((r"\_", "_"), (r"\ensuremath{\to}", "->"), (r"\ensuremath{<}", "<"),
-                       (r"\ensuremath{>}", ">")):
+                           (r"\ensuremath{>}", ">")):
         text = text.replace(escaped, plain)
     return text
 
