@@ -269,6 +269,9 @@ class Plan:
                     S[n].th = th
             # a group whose geometry does not change (two fixed slide directions) gives a scalar
             inds.append(None if ind is None else np.broadcast_to(ind, (npath,)))
+        for gi, solver in enumerate(self.solvers):  # an RRR dyad's change points on the path
+            if isinstance(solver, DyadSolver) and solver.meets:
+                solver.notes = solver.change_points(path.q, inds[gi], self._upstream(gi))
         failed_at = np.full(npath, -1)
         for gi, ind in enumerate(inds):
             if ind is None:
@@ -276,6 +279,29 @@ class Plan:
             bad = ~np.isfinite(ind) & (failed_at < 0)
             failed_at[bad] = gi
         return inds, failed_at
+
+    def _upstream(self, gi: int):
+        """``solve(qs)``: the states of the groups solved before group ``gi`` at the driver
+        values ``qs`` (dict of arrays), in a new state, when each of them has a closed form
+        (input links and dyads); ``None`` otherwise (a group by continuation needs the path
+        from the assembly configuration)."""
+        before = self.solvers[:gi]
+        if not all(isinstance(sv, (InputSolver, DyadSolver)) for sv in before):
+            return None
+
+        def solve(qs):
+            S = {GROUND: LinkState()}
+            for n in self.scene.link_names:
+                S[n] = LinkState()
+            for sv in before:
+                # what a position call leaves for the run (notes, an RRR's outer joints)
+                # belongs to the run's path, not to these driver values
+                kept = {k: vars(sv)[k] for k in ("notes", "outer") if k in vars(sv)}
+                sv.position(S, qs)
+                vars(sv).update(kept)
+            return S
+
+        return solve
 
     def _unwrap_rotations(self, S, valid, all_valid: bool, npath: int) -> None:
         """The rotations of the links not driven from the ground, unwrapped over the valid

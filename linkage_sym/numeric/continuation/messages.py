@@ -6,7 +6,8 @@ they name (:func:`driver_values_text`), and the run's warnings of those jumps
 at the steps that see them (:func:`step_warnings`); and the jump of a dyad of two slides
 whose joint passes through infinity between two path points (:func:`parallel_note`), which
 both runtimes find by their own means, and the failure where they are parallel
-(:func:`parallel_failure`).
+(:func:`parallel_failure`); and an RRR dyad's change point between two path points
+(:func:`change_point_note`).
 """
 
 from __future__ import annotations
@@ -73,6 +74,30 @@ def parallel_note(head: str, slides, joint: str, before: str, after: str,
         f"{head}: the slides of joints {slides[0]} and {slides[1]} become parallel between "
         f"{before} and {after}: joint {joint} passes through infinity there; at {step_text} "
         "it is on the far side of its slides"
+    )
+
+
+def change_point_note(head: str, outer, inner: str, links, before: str, after: str,
+                      step_text: str) -> str:
+    """The warning of an RRR dyad whose outer joints pass through one point between two
+    solved path points, where the driver values are ``before`` and ``after``
+    (:func:`driver_values_text`): a change point, where the dyad may keep its assembly mode
+    or change it; the closed form keeps it (both runtimes,
+    :mod:`~linkage_sym.numeric.continuation.change_points`).
+
+    Examples
+    --------
+    >>> change_point_note("dyad RRR (coupler, rocker)", ("B", "D"), "C", ("coupler", "rocker"),
+    ...                   "A = 1°", "A = -1°", "step 5 (reached from step 4)")[:73]
+    'dyad RRR (coupler, rocker): joints B and D pass through one point between'
+    """
+    return (
+        f"{head}: joints {outer[0]} and {outer[1]} pass through one point between {before} "
+        f"and {after} (a change point: joint {inner} can be anywhere on one circle about "
+        f"them there); at {step_text} the dyad keeps its assembly mode (joint {inner} on the "
+        f"same side of the line from {outer[0]} to {outer[1]}), so links {links[0]} and "
+        f"{links[1]} have turned a half turn (which way is undefined); the other branch, "
+        "where the assembly mode changes and they do not turn, is equally valid"
     )
 
 

@@ -22,7 +22,7 @@ import numpy as np
 
 from linkage_sym.errors import SceneError
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.numeric.continuation import messages
+from linkage_sym.numeric.continuation import change_points, messages
 from linkage_sym.numeric.kinematics.loci import (
     Circle,
     Line,
@@ -41,6 +41,15 @@ EPS = float(np.finfo(float).eps)
 COINCIDE_ULPS = 64.0
 """An RRR dyad's outer joints closer than this many units of rounding of the mechanism's
 coordinates coincide: its inner joint's position is undefined there (unassemblable)."""
+
+
+def coincide_tolerance(scene: Scene, E0, J0, E1) -> float:
+    """Distance (m) within which the outer joints ``E0``, ``E1`` of an RRR dyad with inner
+    joint ``J0`` (their points in the assembly configuration) coincide:
+    :data:`COINCIDE_ULPS` units of rounding of the mechanism's coordinates."""
+    size = max(abs(v) for j in scene.joints for v in j.at) + math.dist(J0, E0) \
+        + math.dist(J0, E1)
+    return COINCIDE_ULPS * EPS * size
 
 
 def _other(joint, link):
@@ -180,9 +189,9 @@ class DyadSolver:
             # the two circles are one, the inner joint anywhere on it, and the half-chord's
             # formula has lost every digit (the distance is at the rounding of the radii);
             # no configuration is defined there, as where the distance is exactly zero
-            size = max(abs(v) for j in scene.joints for v in j.at) + math.dist(J0, E0) \
-                + math.dist(J0, E1)
-            self.coincide_tol = COINCIDE_ULPS * EPS * size
+            self.coincide_tol = coincide_tolerance(scene, E0, J0, E1)
+            # links equally long (to rounding): the outer joints can meet, a change point
+            self.meets = abs(self.loci[0].r - self.loci[1].r) <= self.coincide_tol
         elif t == "RRP":
             circle, line = Circle(self.k0, E0, math.dist(J0, E0)), Line(self.k1, J0, e1.axis)
             self.loci = (circle, line)
@@ -251,6 +260,8 @@ class DyadSolver:
             if np.any(coincide):
                 ind = np.where(coincide, np.nan, ind)
             centres = (C0, C1)
+            if self.meets:  # for change_points, after the groups' positions
+                self.outer = (C1[0] - C0[0], C1[1] - C0[1])
         elif t == "RRP":
             C0 = c0.center(S)
             Yx, Yy, h = circle_line(C0, c0.r, *c1.frame(S), self.sigma)
@@ -273,6 +284,36 @@ class DyadSolver:
         if t != "RPP":
             _set_from_point(b0, (Yx, Yy), self.J0)
         return np.abs(ind)
+
+    meets = False
+    """Whether the dyad is an RRR whose links are equally long (to rounding): its outer joints
+    can meet, at a change point (:meth:`change_points`)."""
+
+    def change_points(self, q, ind, upstream) -> list:
+        """The notes of the change points of an RRR dyad whose outer joints can meet
+        (:attr:`meets`) between consecutive solved points of the last ``position`` call
+        (:mod:`linkage_sym.numeric.continuation.change_points`), each ``(first point past
+        it, text(step))``.
+
+        ``q`` are the driver values of that call, ``ind`` its indicator; ``upstream(qs)``
+        solves the groups before the dyad at the driver values ``qs`` into a new state
+        (``None``: they have no closed form, and only path points where the joints coincide
+        are found).
+        """
+        K = len(next(iter(q.values())))
+        e = tuple(np.broadcast_to(np.asarray(v, float), (K,)) for v in self.outer)
+        solved = np.isfinite(np.broadcast_to(ind, (K,)))
+
+        def evaluate(qs):
+            S = upstream(qs)
+            C0, C1 = (c.center(S) for c in self.loci)
+            return C1[0] - C0[0], C1[1] - C0[1]
+
+        kinds = {k: self.driver_kinds.get(k, "R") for k in q}
+        names = (f"dyad {self.type} ({self.links[0]}, {self.links[1]})",
+                 (self.names[0], self.names[2]), self.names[1], self.links)
+        return change_points.change_point_notes(e, solved, self.coincide_tol, q, kinds,
+                                                None if upstream is None else evaluate, names)
 
     def _crossings(self, cross, q) -> list:
         """The notes of the sign changes of the slides' cross product ``cross`` between
