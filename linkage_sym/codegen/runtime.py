@@ -34,7 +34,7 @@ import math
 
 import numpy as np
 
-from linkage_sym.codegen import cache
+from linkage_sym.codegen import cache, change_points
 from linkage_sym.codegen.artifact import Artifact, ClosedStep
 from linkage_sym.codegen.blocks import full
 from linkage_sym.codegen.evaluator import NumpyEvaluator, frame_motion, load_functions, rigid_point
@@ -124,7 +124,9 @@ class CompiledMechanism(NumpyEvaluator):
         self._calibration = Calibration()  # accuracy: the indicator-to-condition ratio
         self._layout = ResultLayout(scene, art.stages)  # where a run writes its results
         self._own = None  # the scene's own sweep: driver arrays and solving path, made once
-        self._decomposition = None
+        self._decomposition = decompose(scene)  # the transmission angles' groups
+        # the RRR dyads whose outer joints can meet (a change point), searched along the path
+        self.meeting = change_points.meeting_dyads(self, self._decomposition)
         # the scene's own sweep and solving path, the accuracy calibration and the memory of
         # a run belong to the scene: made here, once, so that every run, the first one too,
         # only solves (as the numeric plan does)
@@ -213,6 +215,8 @@ class CompiledMechanism(NumpyEvaluator):
         ctx = PathContext(self.params, list(Qpath), Qpath, K, failed)
         with np.errstate(invalid="ignore", divide="ignore"):
             X = self.walk([None] * self.m, ctx)
+            if self.meeting:  # RRR dyads whose outer joints can meet: their change points
+                self.path_notes += change_points.notes(self, X, Qpath, failed)
         return np.array(X), failed
 
     def closed_step(self, step, X, ctx):
@@ -449,8 +453,6 @@ class CompiledMechanism(NumpyEvaluator):
             mark_locked(status, messages, forces)  # joint friction: self-locking steps
         res = self._analysis(X, XD, XDD, CS, pts, idx, status, messages, condition, forces,
                              q, qd, qdd)
-        if self._decomposition is None:  # for the transmission angles, made once
-            self._decomposition = decompose(self.scene)
         finish(res, self.scene, self.path_notes, out, self._decomposition)
         # accuracy (numeric.results.accuracy): K of the pose Jacobian (the numeric solver's), exact
         # where a block was screened, else from the blocks' ratios calibrated on it

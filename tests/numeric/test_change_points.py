@@ -169,11 +169,29 @@ def test_a_circle_through_or_past_zero(miss, found):
 def test_the_screen_keeps_only_intervals_near_zero():
     """Far from zero (a chord farther than its length from the origin) nothing is kept;
     a run of coincident points between two solved ones is a passage at once."""
-    x = np.array([10.0, 9.0, 8.0, 0.5, -0.5, -8.0])
-    assert change_points.intervals(x, np.ones(6), np.ones(6, bool), TOL) == [
+    x, no = np.array([10.0, 9.0, 8.0, 0.5, -0.5, -8.0]), np.zeros(6, bool)
+    assert change_points.intervals(x, np.ones(6), ~no, no, TOL) == [
         (2, 3, False), (3, 4, False), (4, 5, False)]
     x = np.array([3.0, 2.0, 1.0, 0.0, 0.0, -1.0])
-    solved = np.array([True, True, True, False, False, True])
-    assert change_points.intervals(x, np.zeros(6), solved, TOL) == [
+    own = np.array([False, False, False, True, True, False])
+    assert change_points.intervals(x, np.zeros(6), ~own, own, TOL) == [
         (1, 2, False), (2, 5, True)]
-    assert change_points.intervals(x + 100.0, np.zeros(6), solved, TOL) == []
+    # not at one point where the dyad fails: screened (its chord passes through zero here)
+    x[3:5] = np.nan
+    assert change_points.intervals(x, np.zeros(6), ~own, own, TOL) == [
+        (1, 2, False), (2, 5, False)]
+    # points where an earlier group fails between: not this dyad's to say
+    assert change_points.intervals(x, np.zeros(6), ~own, no, TOL) == [(1, 2, False)]
+    assert change_points.intervals(x + 100.0, np.zeros(6), ~own, own, TOL) == []
+
+
+def test_a_point_without_a_value_at_the_passage_is_spanned():
+    """The closed form has no value exactly at the zero (a grid point, t = 0.5): the grid's
+    brackets span it and find the zero all the same."""
+    def e(t):
+        x = np.where(t == 0.5, np.nan, t - 0.5)
+        return x, 2.0 * x
+
+    assert change_points.through_zero(e, TOL)
+    assert not change_points.through_zero(lambda t: (np.where(t == 0.5, np.nan, t - 0.5),
+                                                     1e-9 + 0 * t), TOL)

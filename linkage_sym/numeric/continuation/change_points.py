@@ -18,8 +18,10 @@ and word them alike (:func:`~linkage_sym.numeric.continuation.messages.change_po
   along a smooth curve that stays within its chord's length of the chord (the path's points
   are at most 2 degrees or 2 % of the size apart, over which a joint's path bends far less
   than that); so where the origin is farther than the chord's length from the chord, ``e``
-  does not pass through zero there, and nothing more is done.  A run of path points between
-  two solved ones where the outer joints coincide to rounding is a passage itself.
+  does not pass through zero there, and nothing more is done.  Path points between two
+  solved ones where the dyad itself cannot be assembled make an interval too: a passage
+  when its outer joints coincide to rounding at all of them, else screened as the others
+  (where a closed form has no value at the passage itself).
 * **Minimisation** (:func:`through_zero`), in the few intervals the screen keeps: ``|e|`` on
   :data:`GRID` driver values spread over the interval (interpolated linearly between the two
   path points, as the path is), the grid zoomed :data:`ROUNDS` times onto its smallest value,
@@ -45,34 +47,37 @@ ROUNDS = 5
 2-degree interval, over which the outer joints' vector is linear to 1e-17 of the size."""
 
 
-def intervals(ex, ey, solved, tol) -> list:
+def intervals(ex, ey, solved, own, tol) -> list:
     """The intervals of the path where the outer joints may pass through one point.
 
     Parameters
     ----------
     ex, ey : ndarray (K,)
-        The vector from one outer joint to the other at each path point (NaN where the
-        groups before the dyad are not solved).
+        The vector from one outer joint to the other at each path point (NaN where it is
+        not known).
     solved : ndarray of bool (K,)
         Where the dyad is solved.
+    own : ndarray of bool (K,)
+        Where the dyad itself cannot be assembled (the groups before it solved).
     tol : float
         Distance (m) within which the outer joints coincide.
 
     Returns
     -------
     list of (int, int, bool)
-        ``(a, b, known)``: consecutive solved path points ``a < b`` (the outer joints apart
-        at both), ``known`` true when the points between them all have the outer joints at
-        one point (a passage, no minimisation needed), false for consecutive points the
-        screen keeps.
+        ``(a, b, known)``: consecutive solved path points ``a < b``, the outer joints apart
+        at both, with only points between them where the dyad itself fails or its outer
+        joints coincide; ``known`` true when they all coincide (a passage: nothing to
+        minimise), else kept by the screen.
 
     Examples
     --------
     >>> import numpy as np
-    >>> x = np.array([4.0, 3.0, 0.5, -0.5, -3.0, -4.0])
-    >>> intervals(x, np.zeros(6), np.ones(6, bool), 1e-12)
+    >>> x, no = np.array([4.0, 3.0, 0.5, -0.5, -3.0, -4.0]), np.zeros(6, bool)
+    >>> intervals(x, np.zeros(6), ~no, no, 1e-12)
     [(1, 2, False), (2, 3, False), (3, 4, False)]
-    >>> intervals(np.array([2.0, 1.0, 0.0, -1.0]), np.zeros(4), np.ones(4, bool), 1e-12)
+    >>> x, own = np.array([2.0, 1.0, 0.0, -1.0]), np.array([False, False, True, False])
+    >>> intervals(x, np.zeros(4), ~own, own, 1e-12)
     [(0, 1, False), (1, 3, True)]
     """
     ex, ey = np.asarray(ex, float), np.asarray(ey, float)
@@ -83,17 +88,19 @@ def intervals(ex, ey, solved, tol) -> list:
     if len(idx) < 2:
         return []
     a, b = idx[:-1], idx[1:]
+    # what lies between a and b: only the dyad's own failures or coincidences, all coincident?
+    other = np.concatenate([[0], np.cumsum(~(np.asarray(own) | coincide))])
+    n_coincide = np.concatenate([[0], np.cumsum(coincide)])
+    inside = other[b] - other[a + 1] == 0
+    known = (b > a + 1) & (n_coincide[b] - n_coincide[a + 1] == b - a - 1)
     px, py = ex[a], ey[a]
     sx, sy = ex[b] - px, ey[b] - py
     s2 = sx * sx + sy * sy
     with np.errstate(invalid="ignore", divide="ignore"):
         t = np.clip(np.where(s2 > 0, -(px * sx + py * sy) / s2, 0.0), 0.0, 1.0)
-    near = (b == a + 1) & (np.hypot(px + t * sx, py + t * sy) <= np.sqrt(s2) + tol)
-    out = [(int(i), int(j), False) for i, j in zip(a[near], b[near])]
-    for i, j in zip(a[b > a + 1], b[b > a + 1]):
-        if coincide[i + 1:j].all():
-            out.append((int(i), int(j), True))
-    return sorted(out)
+    near = np.hypot(px + t * sx, py + t * sy) <= np.sqrt(s2) + tol
+    keep = np.flatnonzero(inside & (known | near))
+    return [(int(a[k]), int(b[k]), bool(known[k])) for k in keep]
 
 
 def between(q: dict, a: int, b: int, t) -> dict:
@@ -113,24 +120,25 @@ def through_zero(evaluate, tol: float) -> bool:
     """Whether the outer joints' vector passes within ``tol`` of zero on an interval.
 
     ``evaluate(t)`` gives ``(ex, ey)`` at the fractions ``t`` (an array in ``[0, 1]``) of the
-    interval (NaN where the mechanism is not solved).  See the module docstring.
+    interval (NaN where it is not known: a point where the dyad cannot be assembled, which
+    the grid's brackets then span).  See the module docstring.
     """
     lo, hi = 0.0, 1.0
     for _ in range(ROUNDS):
         t = np.linspace(lo, hi, GRID)
         ex, ey = (np.asarray(v, float) for v in evaluate(t))
         d = np.hypot(ex, ey)
-        if not np.isfinite(d).any():
-            return False
-        k = int(np.nanargmin(d))
-        if d[k] <= tol:
+        known = np.flatnonzero(np.isfinite(d))
+        if len(known) < 2:
+            return bool(len(known)) and bool(d[known[0]] <= tol)
+        j = int(np.argmin(d[known]))
+        if d[known[j]] <= tol:
             return True
-        lo, hi = t[max(k - 1, 0)], t[min(k + 1, GRID - 1)]
+        near = known[max(j - 1, 0):j + 2]  # the smallest value and its known neighbours
+        lo, hi = t[near[0]], t[near[-1]]
     # the last grid's segments on either side of its smallest value: e is linear along them
-    for i, j in ((k - 1, k), (k, k + 1)):
-        if i < 0 or j >= GRID or not np.isfinite(d[i]) or not np.isfinite(d[j]):
-            continue
-        sx, sy = ex[j] - ex[i], ey[j] - ey[i]
+    for i, k in zip(near[:-1], near[1:]):
+        sx, sy = ex[k] - ex[i], ey[k] - ey[i]
         s2 = sx * sx + sy * sy
         s = min(max(-(ex[i] * sx + ey[i] * sy) / s2, 0.0), 1.0) if s2 > 0 else 0.0
         if np.hypot(ex[i] + s * sx, ey[i] + s * sy) <= tol:
@@ -138,7 +146,7 @@ def through_zero(evaluate, tol: float) -> bool:
     return False
 
 
-def change_point_notes(e, solved, tol, q, kinds, evaluate, names) -> list:
+def change_point_notes(e, solved, own, tol, q, kinds, evaluate, names) -> list:
     """The notes of an RRR dyad's change points along the path, for the run's warnings.
 
     Parameters
@@ -147,6 +155,8 @@ def change_point_notes(e, solved, tol, q, kinds, evaluate, names) -> list:
         ``(ex, ey)``: the vector from one outer joint to the other at each path point.
     solved : ndarray of bool
         Where the dyad is solved.
+    own : ndarray of bool
+        Where the dyad itself cannot be assembled (the groups before it solved).
     tol : float
         Distance (m) within which the outer joints coincide.
     q : dict
@@ -168,7 +178,7 @@ def change_point_notes(e, solved, tol, q, kinds, evaluate, names) -> list:
         (:func:`~linkage_sym.numeric.continuation.messages.step_warnings`).
     """
     out = []
-    for a, b, known in intervals(*e, solved, tol):
+    for a, b, known in intervals(*e, solved, own, tol):
         if not known:
             if evaluate is None or not through_zero(
                     lambda t, a=a, b=b: evaluate(between(q, a, b, t)), tol):

@@ -303,6 +303,7 @@ class DyadSolver:
         K = len(next(iter(q.values())))
         e = tuple(np.broadcast_to(np.asarray(v, float), (K,)) for v in self.outer)
         solved = np.isfinite(np.broadcast_to(ind, (K,)))
+        own = ~solved & np.isfinite(e[0]) & np.isfinite(e[1])  # the groups before it solved
 
         def evaluate(qs):
             S = upstream(qs)
@@ -312,7 +313,7 @@ class DyadSolver:
         kinds = {k: self.driver_kinds.get(k, "R") for k in q}
         names = (f"dyad {self.type} ({self.links[0]}, {self.links[1]})",
                  (self.names[0], self.names[2]), self.names[1], self.links)
-        return change_points.change_point_notes(e, solved, self.coincide_tol, q, kinds,
+        return change_points.change_point_notes(e, solved, own, self.coincide_tol, q, kinds,
                                                 None if upstream is None else evaluate, names)
 
     def _crossings(self, cross, q) -> list:
