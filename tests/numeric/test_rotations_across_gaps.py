@@ -238,8 +238,9 @@ def test_fourbar_rotations_across_gaps(lengths, th_deg, sigma, span, coarse):
     crank_turns = (s[0] + s[3] <= s[1] + s[2]) and min(lengths) in (l1, l4)
     assume(not crank_turns)  # the crank cannot turn fully: a span over a turn has a gap
     # not a change point (s + l = p + q): there the coupler turns by half a turn between two
-    # points of the solving path, and which way is undefined; a 5.6-degree step then sees
-    # the other way from the path (test_a_change_point_four_bar... covers the 1-degree steps)
+    # points of the solving path, and which way is undefined (a warning of the run says so:
+    # tests/numeric/test_change_points.py); a 5.6-degree step then sees the other way from
+    # the path (test_a_change_point_four_bar... covers the 1-degree steps)
     assume(abs(s[0] + s[3] - s[1] - s[2]) > 1e-9 * s[3])
     steps = int(abs(span) / 5.6) + 1 if coarse else None
     scene = _fourbar_case(l1, l2, l3, l4, th_deg, sigma, span, steps)
@@ -272,7 +273,9 @@ def test_a_change_point_four_bar_whose_coupler_end_passes_the_rocker_pivot():
     method reported the step at -360 degrees (where B is 4e-15 from D) singular with B 0.3 %
     of the size off the crank's circle: the half-chord's formula had lost every digit there.
     Those steps are unassemblable now ("joints B and D coincide"), or singular with their
-    positions exact, and every rotation follows the rule across them."""
+    positions exact, and every rotation follows the rule across them; each passage is a
+    warning of the run, in every method (the other branch is there too:
+    tests/numeric/test_change_points.py)."""
     lengths = [3.0, 1.0, 1.0, 3.0]
     scene = _fourbar_case(*lengths, 1.0, 1, -720.0)
     results = run_all(scene)
@@ -283,6 +286,8 @@ def test_a_change_point_four_bar_whose_coupler_end_passes_the_rocker_pivot():
             if r.status[i] == "singular":
                 scenes.assert_close(r.joints["B"].position[i], [3.0, 0.0], 1e-12, m, scale=3.0)
     assert "coincide" in results["dyad"].messages[361]
+    for m, r in results.items():
+        assert len(r.warnings) == 2 and all("pass through one point" in w for w in r.warnings), m
 
 
 def test_the_issue_fourbar_rocker_comes_back_nearest():
