@@ -4,12 +4,13 @@ An RRR dyad whose two links are equally long (to rounding) can have its outer jo
 point: a change-point linkage (Grashof's equality ``s + l = p + q`` with the coupler as long
 as the rocker, e.g. the four-bar 3, 1, 1, 3).  There the inner joint can be anywhere on one
 circle about them, and two branches go on from that configuration: the dyad keeps its
-assembly mode (the sign of its closed form), its inner joint then on the far side of the line
-of the outer joints, both its links a half turn from where they were; or it changes mode and
-its links go on without that turn.  Both are motions of the mechanism.  A closed form keeps
-its mode; a path point where the outer joints coincide to rounding cannot be assembled (the
-solvers say so), but where that happens *between* two path points every step is solved and
-nothing else would tell.  Both runtimes find those passages here, each with its own solved
+assembly mode (the sign of its closed form: the inner joint on the same side of the line from
+one outer joint to the other, a line whose direction has turned a half turn), both its links
+a half turn from where they were; or it changes mode and its links go on without that turn.
+Both are motions of the mechanism.  A closed form keeps its mode; a step where the outer
+joints coincide to rounding is reported (``unassemblable``, or ``singular`` where the symbolic
+runtime's closed form gives a value there), but where that happens *between* two path points
+every step is solved and nothing else would tell.  Both runtimes find those passages here, each with its own solved
 positions (:mod:`linkage_sym.numeric.kinematics.closed_form`, :mod:`linkage_sym.codegen.change_points`),
 and word them alike (:func:`~linkage_sym.numeric.continuation.messages.change_point_note`):
 
@@ -43,8 +44,10 @@ __all__ = ["GRID", "ROUNDS", "between", "intervals", "through_zero", "change_poi
 GRID = 33
 """Driver values per round of :func:`through_zero` (the grid shrinks 16-fold a round)."""
 ROUNDS = 5
-"""Zooming rounds of :func:`through_zero`: the last grid's segments span about 1e-9 of a
-2-degree interval, over which the outer joints' vector is linear to 1e-17 of the size."""
+"""Zooming rounds of :func:`through_zero`: the last grid's segments span 1/2097152 of the
+interval (2e-8 rad of a 2-degree one), along which the outer joints' vector departs from a
+straight line by ``|e''| w^2 / 8``, 4e-17 of the size for a joint turning on a radius of
+the size, far below the coincidence tolerance (64 units of rounding)."""
 
 
 def intervals(ex, ey, solved, own, tol) -> list:

@@ -169,7 +169,13 @@ class DyadSolver:
     wraps = True  # rotations from atan2
     """Jumps worth a warning: none (a closed form keeps its assembly mode by its sign), but
     for a dyad of two slides (``PRP``, ``RPP``) the passages of its joint through infinity
-    (the slides parallel) between two solved path points of the last ``position`` call."""
+    (the slides parallel) between two solved path points of the last ``position`` call, and
+    for an RRR dyad whose outer joints can meet its change points there (set by the plan once
+    the groups' positions are solved: :meth:`change_points`)."""
+
+    meets = False
+    """Whether the dyad is an RRR whose links are equally long (to rounding): its outer joints
+    can meet, at a change point (:meth:`change_points`)."""
 
     def __init__(self, scene: Scene, group: Group):
         self.group = group
@@ -284,10 +290,6 @@ class DyadSolver:
         if t != "RPP":
             _set_from_point(b0, (Yx, Yy), self.J0)
         return np.abs(ind)
-
-    meets = False
-    """Whether the dyad is an RRR whose links are equally long (to rounding): its outer joints
-    can meet, at a change point (:meth:`change_points`)."""
 
     def change_points(self, q, ind, upstream) -> list:
         """The notes of the change points of an RRR dyad whose outer joints can meet
