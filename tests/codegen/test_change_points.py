@@ -46,6 +46,13 @@ def test_a_step_at_the_change_point_is_warned_as_by_the_numeric_solver():
     assert len(sym.warnings) == 1 and sym.warnings == num.warnings
 
 
+def test_a_change_point_before_the_first_step_is_warned_as_by_the_numeric_solver():
+    scene = linkage_sym.load_scene(hand.scene(hand.PHI - 5.0, hand.PHI - 20.0, 4))
+    sym, num = (linkage_sym.analyze(scene, method=m) for m in ("symbolic", "dyad"))
+    assert len(sym.warnings) == 1 and sym.warnings == num.warnings
+    assert "at step 0 (reached from the assembly configuration)" in sym.warnings[0]
+
+
 @pytest.mark.parametrize("steps", (7, 41, 3001))
 def test_a_near_change_point_four_bar_has_no_warning(steps):
     res = run(steps, gap=0.001)

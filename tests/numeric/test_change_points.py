@@ -94,6 +94,18 @@ def test_a_step_at_the_change_point_is_unassemblable_and_the_passage_is_warned(m
     check_positions(res)
 
 
+@pytest.mark.parametrize("method", METHODS)
+def test_a_change_point_before_the_first_step_is_warned_at_step_0(method):
+    """Assembled at PHI + 25 degrees, swept from PHI - 5 down: the solving path from the
+    assembly configuration to the first step passes the change point."""
+    res = run(4, method=method, start=hand.PHI - 5.0, stop=hand.PHI - 20.0)
+    assert set(res.status) == {"ok"} and len(res.warnings) == 1
+    m = hand.WARNING.match(res.warnings[0])
+    assert m and m["step"] == "step 0 (reached from the assembly configuration)"
+    assert float(m["after"]) < hand.PHI < float(m["before"])
+    check_positions(res)
+
+
 def _hand_rotations(q_steps, gap, fine=200):
     """The coupler's and rocker's rotations from the assembly configuration at the steps,
     by unwrapping the hand positions along the path refined ``fine`` times."""
