@@ -65,7 +65,7 @@ WARNING = re.compile(
     r"^dyad RRR \(coupler, rocker\): joints B and D pass through one point between "
     r"A = (?P<before>-?[0-9.]+)° and A = (?P<after>-?[0-9.]+)° \(a change point: joint C can "
     r"be anywhere on one circle about them there\); at (?P<step>step \d+( \(reached from (step "
-    r"\d+|the assembly configuration)\))?) the dyad keeps its assembly mode \(joint C on the same side of the line from B "
-    r"to D\), so links coupler and rocker have turned a half turn \(which way is undefined\); "
+    r"\d+|the assembly configuration)\))?) the dyad keeps its assembly mode \(joint C on the "
+    r"same side of the line from B to D\), so links coupler and rocker have turned a half turn \(which way is undefined\); "
     r"the other branch, where the assembly mode changes and they do not turn, is equally valid$")
 """The warning of a change point between two path points, every field but the values."""

@@ -10,9 +10,10 @@ a half turn from where they were; or it changes mode and its links go on without
 Both are motions of the mechanism.  A closed form keeps its mode; a step where the outer
 joints coincide to rounding is reported (``unassemblable``, or ``singular`` where the symbolic
 runtime's closed form gives a value there), but where that happens *between* two path points
-every step is solved and nothing else would tell.  Both runtimes find those passages here, each with its own solved
-positions (:mod:`linkage_sym.numeric.kinematics.closed_form`, :mod:`linkage_sym.codegen.change_points`),
-and word them alike (:func:`~linkage_sym.numeric.continuation.messages.change_point_note`):
+every step is solved and nothing else would tell.  Both runtimes find those passages here,
+each with its own solved positions (:mod:`linkage_sym.numeric.kinematics.closed_form`,
+:mod:`linkage_sym.codegen.change_points`), and word them alike
+(:func:`~linkage_sym.numeric.continuation.messages.change_point_note`):
 
 * **Screen** (:func:`intervals`, vectorised over the path): the vector ``e`` from one outer
   joint to the other at consecutive solved path points ``a``, ``b``.  Between them ``e`` runs
