@@ -485,7 +485,7 @@
         "edits the profile; a dragged ground pivot re-solves the sweep (the cam turns about " +
         "another point of its profile, or the follower turns or slides elsewhere). Edit a " +
         "profile in the scene file.";
-      document.querySelector("aside .hint").after(note);
+      document.querySelector("aside > .hint").after(note); // under the joints' hint
       document.querySelector("header .by").textContent = "solved in this page by linkage_sym's " +
         "numeric cam solver, ported to JavaScript (the symbolic layer derives no cam contact)";
     }

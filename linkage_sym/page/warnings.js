@@ -115,7 +115,7 @@ const PageWarnings = (function () {
         const span = document.createElement("span");
         span.textContent = w.text; // scene names are text, never markup
         li.appendChild(span);
-        const tag = w.origin === "page" ? null : w.stale ? "from the scene as built; not recomputed: may no longer hold" :
+        const tag = w.origin === "page" ? null : w.stale ? "for the scene as built: may no longer hold" :
           w.recomputed ? "the page's evaluator finds it too" : "from the scene as built; the page does not recompute it";
         if (tag !== null) {
           const t = document.createElement("span");
@@ -128,10 +128,12 @@ const PageWarnings = (function () {
         "From linkage_sym's Python run of the scene this page was built from. After a change " +
         "(a drag, a typed value) the page lists what its own evaluator finds: steps that cannot " +
         "be assembled or are singular, joints passing through infinity." :
-        "Found by this page's evaluator for the current geometry: steps that cannot be " +
-        "assembled or are singular, joints passing through infinity." +
-        (shown.some((w) => w.stale) ? " Greyed: the Python run's for the scene as built, " +
-          "which the page cannot recompute." : "");
+        (own.length ? "Found by this page's evaluator for the current geometry: steps that " +
+          "cannot be assembled or are singular, joints passing through infinity." :
+          "This page's evaluator finds no step that cannot be assembled or is singular and no " +
+          "joint passing through infinity for the current geometry.") +
+        (shown.some((w) => w.stale) ? " Greyed: the Python run's other warnings for the scene " +
+          "as built, which the page cannot recompute." : "");
     }
 
     return {
