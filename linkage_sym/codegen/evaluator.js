@@ -572,10 +572,16 @@ const LinkageEvaluator = (function () {
         const s = sol[k];
         if (s.failed >= 0) {
           const g = this.art.groups.find((gr) => gr.index === s.failed);
-          // worded as the NumPy runtime words it (the continuation's reasons are not kept)
-          const why = g.closed ? ": its closed form has no real solution" :
-            ": no configuration in the assembly mode is reached continuously";
-          return { status: "unassemblable", message: g.label + " (" + g.links.join(", ") + ") cannot be assembled" + why,
+          // worded as the NumPy runtime words it (the continuation's reasons are not kept); a
+          // dyad of two slides that are parallel at this point says so (codegen.parallels)
+          const title = g.label + " (" + g.links.join(", ") + ")";
+          const par = (this.art.parallels || []).find(([pg]) => pg === s.failed);
+          const c = par ? s.cross[s.failed] : NaN;
+          const message = par && Math.abs(c) <= this.art.parallel_tol ?
+            title + ": the slides of joints " + par[1] + " and " + par[2] + " are parallel" :
+            title + " cannot be assembled" + (g.closed ? ": its closed form has no real solution" :
+              ": no configuration in the assembly mode is reached continuously");
+          return { status: "unassemblable", message: message,
             joints: {}, points: {}, X: s.X, Q: s.Q };
         }
         const CX = s.X.map(Math.cos), SX = s.X.map(Math.sin);

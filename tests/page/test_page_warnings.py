@@ -204,3 +204,17 @@ def test_the_page_words_driver_values_as_the_python_messages(browser, pages):
             "return arguments[0].map((v) => PageWarnings.driverNumber(v, arguments[1]))",
             VALUES, kind)
         assert got == [driver_number(v, kind) for v in VALUES], kind
+
+
+def test_a_step_on_the_parallel_position_is_worded_as_the_python_run_words_it(browser, tmp_path):
+    # the guide-slider of 11 steps has step 5 (the guide at 0 deg) exactly on the parallel
+    # position; the page's message was "its closed form has no real solution"
+    scene = parse_scene(guide_slider(11))
+    res = linkage_sym.analyze(scene)
+    assert res.status[5] == "unassemblable"
+    open_page(browser, built_page(tmp_path, scene, "gs11"))
+    got = browser.execute_script("return window.linkageSym.solve(0.0)")
+    assert got["status"] == "unassemblable"
+    assert got["message"] == res.messages[5] == (
+        "dyad PRP (rod, block): the slides of joints A_slide and C_guide are parallel")
+    assert browser.get_log("browser") == []
