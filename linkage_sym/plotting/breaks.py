@@ -112,11 +112,14 @@ def view_box(near, far, size: float):
 def passage_note(analysis, passage, kinds: dict) -> str:
     """One line saying where a joint passes through infinity and which paths break there,
     e.g. ``joint C passes through infinity between steps 4 and 5 (A = 3.33° and -3.33°):
-    the paths of points on rod, block are not joined there``.
+    the paths of points on rod, block are not joined there``; the status of the step before
+    it follows its number when it is not ``ok`` (e.g. the step where the slides are parallel).
 
     ``kinds`` maps each driven joint to ``"R"`` or ``"P"``.
     """
-    where = f"between steps {passage.before} and {passage.after}"
+    status = str(analysis.status[passage.before])
+    bad = "" if status == "ok" else f" ({status})"
+    where = f"between steps {passage.before}{bad} and {passage.after}"
     q = {name: d["q"] for name, d in analysis.drivers.items()}
 
     def at(k):
