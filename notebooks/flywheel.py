@@ -17,7 +17,9 @@
 #
 # Kept as text (jupytext py:percent); `tests/paper/test_notebooks.py` executes it.
 #
-# The textbook's flywheel problem: a machine's main shaft meets a resisting moment
+# A flywheel problem of the kind the textbook course sets after kinetostatics (its chapter on
+# speed fluctuation is not among the sources we have, so the numbers are ours; the method is
+# the textbook's energy method): a machine's main shaft meets a resisting moment
 # $M_r = 300$ N·m over the first half of each turn and none over the second; the motor's
 # moment $M_d$ is constant; the mean speed is $\omega_m = 100$ rad/s and the coefficient of
 # speed fluctuation may be at most $[\delta] = 0.02$. Worked by hand: over a cycle the work
@@ -45,7 +47,7 @@ print(f"J_F by hand: {by_hand:.4f} kg m^2")
 # %% [markdown]
 # The main shaft is the crank of the crank-rocker of the scene format (its light coupler and
 # rocker add a little inertia of their own). The resisting moment is a load on the crank that
-# acts over $0$ to $180°$ (the format's *loads over the cycle*). The textbook's constant driving
+# acts over $0$ to $180°$ (the format's *loads over the cycle*). The problem's constant driving
 # moment is a motor whose moment falls steeply through 150 N·m at 100 rad/s: so the machine has
 # a steady mean speed, 100 rad/s.
 

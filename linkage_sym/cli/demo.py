@@ -48,10 +48,11 @@ def cmd_demo(args) -> int:
 
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
+    runs = {}  # each example's run: its page's warnings panel opens with its warnings
     for name in names:
         scene = _load(example_path(name))
         stem = _stem(scene)
-        analysis = compile_plan(scene).run()
+        analysis = runs[name] = compile_plan(scene).run()
         result = out / f"{stem}_result.json"
         result.write_text(json.dumps(analysis.to_dict()) + "\n")
         files = plot_all(scene, analysis, out)
@@ -79,7 +80,7 @@ def cmd_demo(args) -> int:
     if not args.example:  # the demo itself: every shipped example's page, and their gallery
         from linkage_sym.page.gallery import write_gallery
 
-        gallery, *pages = write_gallery(out, example_names())
+        gallery, *pages = write_gallery(out, example_names(), runs)
         print(f"the page of every shipped example and their gallery (open it in a browser; "
               "nothing is fetched); wrote")
         print(f"  {gallery}")

@@ -7,14 +7,20 @@
 The page (:mod:`linkage_sym.page`) needs no network: its script, the functions the symbolic
 layer prints in JavaScript and the evaluator that walks them are inline.  Its layers
 (velocities, accelerations, reactions and driving efforts, instant centres, transmission
-angles) are checkboxes on the page, off until ticked.  A scene the
+angles) are checkboxes on the page, off until ticked.  Its warnings panel opens with the
+warnings of a Python run of the scene (:func:`linkage_sym.analyze`, made here; where that
+run fails, the page is written without it, saying why on standard error, and the panel
+opens with what the page's evaluator finds).  A scene the
 symbolic layer does not derive (a cam contact) is refused with the joint named; nothing is
 written.
 """
 
 from __future__ import annotations
 
+import sys
+
 from linkage_sym.cli.common import OptionError, check_outputs, emit, load
+from linkage_sym.errors import SceneError
 
 __all__ = ["cmd_view", "register"]
 
@@ -28,9 +34,17 @@ def cmd_view(args) -> int:
                           "in .html (or -o - for standard output)")
     check_outputs(files=[("-o/--output", out)])
     scene = load(args.scene)
+    import linkage_sym
     from linkage_sym.page import page_html
 
-    emit(out, page_html(scene))
+    try:  # the run whose warnings the page opens with
+        run = linkage_sym.analyze(scene)
+    except SceneError as err:  # e.g. an assembly at a dead centre: a drag on the page fixes it
+        run = None
+        why = "; ".join(err.problems)
+        print(f"note: the Python run of the scene fails ({why}); the page's warnings panel "
+              "opens with what its own evaluator finds", file=sys.stderr)
+    emit(out, page_html(scene, run))
     return 0
 
 

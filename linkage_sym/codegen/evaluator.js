@@ -20,11 +20,13 @@
 //   (seeds around the known configurations and turned by fixed offsets, bounded Newton
 //   steps, the nearest root of the assembly's sign).  Simpler than the policy: one point
 //   at a time (no batched walk), and no notes (a jump or an ambiguous re-entry is taken
-//   silently: the page has no warnings list; the result file has them);
+//   silently; the result file's warnings have them);
 // - statuses: `unassemblable` where a closed form has no real value, a dyad of two slides
-//   has them parallel (to rounding: its joint at infinity) or the continuation fails (the
-//   joint of such a dyad passing through infinity between two points is not reported: no
-//   warnings list); `singular` where a group block of A (the rate matrix) has a Hadamard ratio below
+//   has them parallel (to rounding: its joint at infinity) or the continuation fails;
+//   `sweep` also gives the passages of such a dyad's joint through infinity (the cross
+//   product of its slides changing sign between two path points where the dyad is solved,
+//   codegen.parallels' test), which the page words as a warning;
+//   `singular` where a group block of A (the rate matrix) has a Hadamard ratio below
 //   SCREEN and the dimensionless A's condition number (one-sided Jacobi SVD) exceeds
 //   SINGULAR_COND, the runtime's screen and test.
 "use strict";
@@ -353,6 +355,7 @@ const LinkageEvaluator = (function () {
       for (let i = 0; i < Qpath.length; i++) {
         const Q = Qpath[i];
         const X = new Array(this.m).fill(null);
+        const cross = {}; // the dyads of two slides: the cross product of their slides
         let failed = -1;
         for (const st of art.steps) {
           if (failed >= 0) break;
@@ -360,7 +363,7 @@ const LinkageEvaluator = (function () {
             const v = this.call(st.function, X, Q);
             st.x.forEach((c, j) => { X[c] = v[j]; });
             for (const c of st.x) if (!Number.isFinite(X[c])) { failed = this.groupOf[c]; break; }
-            const par = this.parallelAt(st, X, Q);
+            const par = this.parallelAt(st, X, Q, cross);
             if (par >= 0 && (failed < 0 || par < failed)) failed = par;
           } else {
             const u = this.newtonAt(this.newton[st.group], walks[st.group], i, { Q: Q, X: X.slice() });
@@ -368,15 +371,16 @@ const LinkageEvaluator = (function () {
             else st.x.forEach((c, k) => { X[c] = u[k] * this.newton[st.group].scale[k]; });
           }
         }
-        out.push({ X: X, failed: failed, Q: Q });
+        out.push({ X: X, failed: failed, Q: Q, cross: cross });
       }
       return out;
     }
 
-    parallelAt(st, X, Q) {
+    parallelAt(st, X, Q, cross) {
       // the first dyad of two slides solved by closed step `st` whose slides are parallel to
-      // rounding (codegen.parallels: its joint at infinity): its group, else -1
-      let CX = null, SX = null;
+      // rounding (codegen.parallels: its joint at infinity): its group, else -1; each such
+      // dyad's cross product recorded in `cross` (group -> value)
+      let CX = null, SX = null, first = -1;
       for (const [g, , , ] of this.art.parallels || []) {
         const cols = this.art.groups.find((gr) => gr.index === g).cols;
         if (!cols.every((c) => st.x.includes(c))) continue;
@@ -384,10 +388,36 @@ const LinkageEvaluator = (function () {
           CX = X.map((v, c) => (v === null || !this.isAngle[c] ? null : Math.cos(v)));
           SX = X.map((v, c) => (v === null || !this.isAngle[c] ? null : Math.sin(v)));
         }
-        const cross = this.call("parallels_" + g, X, Q, null, CX, SX)[0];
-        if (Math.abs(cross) <= this.art.parallel_tol) return g;
+        const c = this.call("parallels_" + g, X, Q, null, CX, SX)[0];
+        cross[g] = c;
+        if (Math.abs(c) <= this.art.parallel_tol && first < 0) first = g;
       }
-      return -1;
+      return first;
+    }
+
+    passages(sol) {
+      // the passages of the joints of dyads of two slides through infinity along a solved
+      // path (codegen.parallels.two_slides' test, on this walk's own numbers): the cross
+      // product of the slides changes sign between two consecutive path points where the
+      // dyad is solved (its coordinates numbers, its slides not parallel); each as
+      // {title, slides, joint, before, after (path point indices), at: after}, dyad by dyad
+      // in the artifact's order, then along the path
+      const out = [];
+      for (const [g, a, b, joint] of this.art.parallels || []) {
+        const group = this.art.groups.find((gr) => gr.index === g);
+        let last = null, side = null;
+        sol.forEach((s, i) => {
+          const c = s.cross[g];
+          const solved = Number.isFinite(c) && Math.abs(c) > this.art.parallel_tol &&
+            group.cols.every((col) => Number.isFinite(s.X[col]));
+          if (!solved) return;
+          if (last !== null && (c > 0) !== side)
+            out.push({ title: group.label + " (" + group.links.join(", ") + ")", slides: [a, b],
+              joint: joint, before: last, after: i });
+          last = i; side = c > 0;
+        });
+      }
+      return out;
     }
 
     newtonAt(pb, w, i, ctx) {
@@ -503,15 +533,23 @@ const LinkageEvaluator = (function () {
     pathTo(Qsteps) {
       // the solving path from the assembly configuration through the steps (numeric.engine.
       // sweep.solving_path): point 0 the assembly, at most `lim` per driver between points;
-      // returns the path and each step's index on it
+      // returns the path and each step's index on it.  As there, every interval between two
+      // steps is cut into as many points as the widest one needs (the points the Python run
+      // walks, so that a warning names the same driver values)
       const D = this.q0.length;
       const path = [];
       const at = [];
+      const points = (a, b) => {
+        let n = 1;
+        for (let d = 0; d < D; d++) n = Math.max(n, Math.ceil(Math.abs(b[d] - a[d]) / this.lim[d]));
+        return n;
+      };
+      let nRef = 1;
+      for (let s = 1; s < Qsteps.length; s++) nRef = Math.max(nRef, points(Qsteps[s - 1], Qsteps[s]));
       let prev = this.q0;
       path.push(this.q0.slice());
       Qsteps.forEach((Q, s) => {
-        let n = 1;
-        for (let d = 0; d < D; d++) n = Math.max(n, Math.ceil(Math.abs(Q[d] - prev[d]) / this.lim[d]));
+        const n = s === 0 ? points(prev, Q) : nRef;
         for (let k = 1; k < n; k++) path.push(prev.map((v, d) => v + (Q[d] - v) * (k / n)));
         path.push(Q.slice());
         at.push(path.length - 1);
@@ -522,16 +560,28 @@ const LinkageEvaluator = (function () {
 
     solveSteps(Qsteps) {
       // every step: {status, message, joints, points, X, Q}
+      return this.sweep(Qsteps).steps;
+    }
+
+    sweep(Qsteps) {
+      // the steps (solveSteps), the solving path (driver values at each point), each step's
+      // point on it, and the passages through infinity along it (passages)
       const { path, at } = this.pathTo(Qsteps);
       const sol = this.solvePath(path);
-      return at.map((k) => {
+      const steps = at.map((k) => {
         const s = sol[k];
         if (s.failed >= 0) {
           const g = this.art.groups.find((gr) => gr.index === s.failed);
-          // worded as the NumPy runtime words it (the continuation's reasons are not kept)
-          const why = g.closed ? ": its closed form has no real solution" :
-            ": no configuration in the assembly mode is reached continuously";
-          return { status: "unassemblable", message: g.label + " (" + g.links.join(", ") + ") cannot be assembled" + why,
+          // worded as the NumPy runtime words it (the continuation's reasons are not kept); a
+          // dyad of two slides that are parallel at this point says so (codegen.parallels)
+          const title = g.label + " (" + g.links.join(", ") + ")";
+          const par = (this.art.parallels || []).find(([pg]) => pg === s.failed);
+          const c = par ? s.cross[s.failed] : NaN;
+          const message = par && Math.abs(c) <= this.art.parallel_tol ?
+            title + ": the slides of joints " + par[1] + " and " + par[2] + " are parallel" :
+            title + " cannot be assembled" + (g.closed ? ": its closed form has no real solution" :
+              ": no configuration in the assembly mode is reached continuously");
+          return { status: "unassemblable", message: message,
             joints: {}, points: {}, X: s.X, Q: s.Q };
         }
         const CX = s.X.map(Math.cos), SX = s.X.map(Math.sin);
@@ -541,6 +591,7 @@ const LinkageEvaluator = (function () {
           "singular position: condition number " + st.condition.toPrecision(3) : null,
           joints: pts.joints, points: pts.points, X: s.X, Q: s.Q };
       });
+      return { steps: steps, path: path, at: at, passages: this.passages(sol) };
     }
   }
 

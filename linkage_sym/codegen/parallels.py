@@ -23,6 +23,7 @@ import numpy as np
 from linkage_sym.codegen.blocks import full
 from linkage_sym.numeric.continuation import messages
 from linkage_sym.numeric.kinematics.loci import PARALLEL_ULPS
+from linkage_sym.numeric.results.passages import PassageNote
 
 __all__ = ["two_slides"]
 
@@ -82,7 +83,7 @@ def two_slides(cm, step, X: list, Qpath: np.ndarray, failed: np.ndarray,
             i, j = int(idx[k]), int(idx[k + 1])
             before = messages.driver_values_text(qpath, kinds, i)
             after = messages.driver_values_text(qpath, kinds, j)
-            notes.append((j, lambda text, before=before, after=after, group=group, a=a, b=b,
-                          joint=joint: messages.parallel_note(group.title, (a, b), joint, before,
-                                                              after, text)))
+            notes.append(PassageNote(j, lambda text, before=before, after=after, group=group,
+                                     a=a, b=b, joint=joint: messages.parallel_note(
+                                         group.title, (a, b), joint, before, after, text), joint))
     return notes

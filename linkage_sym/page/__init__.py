@@ -13,7 +13,11 @@ page opens, draw the joints' and traced points' velocities and accelerations, th
 reactions and driving efforts (arrows with one scale over the sweep, written on the page),
 the instant centres with the three-centre lines of Kennedy's construction, and the RRR
 dyads' transmission angles; a layer the scene has no values for (no mass, inertia or load:
-no forces; no RRR dyad) is disabled, its reason shown.  For tests and scripts it defines
+no forces; no RRR dyad) is disabled, its reason shown.  Its warnings panel (``warnings.js``,
+:mod:`linkage_sym.page.warnings`) opens with those of the Python run the page was built from,
+when its caller gives one, and after each change lists what the page's evaluator finds (steps
+that cannot be assembled or are singular, a joint passing through infinity), the run's
+other warnings greyed as from the scene as built.  For tests and scripts it defines
 ``window.linkageSym``:
 
 - ``solve(q)``: the mechanism at the driver values ``q`` (a number for one driver, a list
@@ -23,6 +27,9 @@ no forces; no RRR dyad) is disabled, its reason shown.  For tests and scripts it
 - ``moveJoint(name, x, y)``: what a drag does (every joint at the same point moves with
   it); returns ``{error, counts}`` (the sweep's statuses counted);
 - ``scene()``: the current scene in the format's JSON (what ``linkage-sym analyze`` reads);
+- ``warnings()``: the panel: ``{shown: [{text, origin, recomputed, stale}], page, built,
+  changed}`` (``origin`` ``"python"`` or ``"page"``; ``page`` the texts the page's evaluator
+  finds now, ``built`` the run's or null, ``changed`` whether the scene differs from it);
 - ``layers(q)``: the layers' values at ``q`` (the drivers at the scene's speeds and
   accelerations): ``{status, velocities: {joints, points}, accelerations: {joints, points},
   reactions: {joint: [fx, fy]}, reaction_moments, driving: {joint: effort}, centres:
@@ -48,15 +55,14 @@ Examples
 from __future__ import annotations
 
 import json
-from importlib import resources
-
-import json
 import math
+from importlib import resources
 
 from linkage_sym.centres import kennedy_lines, velocity
 from linkage_sym.codegen.javascript import CONSTANTS, evaluator_source, mechanism_script
 from linkage_sym.model import Scene
 from linkage_sym.page.cam_model import cam_page_model
+from linkage_sym.page.warnings import built_warnings
 
 __all__ = ["cam_script", "layer_constants", "page_html"]
 
@@ -93,8 +99,13 @@ def layer_constants() -> str:
     return f"const LAYER_CONST = {json.dumps(consts)};"
 
 
-def page_html(scene: Scene) -> str:
+def page_html(scene: Scene, analysis=None) -> str:
     """The page of ``scene`` (one HTML document, everything inline).
+
+    ``analysis``: a Python run of ``scene`` (:func:`linkage_sym.analyze`; the command line's
+    ``view`` makes one), whose warnings the page's warnings panel opens with
+    (:func:`~linkage_sym.page.warnings.built_warnings`); without it the panel opens with what
+    the page's own evaluator finds.  The page itself runs no Python solver.
 
     Raises
     ------
@@ -102,7 +113,9 @@ def page_html(scene: Scene) -> str:
         A mechanism with cam contacts and a group the page's port of the solvers does not
         solve (a dyad other than RRR, a gear, a Newton group), naming it.
     """
-    layers = [layer_constants(), _read("centres.js"), _read("layers.js")]
+    built = None if analysis is None else built_warnings(analysis)
+    layers = [layer_constants(), _read("centres.js"), _read("layers.js"),
+              f"const BUILT = {_json(built)};", _read("warnings.js")]
     if scene.cams:  # the symbolic layer derives no cam contact: cams.js ports the solvers
         script = "\n".join([cam_script(scene), _read("cams.js"), *layers, _read("page.js")])
     else:

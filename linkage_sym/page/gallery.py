@@ -212,9 +212,13 @@ def _facts(scene: Scene) -> str:
                       f"{drivers} driver{'s' if drivers != 1 else ''}", *extra])
 
 
-def write_gallery(folder: Path, names: list[str]) -> list[Path]:
+def write_gallery(folder: Path, names: list[str], runs: dict | None = None) -> list[Path]:
     """Write the pages of the shipped examples ``names`` (``folder/pages/<name>.html``) and
     ``folder/gallery.html`` linking them; the paths written, the gallery first.
+
+    ``runs``: a Python run of each example (name -> :func:`linkage_sym.analyze` of it), whose
+    warnings its page's panel opens with (:func:`~linkage_sym.page.page_html`); an example
+    without one opens with what its page's evaluator finds.
 
     Raises
     ------
@@ -235,7 +239,7 @@ def write_gallery(folder: Path, names: list[str]) -> list[Path]:
     for name in names:
         scene = load_example(name)
         path = pages / f"{name}.html"
-        path.write_text(page_html(scene), encoding="utf-8")
+        path.write_text(page_html(scene, (runs or {}).get(name)), encoding="utf-8")
         written.append(path)
         items.append({"name": name, "title": scene.name, "description": descriptions[name],
                       "href": f"pages/{name}.html", "svg": thumbnail_svg(scene),

@@ -1,5 +1,6 @@
 // The page of one mechanism: drawing, controls, editing, and window.linkageSym.
-// Reads MODEL, GENERATED and LinkageEvaluator (linkage_sym.codegen.javascript's script).
+// Reads MODEL, GENERATED and LinkageEvaluator (linkage_sym.codegen.javascript's script), and
+// BUILT and PageWarnings (the warnings panel: warnings.js).
 (function () {
   "use strict";
   const E = LinkageEvaluator;
@@ -12,8 +13,12 @@
   const drivers = model.drivers;
   const steps = Math.max(2, drivers.length ? drivers[0].steps : 2);
   const sweep = [];
+  // the driver values as NumPy's linspace gives them (k * step + start, the last the stop),
+  // so that a warning names the values the Python run names
   for (let k = 0; k < steps; k++)
-    sweep.push(drivers.map((d) => d.start + (d.stop - d.start) * (k / (steps - 1))));
+    sweep.push(drivers.map((d) => (k === steps - 1 && steps > 1 ? d.stop :
+      k * ((d.stop - d.start) / (steps - 1)) + d.start)));
+  const builtScene = JSON.stringify(MODEL.scene); // the scene as built (BUILT's)
   // the gears' pivots: fixed by the meshes' pitch radii (a drag would break the mesh)
   const gearPivots = new Set();
   for (const n of model.order) if (model.joints[n].type === "G") model.joints[n].pivots.forEach((p) => gearPivots.add(p));
@@ -23,6 +28,7 @@
   let mech = null;   // the mechanism of the current geometry (null when it cannot be built)
   let problem = null; // why not
   let cycle = [];    // the solved sweep
+  let found = [];    // the warnings the page's evaluator finds for it (warnings.js)
   let index = 0, playing = true, speed = 1.0, lastTime = null, editing = false;
   let view = null;   // world -> canvas transform
   let dragging = null;
@@ -33,6 +39,9 @@
   // the layers (layers.js): off until a box is ticked
   const layerView = PageLayers.create({ model: model, ctx: ctx, canvas: canvas,
     toCanvas: (p) => toCanvas(p), mechanism: () => mech, cycle: () => cycle, redraw: () => draw() });
+  // the warnings panel: the Python run's until the mechanism changes, then the page's own
+  const warningView = PageWarnings.create({ built: BUILT, drivers: drivers, panel: $("warnings"),
+    list: $("warnings-list"), source: $("warnings-source") });
 
   // -- solving --------------------------------------------------------------------------
   function rebuild(tables = true) {
@@ -40,13 +49,18 @@
       // a mechanism with cam contacts: the numeric layer's solvers ported (cams.js)
       mech = model.cams ? new LinkageCams.Mechanism(model) : new E.Mechanism(model.artifact, GENERATED, model);
       problem = null;
-      cycle = mech.solveSteps(sweep);
+      // the steps, and the solving path's passages through infinity (cams.js has none)
+      const run = mech.sweep ? mech.sweep(sweep) : { steps: mech.solveSteps(sweep), passages: [] };
+      cycle = run.steps;
+      found = PageWarnings.found(run, drivers);
     } catch (err) {
       if (!(err instanceof E.SceneError)) throw err;
       mech = null;
       problem = err.message;
       cycle = [];
+      found = [];
     }
+    warningView.update(found, JSON.stringify(model.scene) !== builtScene);
     view = null;
     layerView.reset(!tables); // while a drag goes on, the arrows keep their scales
     if (tables) refreshTables(); // a drag refreshes them once, when it ends
@@ -471,7 +485,7 @@
         "edits the profile; a dragged ground pivot re-solves the sweep (the cam turns about " +
         "another point of its profile, or the follower turns or slides elsewhere). Edit a " +
         "profile in the scene file.";
-      document.querySelector("aside .hint").after(note);
+      document.querySelector("aside > .hint").after(note); // under the joints' hint
       document.querySelector("header .by").textContent = "solved in this page by linkage_sym's " +
         "numeric cam solver, ported to JavaScript (the symbolic layer derives no cam contact)";
     }
@@ -532,6 +546,7 @@
     moveJoint: (name, x, y) => moveJoint(name, x, y),
     scene: sceneJSON,
     summary: summary,
+    warnings: () => warningView.value(),
     layers: layers,
     setLayer: (name, on) => layerView.setLayer(name, on),
     layerScales: () => layerView.scales(),

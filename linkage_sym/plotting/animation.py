@@ -26,6 +26,12 @@ global state).  Each frame shows one step of the sweep:
 Every arrow of a layer has one scale over the whole animation (its largest
 value is drawn :data:`ARROW_SHARE` mechanism sizes long); the legend gives it.
 
+Where a dyad of two slides carries a joint through infinity between two steps
+(:attr:`Analysis.passages <linkage_sym.numeric.results.result.Analysis>`), the paths
+of the points carried off are not joined across it, the drawing frames the rest of the
+mechanism (:func:`~linkage_sym.plotting.breaks.passage_view`: those points leave it
+near the passage), and the frames of the two steps say so in a box.
+
 A step that is not ``ok`` is never skipped: its frame says so in a red box
 (the status and the solver's message).  An ``unassemblable`` step has no
 pose: its frame draws the last solved pose before it faded (alpha
@@ -78,7 +84,9 @@ from linkage_sym.plotting.animation_layers import COLORS, Layers
 from linkage_sym.plotting.centres import KIND_STYLE
 from linkage_sym.plotting.motion import driver_axis
 from linkage_sym.plotting.cam_drawing import cam_outline, points_on_link
-from linkage_sym.plotting.paths import mechanism_snapshot, traced_paths, valid_steps
+from linkage_sym.plotting.breaks import gap_label, passage_note, passage_view
+from linkage_sym.plotting.paths import (joint_point_links, mechanism_snapshot, traced_paths,
+                                        valid_steps)
 
 __all__ = ["ARROW_SHARE", "DEFAULT_FPS", "DEFAULT_FRAMES", "FADED", "LAYERS", "SUFFIXES",
            "AnimationError", "MechanismAnimation", "animate", "check_fps", "frame_steps",
@@ -261,10 +269,15 @@ class MechanismAnimation(Layers):
     def _extent(self):
         """Corners (axis units) of everything drawn over the frames."""
         a, s = self.analysis, self.unit_scale
-        pts = [np.asarray(j.at, dtype=float)[None, :] for j in self.scene.joints]
-        pts += [np.asarray(jk.position, dtype=float) for jk in a.joints.values()]
-        pts += [np.asarray(pk.position, dtype=float) for pk in (a.points or {}).values()]
-        pts += [np.asarray(lk.com, dtype=float) for lk in a.links.values() if lk.com is not None]
+        view = passage_view(self.scene, a, joint_point_links)
+        if view is None:
+            pts = [np.asarray(j.at, dtype=float)[None, :] for j in self.scene.joints]
+            pts += [np.asarray(jk.position, dtype=float) for jk in a.joints.values()]
+            pts += [np.asarray(pk.position, dtype=float) for pk in (a.points or {}).values()]
+            pts += [np.asarray(lk.com, dtype=float) for lk in a.links.values()
+                    if lk.com is not None]
+        else:  # points carried through infinity leave the drawing (and take their arrows)
+            pts = [np.asarray(view, dtype=float)]
         shown = [int(i) for i in self.steps if self.valid[i]]
         for joint in self.scene.cams:  # a cam is its profile
             outline = cam_outline(joint)[0]
@@ -277,7 +290,11 @@ class MechanismAnimation(Layers):
         if "forces" in self.layers:
             arrows += [(p, r, self.scales["reactions"] / s) for _, p, r in self._reactions()]
         for p, v, k in arrows:
-            pts.append(p[self.steps][ok] + k * v[self.steps][ok])
+            p, v = p[self.steps][ok], v[self.steps][ok]
+            if view is not None:
+                inside = np.all((p >= view[0]) & (p <= view[1]), axis=-1)
+                p, v = p[inside], v[inside]
+            pts.append(p + k * v)
         allp = np.concatenate([_finite_rows(p) for p in pts], axis=0)
         lo, hi = allp.min(axis=0), allp.max(axis=0)
         pad = 0.06 * float((hi - lo).max()) + 0.1 * self.L  # the ground symbols, the labels
@@ -307,8 +324,8 @@ class MechanismAnimation(Layers):
         ax.set_xlabel(f"x ({self.unit})")
         ax.set_ylabel(f"y ({self.unit})")
         ax.grid(True, color="0.92", lw=0.6, zorder=0)
-        handles = [Line2D([], [], color=p.color, lw=p.lw, ls=p.ls, label=p.label)
-                   for p in self.paths]
+        handles = [Line2D([], [], color=p.color, lw=p.lw, ls=p.ls,
+                          label=gap_label(p.label, p.gaps, ",\n  ")) for p in self.paths]
         handles += self._layer_handles()
         if handles:
             fig.legend(handles=handles, loc="upper left", fontsize=7, frameon=False,
@@ -377,8 +394,8 @@ class MechanismAnimation(Layers):
         s = self.unit_scale
         before = set(ax.get_children())
         ax.set_title(self._title(step), fontsize=10)
-        for p in self.paths:  # grown up to the step
-            pos = p.position[: step + 1] * s
+        for p in self.paths:  # grown up to the step, broken where it passes through infinity
+            pos = p.drawn(step) * s
             ax.plot(pos[:, 0], pos[:, 1], color=p.color, lw=p.lw, ls=p.ls, zorder=p.zorder,
                     gid=f"trace {p.label}")
         if self.valid[step]:
@@ -402,7 +419,20 @@ class MechanismAnimation(Layers):
             self._transmission(step)
         if status != OK:
             self._status_note(step, status, pose)
+        self._passage_note(step)
         return [a for a in ax.get_children() if a not in before]
+
+    def _passage_note(self, step: int) -> None:
+        """On the frames of the two steps around a passage through infinity, what it breaks."""
+        kinds = {d.joint: d.kind for d in self.scene.drivers}
+        lines = [textwrap.fill(passage_note(self.analysis, p, kinds), 64)
+                 for p in self.analysis.passages if step in (p.before, p.after)]
+        if lines:
+            self.ax.text(0.98, 0.02, "\n".join(lines), transform=self.ax.transAxes, ha="right",
+                         va="bottom", fontsize=8, color="0.2", zorder=20,
+                         gid="passage through infinity",
+                         bbox={"boxstyle": "round,pad=0.3", "fc": "white", "ec": "0.5",
+                               "alpha": 0.92})
 
     def _status_note(self, step: int, status: str, pose) -> None:
         message = self.analysis.messages[step] or ""

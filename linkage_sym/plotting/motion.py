@@ -22,6 +22,7 @@ import numpy as np
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.plotting import style
+from linkage_sym.plotting.breaks import gap_label, gaps_of, mark_passages, with_breaks
 
 QUANTITIES = ("position", "velocity", "acceleration")
 _FILE_SUFFIX = {"position": "positions", "velocity": "velocities", "acceleration": "accelerations"}
@@ -241,7 +242,10 @@ def motion_figure(scene: Scene, analysis: Analysis, quantity: str):
     if ax_sliders is not None:
         ylabel, sym = _SLIDER_LABELS[quantity]
         for link, label, values in sliders:
-            ax_sliders.plot(x, values, lw=1.8, color=colors.get(link), label=f"{sym}: {label}")
+            gaps = gaps_of(analysis, [link])  # a slider carried through infinity: not joined
+            xs, values = with_breaks(gaps, x, values)
+            ax_sliders.plot(xs, values, lw=1.8, color=colors.get(link),
+                            label=gap_label(f"{sym}: {label}", gaps))
         ax_sliders.set_ylabel(ylabel)
         ax_sliders.axhline(0.0, color="0.5", lw=0.6, zorder=0.5)
 
@@ -250,6 +254,7 @@ def motion_figure(scene: Scene, analysis: Analysis, quantity: str):
                      va="center", transform=axes[0].transAxes, color="0.4")
 
     band_handles = style.shade_bad_steps(axes, x, analysis.status, label_ax=axes[0])
+    band_handles += mark_passages(axes, x, analysis)
     style.driver_ticks(axes[-1], x, xlabel, xunit)
     for ax in axes:
         ax.grid(True, color="0.9", lw=0.6)
@@ -281,7 +286,9 @@ def motion_diagrams(scene: Scene, analysis: Analysis, out_dir, prefix: str | Non
     acceleration along its axis of every slider on the ground (m, m/s, m/s²: the
     units of the result files).  Links that only
     translate have no rotation curve.  Steps that are not ``ok`` break the
-    curves and are shaded grey, labelled ``unassemblable`` or ``singular``.
+    curves and are shaded grey, labelled ``unassemblable`` or ``singular``.  A slider
+    that a passage through infinity carries off (:attr:`Analysis.passages`) has its curve
+    broken between the two steps, marked by a dotted vertical line.
 
     Parameters
     ----------

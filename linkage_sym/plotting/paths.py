@@ -25,6 +25,8 @@ from matplotlib.patches import Circle, Polygon
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.plotting import style
+from linkage_sym.plotting.breaks import (frame_passages, gap_label, gaps_of, passage_view,
+                                         with_breaks)
 from linkage_sym.plotting.cam_drawing import draw_cam
 
 
@@ -340,12 +342,15 @@ def _still(path, scene) -> bool:
     return span <= 1e-9 * (scene.characteristic_length() or 1.0)
 
 
-def _figure_for(scene, analysis):
-    """A figure whose axis has roughly the aspect of the drawing (equal scales)."""
+def _figure_for(scene, analysis, view=None):
+    """A figure whose axis has roughly the aspect of the drawing (equal scales); of the box
+    ``view`` (:func:`~linkage_sym.plotting.breaks.passage_view`) when given."""
     pts = [np.asarray(j.at, dtype=float)[None, :] for j in scene.joints]
-    for jk in analysis.joints.values():
+    if view is not None:
+        pts = [np.asarray(view, dtype=float)]
+    for jk in analysis.joints.values() if view is None else ():
         pts.append(np.asarray(jk.position, dtype=float))
-    for lk in analysis.links.values():
+    for lk in analysis.links.values() if view is None else ():
         if lk.com is not None:
             pts.append(np.asarray(lk.com, dtype=float))
     allp = np.concatenate(pts, axis=0)
@@ -386,6 +391,9 @@ class TracedPath:
     zorder : float
     point : ScenePoint or None
         The traced point of the scene, for a traced point's path.
+    gaps : tuple of int
+        The steps after which the path breaks: a passage through infinity carries its
+        point off between them and the next (:func:`~linkage_sym.plotting.breaks.gaps_of`).
     """
 
     position: np.ndarray
@@ -395,10 +403,23 @@ class TracedPath:
     lw: float
     zorder: float
     point: object = None
+    gaps: tuple = ()
+
+    def drawn(self, upto: int | None = None) -> np.ndarray:
+        """The path as it is drawn: up to step ``upto`` (default the last), with a NaN row
+        after each of :attr:`gaps` (a break in the line)."""
+        stop = len(self.position) if upto is None else upto + 1
+        return with_breaks([g for g in self.gaps if g + 1 < stop], self.position[:stop])[0]
 
 
 PATH_STYLES = ("-", (0, (6, 2)), (0, (1, 1.5)), (0, (6, 2, 1, 2)))
 """Line styles of paths that share a colour, in turn."""
+
+
+def joint_point_links(joint) -> tuple:
+    """The links whose poses place a joint's point: both links of a pin or a cam's contact,
+    the link a slide's or a mesh's point is fixed on (:attr:`Joint.moves_with`)."""
+    return tuple(joint.links) if joint.type in ("R", "cam") else (joint.moves_with,)
 
 
 def traced_paths(scene: Scene, analysis: Analysis) -> list:
@@ -440,8 +461,9 @@ def traced_paths(scene: Scene, analysis: Analysis) -> list:
     for pos, names, col in drawn:
         k = per_color.get(col, 0)
         per_color[col] = k + 1
+        gaps = gaps_of(analysis, [k for n in names for k in joint_point_links(scene.joint(n))])
         out.append(TracedPath(pos, f"path of {', '.join(names)}", col,
-                              PATH_STYLES[k % len(PATH_STYLES)], 1.6, 4))
+                              PATH_STYLES[k % len(PATH_STYLES)], 1.6, 4, gaps=gaps))
     points = getattr(analysis, "points", {}) or {}
     for k, pt in enumerate(scene.points):
         pk = points.get(pt.name)
@@ -449,7 +471,8 @@ def traced_paths(scene: Scene, analysis: Analysis) -> list:
             continue
         out.append(TracedPath(np.asarray(pk.position, dtype=float),
                               f"point {pt.name} (on {pt.link})", lcolors.get(pt.link),
-                              PATH_STYLES[k % len(PATH_STYLES)], 2.4, 5, pt))
+                              PATH_STYLES[k % len(PATH_STYLES)], 2.4, 5, pt,
+                              gaps_of(analysis, [pt.link])))
     return out
 
 
@@ -489,7 +512,8 @@ def coupler_curves_figure(scene: Scene, analysis: Analysis):
     matplotlib.figure.Figure
     """
     unit, scale = style.length_unit(scene)
-    fig = _figure_for(scene, analysis)
+    view = passage_view(scene, analysis, joint_point_links)
+    fig = _figure_for(scene, analysis, view)
     ax = fig.subplots()
     ax.set_aspect("equal", adjustable="datalim")
 
@@ -501,9 +525,9 @@ def coupler_curves_figure(scene: Scene, analysis: Analysis):
     mechanism_snapshot(scene, analysis, None, ax, alpha=1.0, labels=True, unit_scale=scale)
 
     for path in traced_paths(scene, analysis):
-        pos = path.position * scale
+        pos = path.drawn() * scale
         ax.plot(pos[:, 0], pos[:, 1], color=path.color, lw=path.lw, ls=path.ls,
-                zorder=path.zorder, label=path.label)
+                zorder=path.zorder, label=gap_label(path.label, path.gaps))
         if path.point is not None:
             pt = path.point
             ax.plot([pt.at[0] * scale], [pt.at[1] * scale], marker="o", ms=6, mfc="white",
@@ -518,15 +542,19 @@ def coupler_curves_figure(scene: Scene, analysis: Analysis):
         com = np.asarray(lk.com, dtype=float)
         if _still(com, scene):
             continue
+        gaps = gaps_of(analysis, [link.name])
+        com = with_breaks(gaps, com)[0]
         ax.plot(com[:, 0] * scale, com[:, 1] * scale, color=lcolors.get(link.name), lw=1.0,
                 ls=(0, (2, 2)), alpha=0.9, zorder=4,
-                label=f"centre of mass of {link.name}")
+                label=gap_label(f"centre of mass of {link.name}", gaps))
 
     ax.set_xlabel(f"x ({unit})")
     ax.set_ylabel(f"y ({unit})")
     ax.grid(True, color="0.92", lw=0.6, zorder=0)
     ax.autoscale_view()
     ax.margins(0.08)
+    if view is not None:  # the points carried through infinity leave the drawing
+        frame_passages(ax, scene, analysis, view, scale)
     where = ", ".join(str(s) for s in snaps)
     ax.set_title(f"{scene.name}: {'coupler curves, ' if scene.points else ''}joint and centre-of-mass paths\n"
                  f"bold: assembly configuration; faded: steps {where}" if snaps else

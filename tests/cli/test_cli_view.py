@@ -78,3 +78,35 @@ def test_view_to_standard_output(capsys):
     assert main(["view", str(example_path("slider_crank_offset")), "-o", "-"]) == 0
     out = capsys.readouterr().out
     assert out.startswith("<!DOCTYPE html>") and out.rstrip().endswith("</html>")
+
+
+def test_view_embeds_the_warnings_of_the_python_run(tmp_path, capsys):
+    """The page opens with the warnings of ``analyze`` of the scene (the guide-slider's joint
+    passing through infinity), as JSON in the page's script."""
+    from tests.support.parallel_slides import guide_slider
+
+    scene = tmp_path / "gs.json"
+    scene.write_text(json.dumps(guide_slider(10)))
+    out = tmp_path / "gs.html"
+    assert main(["view", str(scene), "-o", str(out)]) == 0
+    text = ("dyad PRP (rod, block): the slides of joints A_slide and C_guide become parallel "
+            "between A = 1.66667° and A = -1.66667°: joint C passes through infinity there; "
+            "at step 5 (reached from step 4) it is on the far side of its slides")
+    assert f"const BUILT = {json.dumps([text])};" in out.read_text()
+    assert capsys.readouterr().err == ""
+
+
+def test_view_of_a_scene_the_python_run_refuses_writes_the_page_saying_why(tmp_path, capsys):
+    """An assembly at a dead centre: the run fails, the page (where a drag can move the joint
+    off it) is written without the run's warnings, the reason on standard error."""
+    scene = json.loads(example_path("crank_rocker").read_text())
+    scene["joints"][2]["at"] = [0.05, 0.0]  # C on the line of B and D
+    path = tmp_path / "dead.json"
+    path.write_text(json.dumps(scene))
+    out = tmp_path / "dead.html"
+    assert main(["view", str(path), "-o", str(out)]) == 0
+    assert "const BUILT = null;" in out.read_text()
+    err = capsys.readouterr().err
+    assert err.startswith("note: the Python run of the scene fails (joints: the assembly "
+                          "configuration is a singular position of the dyad RRR")
+    assert "the page's warnings panel opens with what its own evaluator finds" in err

@@ -36,3 +36,21 @@ def test_a_scene_without_two_slides_has_no_such_column():
 
     res = sweep(load_example("crank_rocker"), {"l_AB": [0.02, 0.025]})
     assert "through_infinity" not in res.columns
+
+
+def test_designs_solved_one_at_a_time_count_the_passages_alike(monkeypatch):
+    """Forced onto the numeric plan one design at a time (the route of designs with a group
+    without a closed form), the count is the geometry's as well (the plan's angles give the
+    slides' directions there)."""
+    from linkage_sym.design.evaluate import Model
+
+    init = Model.__init__
+
+    def one_at_a_time(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        self.one_at_a_time = True
+
+    monkeypatch.setattr(Model, "__init__", one_at_a_time)
+    gammas = [0.0, 0.3, 0.6, math.pi - 0.2]
+    res = sweep(guide_slider(10), {"gamma_C_guide": gammas})
+    assert res["through_infinity"].tolist() == [1, 1, 0, 1]

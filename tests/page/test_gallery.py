@@ -110,3 +110,16 @@ def test_write_gallery_writes_the_pages_it_is_given(tmp_path):
     parsed = _Cards()
     parsed.feed(written[0].read_text("utf-8"))
     assert parsed.hrefs == ["pages/cam_eccentric_rocker.html"]
+
+
+def test_write_gallery_embeds_each_example_s_run_it_is_given(tmp_path):
+    """A page with a run opens with its warnings (none for the crank-rocker), one without
+    with its evaluator's (``BUILT`` null)."""
+    import linkage_sym
+    from linkage_sym.examples import load_example
+
+    run = linkage_sym.analyze(load_example("crank_rocker"))
+    _, with_run, without = write_gallery(tmp_path, ["crank_rocker", "fivebar"],
+                                         {"crank_rocker": run})
+    assert "const BUILT = [];" in with_run.read_text("utf-8")
+    assert "const BUILT = null;" in without.read_text("utf-8")

@@ -5,7 +5,9 @@ with ``x, y, phi`` of its centre of mass), ``RevoluteJoint2D`` and ``PrismaticJo
 constraints (index 3), gravity as a mass-proportional load, the loads at their points (a
 force's ``active_deg`` window and a torque's followed by the driven link's own rotation,
 modulo the period, ends included), and the motor's torque on the driven link from its speed
-(the table interpolated linearly, its end rows held); integrated by Exudyn's implicit
+(the table interpolated linearly, its end rows held), and springs between two links as
+spring-dampers between their two points (tension ``k (L - L0) + c dL/dt``, ``free_length``
+defaulting to the points' distance as given); integrated by Exudyn's implicit
 generalized-alpha solver (no numerical damping: spectral radius 1) at a fixed step.
 What the scene format says is read from it directly: a ``P`` joint's axis is fixed on
 ``links[0]`` at ``axis_deg`` in the assembly configuration, ``links[1]`` slides along it.
@@ -40,8 +42,9 @@ def driver_speed(data: dict, duration: float, step: float, newton=(1e-12, 1e-14)
     import exudyn as exu
     from exudyn.utilities import (Force, LoadMassProportional, MarkerBodyMass,
                                   MarkerBodyPosition, MarkerBodyRigid, NodeRigidBody2D,
-                                  ObjectGround, ObjectJointPrismatic2D, ObjectRigidBody2D,
-                                  RevoluteJoint2D, SensorNode, Torque)
+                                  ObjectConnectorSpringDamper, ObjectGround,
+                                  ObjectJointPrismatic2D, ObjectRigidBody2D, RevoluteJoint2D,
+                                  SensorNode, Torque)
 
     links = {lk["name"]: lk for lk in data["links"]}
     joints = {j["name"]: j for j in data["joints"]}
@@ -86,6 +89,17 @@ def driver_speed(data: dict, duration: float, step: float, newton=(1e-12, 1e-14)
                 normalMarker1=[-math.sin(u), math.cos(u), 0.0]))
         else:
             raise ValueError(f"joint type {j['type']} is not modelled here")
+    if data.get("effects", {}).get("springs", bool(data.get("springs"))):
+        for spring in data.get("springs", []):
+            if "joint" in spring:
+                raise ValueError("a spring at a joint (torsion) is not modelled here")
+            (a, b), (pa, pb) = spring["links"], spring["at"]
+            ends = [mbs.AddMarker(MarkerBodyPosition(bodyNumber=body[n], localPosition=local(n, p)))
+                    for n, p in ((a, pa), (b, pb))]
+            free = spring.get("free_length", math.dist(pa, pb))
+            mbs.AddObject(ObjectConnectorSpringDamper(
+                markerNumbers=ends, referenceLength=float(free), stiffness=float(spring["stiffness"]),
+                damping=float(spring.get("damping", 0.0))))
     g = data.get("effects", {}).get("gravity")
     if g:
         for name in links:

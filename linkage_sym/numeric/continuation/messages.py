@@ -127,7 +127,7 @@ def step_warnings(notes, step_points) -> list[str]:
     """
     out = []
     step_points = np.asarray(step_points)
-    for p, text in notes:
+    for p, text, *_ in notes:  # a passage's note also names its joint
         k = int(np.searchsorted(step_points, p))
         if k >= len(step_points):
             continue  # on the way to the first step only: no step sees it

@@ -33,6 +33,7 @@ from linkage_sym.numeric.kinematics.loci import (
     line_line,
     solve2,
 )
+from linkage_sym.numeric.results.passages import PassageNote
 from linkage_sym.structure import Group
 
 ASSEMBLY_TOL = 1e-12
@@ -334,8 +335,8 @@ class DyadSolver:
             a, b = int(solved[k]), int(solved[k + 1])
             before = messages.driver_values_text(q, kinds, a)
             after = messages.driver_values_text(q, kinds, b)
-            out.append((b, lambda step, before=before, after=after: messages.parallel_note(
-                head, self.slides, self.names[1], before, after, step)))
+            out.append(PassageNote(b, lambda step, before=before, after=after: messages.parallel_note(
+                head, self.slides, self.names[1], before, after, step), self.names[1]))
         return out
 
     def _rpr_position(self, S, b0, b1):

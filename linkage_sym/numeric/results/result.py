@@ -257,6 +257,11 @@ class Analysis:
         Every pair's instant centre at every step, when the scene lists the
         ``instant_centres`` output (an extension of the format; see
         :mod:`linkage_sym.centres`); written to each ``ok`` step's record.
+    passages : tuple of InfinityPassage
+        Where a dyad of two slides carries its joint through infinity between two steps
+        (:mod:`linkage_sym.numeric.results.passages`): the joint, the steps on either side
+        and the links carried off, for the plots to break their lines there.  Each has its
+        warning in ``warnings``; not written to the JSON (the warning is).
     """
 
     scene: str
@@ -276,6 +281,7 @@ class Analysis:
     accuracy: dict | None = None
     extremes: dict | None = None
     instant_centres: object = None
+    passages: tuple = ()
 
     @property
     def ok(self) -> np.ndarray:
