@@ -89,7 +89,7 @@ from linkage_sym.plotting.motion import driver_axis
 from linkage_sym.plotting.cam_drawing import cam_outline, points_on_link
 from linkage_sym.plotting.animation_scale import (CUT, PERCENTILE, cut_handle, cut_vectors,
                                                   typical_size)
-from linkage_sym.plotting.breaks import gap_label, passage_note, passage_view
+from linkage_sym.plotting.breaks import gap_label, jump_notes_text, passage_note, passage_view
 from linkage_sym.plotting.paths import (joint_point_links, mechanism_snapshot, traced_paths,
                                         valid_steps)
 
@@ -453,6 +453,7 @@ class MechanismAnimation(Layers):
         kinds = {d.joint: d.kind for d in self.scene.drivers}
         lines = [textwrap.fill(passage_note(self.analysis, p, kinds), 64)
                  for p in self.analysis.passages if step in (p.before, p.after)]
+        lines += [text] if (text := jump_notes_text(self.scene, self.analysis, (step,), 64)) else []
         if lines:
             self.ax.text(0.98, 0.02, "\n".join(lines), transform=self.ax.transAxes, ha="right",
                          va="bottom", fontsize=8, color="0.2", zorder=20,

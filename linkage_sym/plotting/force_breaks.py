@@ -23,6 +23,7 @@ keeps its curves, the joints it pins to a loaded link included.
 from __future__ import annotations
 
 from linkage_sym.model import GROUND
+from linkage_sym.plotting.breaks import breaks_of
 from linkage_sym.structure.groups import decompose
 
 __all__ = ["effort_gaps", "frame_gaps", "loaded_links", "reaction_gaps"]
@@ -84,20 +85,20 @@ def _owner(dec, joint: str):
 
 
 def _gaps(analysis, scene, joints) -> tuple:
-    """The steps before each passage (step 0 on) whose loads reach the group of one of
-    ``joints`` (a joint of no group: every passage)."""
-    if not any(p.before is not None for p in analysis.passages):
+    """The steps before each passage or Newton group's jump (step 0 on) whose links' loads
+    reach the group of one of ``joints`` (a joint of no group: every one), as
+    :class:`~linkage_sym.plotting.breaks.Gap`."""
+    records = (*analysis.passages, *getattr(analysis, "jumps", ()))
+    if not any(r.before is not None for r in records):
         return ()
     dec = decompose(scene)
     owners = [_owner(dec, j) for j in joints]
-    out = set()
-    for p in analysis.passages:
-        if p.before is None:
-            continue
-        loaded = loaded_links(scene, p.links, dec)
-        if any(g is None or loaded & set(g.links) for g in owners):
-            out.add(p.before)
-    return tuple(sorted(out))
+
+    def touches(links):
+        loaded = loaded_links(scene, links, dec)
+        return any(g is None or loaded & set(g.links) for g in owners)
+
+    return breaks_of(analysis, touches)
 
 
 def reaction_gaps(analysis, scene, joint: str) -> tuple:

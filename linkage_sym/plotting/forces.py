@@ -24,6 +24,7 @@ infinity between two steps breaks every curve whose force it makes unbounded the
 from __future__ import annotations
 
 import math
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -97,12 +98,18 @@ def _bad_note(analysis: Analysis) -> str:
 
 
 def _passages_note(analysis: Analysis) -> str:
-    """What the passages through infinity do to the hodographs, or ``""``."""
+    """What the passages through infinity and the Newton groups' jumps do to the
+    hodographs, or ``""``."""
     words = [f"joint {p.joint} through infinity between steps {p.before} and {p.after}"
              for p in analysis.passages if p.before is not None]
-    if not words:
-        return ""
-    return f"{'; '.join(words)}: the reactions it makes unbounded are not joined there"
+    groups: dict = {}
+    for j in analysis.jumps:
+        if j.before is not None:
+            groups.setdefault(j.group.split(" (")[0], []).append(f"{j.before} and {j.after}")
+    jumps = [f"{g} jumps assembly mode between steps {', '.join(k)}" for g, k in groups.items()]
+    out = [f"{'; '.join(words)}: the reactions it makes unbounded are not joined there"] if words else []
+    out += [f"{'; '.join(jumps)}: the reactions it moves are not joined there"] if jumps else []
+    return "\n".join(textwrap.fill(line, 100) for line in out)
 
 
 def _forces_or_raise(analysis: Analysis):
