@@ -52,6 +52,7 @@ from linkage_sym.numeric.kinematics.joint_rows import scene_constraints
 from linkage_sym.numeric.kinematics.gears import pulling_note
 from linkage_sym.numeric.kinematics.state import LinkState
 from linkage_sym.model import GROUND, Scene
+from linkage_sym.numeric.results.jumps import JumpNote
 from linkage_sym.numeric.results.result import OK, Analysis
 from linkage_sym.numeric.engine.run import (
     unwrap_angles,
@@ -257,8 +258,9 @@ class CompiledMechanism(NumpyEvaluator):
             self.newton_messages[i] = continuation_messages.failure_message(
                 group.label, group.links, f, where(i))
         self.path_notes += [
-            (n[0], lambda step_text, n=n: continuation_messages.note_message(
-                group.label, group.links, n, step_text, where(n[0])))
+            JumpNote(n[0], lambda step_text, n=n: continuation_messages.note_message(
+                group.label, group.links, n, step_text, where(n[0])),
+                group.label, tuple(group.links), n[1] is not None)
             for n in sol.notes
         ]
 

@@ -24,7 +24,10 @@ global state).  Each frame shows one step of the sweep:
   joint with its value.
 
 Every arrow of a layer has one scale over the whole animation (its largest
-value is drawn :data:`ARROW_SHARE` mechanism sizes long); the legend gives it.
+value is drawn :data:`ARROW_SHARE` mechanism sizes long); the legend gives it.  At a
+passage through infinity, whose far points' values are unbounded, the scale is set by the
+values inside the view instead and the longest arrows are cut and marked
+(:mod:`linkage_sym.plotting.animation_scale`).
 
 Where a dyad of two slides carries a joint through infinity between two steps
 (:attr:`Analysis.passages <linkage_sym.numeric.results.result.Analysis>`), the paths
@@ -84,7 +87,9 @@ from linkage_sym.plotting.animation_layers import COLORS, Layers
 from linkage_sym.plotting.centres import KIND_STYLE
 from linkage_sym.plotting.motion import driver_axis
 from linkage_sym.plotting.cam_drawing import cam_outline, points_on_link
-from linkage_sym.plotting.breaks import gap_label, passage_note, passage_view
+from linkage_sym.plotting.animation_scale import (CUT, PERCENTILE, cut_handle, cut_vectors,
+                                                  typical_size)
+from linkage_sym.plotting.breaks import gap_label, jump_notes_text, passage_note, passage_view
 from linkage_sym.plotting.paths import (joint_point_links, mechanism_snapshot, traced_paths,
                                         valid_steps)
 
@@ -179,6 +184,7 @@ class MechanismAnimation(Layers):
             self.dyads = [d for d in rrr_dyads(scene) if d[0] in analysis.transmission_angles]
         self.x, _, self.x_unit = driver_axis(scene, analysis)
         self.scales = self._scales()
+        self.longest = CUT * ARROW_SHARE * self.L * self.unit_scale  # a longer arrow is cut
         self._animation = None
         self._setup_figure()
 
@@ -244,25 +250,42 @@ class MechanismAnimation(Layers):
         :data:`ARROW_SHARE` mechanism sizes long (or a torque :data:`TORQUE_SWEEP` degrees)."""
         reach = ARROW_SHARE * self.L * self.unit_scale
         ok = self.analysis.ok
+        view = passage_view(self.scene, self.analysis, joint_point_links)
 
-        def per(vectors):
-            biggest = max((float(np.max(np.hypot(*_finite_rows(v[ok]).T), initial=0.0))
-                           for v in vectors), default=0.0)
+        far = {link for p in self.analysis.passages if p.before is not None for link in p.links}
+
+        def per(items, names=None):
+            if view is not None:  # the far points' values are unbounded: the rest set it
+                biggest = typical_size(items, ok, view, self._carried(names, far))
+            else:
+                biggest = max((float(np.max(np.hypot(*_finite_rows(v[ok]).T), initial=0.0))
+                               for _, v in items), default=0.0)
             return reach / biggest if biggest > 0.0 else 0.0
 
         out = {}
         for layer in ("velocity", "acceleration"):
             if layer in self.layers:
-                out[layer] = per([v for _, _, v in self._vectors(layer)])
+                vectors = self._vectors(layer)
+                out[layer] = per([(p, v) for _, p, v in vectors], [n for n, _, _ in vectors])
         if "forces" in self.layers:
-            out["reactions"] = per([r for _, _, r in self._reactions()])
+            out["reactions"] = per([(p, r) for _, p, r in self._reactions()])
             drivers = self._drivers()
             for kind, key, full in (("R", "driving", TORQUE_SWEEP), ("P", "driving force", reach)):
                 values = [np.abs(v[ok & np.isfinite(v)]) for _, t, v in drivers if t == kind]
                 biggest = max((float(np.max(v, initial=0.0)) for v in values), default=0.0)
+                if view is not None and values:
+                    biggest = float(np.percentile(np.concatenate(values), PERCENTILE))
                 if values:
                     out[key] = full / biggest if biggest > 0.0 else 0.0
         return out
+
+    def _carried(self, names, far) -> list | None:
+        """Whether a passage carries off each joint or traced point of ``names``."""
+        if names is None:
+            return None
+        links = {pt.name: {pt.link} for pt in self.scene.points}
+        return [bool(far & links.get(n, set())) if n in links
+                else bool(far & set(joint_point_links(self.scene.joint(n)))) for n in names]
 
     # -- the figure -------------------------------------------------------------------
 
@@ -294,7 +317,7 @@ class MechanismAnimation(Layers):
             if view is not None:
                 inside = np.all((p >= view[0]) & (p <= view[1]), axis=-1)
                 p, v = p[inside], v[inside]
-            pts.append(p + k * v)
+            pts.append(p + cut_vectors(v, k, self.longest / s)[0])
         allp = np.concatenate([_finite_rows(p) for p in pts], axis=0)
         lo, hi = allp.min(axis=0), allp.max(axis=0)
         pad = 0.06 * float((hi - lo).max()) + 0.1 * self.L  # the ground symbols, the labels
@@ -357,6 +380,9 @@ class MechanismAnimation(Layers):
             if "driving force" in self.scales:
                 out.append(arrow_handle(COLORS["driving"], "driving force: 1 N drawn "
                                         f"{style.fmt_number(self.scales['driving force'])} {unit}"))
+        if any(p.before is not None for p in self.analysis.passages) and (
+                {"velocity", "acceleration", "forces"} & set(self.layers)):
+            out.append(cut_handle())
         if "centres" in self.layers:
             out += [Line2D([], [], ls="none", label="instant centre at a joint", **KIND_STYLE["joint"]),
                     Line2D([], [], ls="none", label="instant centre by three-centre lines",
@@ -427,6 +453,7 @@ class MechanismAnimation(Layers):
         kinds = {d.joint: d.kind for d in self.scene.drivers}
         lines = [textwrap.fill(passage_note(self.analysis, p, kinds), 64)
                  for p in self.analysis.passages if step in (p.before, p.after)]
+        lines += [text] if (text := jump_notes_text(self.scene, self.analysis, (step,), 64)) else []
         if lines:
             self.ax.text(0.98, 0.02, "\n".join(lines), transform=self.ax.transAxes, ha="right",
                          va="bottom", fontsize=8, color="0.2", zorder=20,

@@ -15,6 +15,7 @@ from matplotlib.path import Path as MplPath
 
 from linkage_sym.model import GROUND
 from linkage_sym.plotting import style
+from linkage_sym.plotting.animation_scale import BREAK_MARK, TORQUE_CUT, cut_vectors
 from linkage_sym.plotting.centres import KIND_STYLE, centre_kind, three_centre_segments
 
 __all__ = ["COLORS", "Layers"]
@@ -28,13 +29,19 @@ class Layers:
     """Drawing the layers on the current frame (a part of ``MechanismAnimation``)."""
 
     def _quiver(self, rows, scale, color, gid):
-        """Arrows from each point along its vector times ``scale`` (axis units)."""
+        """Arrows from each point along its vector times ``scale`` (axis units); one longer
+        than :attr:`longest` (axis units, :data:`~linkage_sym.plotting.animation_scale.CUT`
+        times the usual longest) is drawn that long, with a break mark across it."""
         rows = [(p, v) for p, v in rows if np.all(np.isfinite(p)) and np.all(np.isfinite(v))
                 and np.hypot(*v) * scale > 1e-9 * self.L * self.unit_scale]
         if not rows:
             return None
         p = np.array([r[0] for r in rows]) * self.unit_scale
-        v = np.array([r[1] for r in rows]) * scale
+        v, cut = cut_vectors(np.array([r[1] for r in rows]), scale, self.longest)
+        for k in np.flatnonzero(cut):  # the break mark, across the shaft
+            at = p[k] + 0.6 * v[k]
+            self.ax.plot([at[0]], [at[1]], ls="none", marker=BREAK_MARK, ms=11, color=color,
+                         zorder=8, gid=f"{gid} cut")
         return self.ax.quiver(p[:, 0], p[:, 1], v[:, 0], v[:, 1], angles="xy",
                               scale_units="xy", scale=1.0, color=color, width=0.004,
                               headwidth=4.0, headlength=5.0, headaxislength=4.5, zorder=7,
@@ -54,7 +61,8 @@ class Layers:
                 continue
             p = np.asarray(self.analysis.joints[name].position[step], dtype=float) * s
             if kind == "R":
-                sweep = math.radians(value * self.scales["driving"])
+                sweep = math.radians(float(np.clip(value * self.scales["driving"],
+                                                   -TORQUE_CUT, TORQUE_CUT)))
                 r = 0.12 * self.L * s
                 t = np.linspace(0.0, sweep, 40)
                 ring = p + r * np.stack([np.cos(t), np.sin(t)], axis=-1)

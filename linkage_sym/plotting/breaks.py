@@ -11,6 +11,12 @@ draws as a break.  Steps that are not ``ok`` break the curves already: their val
 
 Points carried off reach far beyond the mechanism near a passage; a drawing of the paths
 frames the rest and lets them leave it (:func:`view_box`), and says so (:func:`passage_note`).
+
+A Newton group that jumps to another configuration of its assembly mode between two ``ok``
+steps (:attr:`Analysis.jumps <linkage_sym.numeric.results.result.Analysis>`,
+:mod:`linkage_sym.numeric.results.jumps`) breaks the curves of the points on the links that
+jump in the same way (:func:`gaps_of`: each break is a :class:`Gap` that says why), and is
+said and marked alike (:func:`jump_note`, :func:`mark_passages`, :func:`jump_notes_text`).
 """
 
 from __future__ import annotations
@@ -23,8 +29,45 @@ from matplotlib.lines import Line2D
 from linkage_sym.model import GROUND
 from linkage_sym.numeric.results import wording
 
-__all__ = ["frame_passages", "gap_label", "gaps_of", "mark_passages", "passage_note",
-           "passage_view", "view_box", "with_breaks"]
+__all__ = ["Gap", "frame_passages", "gap_label", "gaps_of", "jump_note", "jump_notes_text",
+           "mark_passages", "note_jumps", "passage_note", "passage_view", "view_box", "with_breaks"]
+
+INFINITY = "through infinity"
+"""Why a curve breaks at a passage through infinity (its legend's words)."""
+
+JUMP = "assembly-mode jump"
+"""Why a curve breaks at a Newton group's jump (its legend's words)."""
+
+
+class Gap(int):
+    """A step after which a curve breaks (an ``int``), with why: :data:`INFINITY`,
+    :data:`JUMP` or both joined by ``" and "``.
+
+    Examples
+    --------
+    >>> g = Gap(4, JUMP)
+    >>> g + 1, g.why
+    (5, 'assembly-mode jump')
+    """
+
+    def __new__(cls, step: int, why: str = INFINITY):
+        out = super().__new__(cls, step)
+        out.why = why
+        return out
+
+
+def breaks_of(analysis, touches, jump_touches=None) -> tuple:
+    """The :class:`Gap` of every passage and jump (step 0 on) whose links ``touches(links)``
+    accepts (``jump_touches(links)`` for a jump, when given), increasing, one a step."""
+    whys: dict = {}
+    jump_touches = jump_touches or touches
+    for record, why, test in ([(p, INFINITY, touches) for p in analysis.passages]
+                              + [(j, JUMP, jump_touches) for j in getattr(analysis, "jumps", ())]):
+        if record.before is not None and test(record.links):
+            whys.setdefault(record.before, [])
+            if why not in whys[record.before]:
+                whys[record.before].append(why)
+    return tuple(Gap(k, " and ".join(whys[k])) for k in sorted(whys))
 
 REACH = 2.0
 """How far beyond the rest of a drawing (in its own size, or the mechanism's size if that is
@@ -33,8 +76,10 @@ larger) the paths carried through infinity may still widen its view."""
 
 def gaps_of(analysis, links) -> tuple:
     """The steps after which a curve of a point fixed on one of ``links`` breaks: the step
-    before every passage through infinity that carries one of them off (increasing, no
-    repeats; a passage before step 0 breaks nothing).
+    before every passage through infinity that carries one of them off and every Newton
+    group's jump that moves one of them (increasing :class:`Gap`, no repeats; one before
+    step 0 breaks nothing).  A jump moves the point only when it moves every one of
+    ``links``: a pin between a link that jumps and one that does not stays on the latter.
 
     Parameters
     ----------
@@ -48,8 +93,8 @@ def gaps_of(analysis, links) -> tuple:
     tuple of int
     """
     links = set(links) - {GROUND}
-    return tuple(sorted({p.before for p in analysis.passages
-                         if p.before is not None and links & set(p.links)}))
+    return breaks_of(analysis, lambda moved: bool(links & set(moved)),
+                     lambda moved: bool(links) and links <= set(moved))
 
 
 def with_breaks(gaps, *arrays) -> tuple:
@@ -175,8 +220,19 @@ def frame_passages(ax, scene, analysis, view, scale: float, note_at=(1.02, 0.0))
     kinds = {d.joint: d.kind for d in scene.drivers}
     lines = [textwrap.fill(passage_note(analysis, p, kinds), 46) for p in analysis.passages
              if p.before is not None]
+    lines += [text] if (text := jump_notes_text(scene, analysis)) else []
     ax.text(*note_at, "\n".join(lines), transform=ax.transAxes, ha="left", va="bottom",
             fontsize=8, color="0.2", gid="passages through infinity")
+
+
+def note_jumps(ax, scene, analysis, note_at=(1.02, 0.0)) -> None:
+    """Write what each Newton group's jump breaks (:func:`jump_note`) under the legend of a
+    drawing of the paths without a passage through infinity (which :func:`frame_passages`
+    writes with its own), at ``note_at`` in axes coordinates; nothing when there is none."""
+    text = jump_notes_text(scene, analysis)
+    if text:
+        ax.text(*note_at, text, transform=ax.transAxes, ha="left", va="bottom", fontsize=8,
+                color="0.2", gid="assembly-mode jumps")
 
 
 def gap_label(label: str, gaps, sep: str = ", ") -> str:
@@ -187,10 +243,19 @@ def gap_label(label: str, gaps, sep: str = ", ") -> str:
     --------
     >>> gap_label("point P (on rod)", (4,)), gap_label("path of B", ())
     ('point P (on rod), through infinity after step 4', 'path of B')
+    >>> gap_label("path of C", (Gap(13, JUMP), Gap(69, JUMP)))
+    'path of C, assembly-mode jump after steps 13, 69'
     """
     if not gaps:
         return label
-    return f"{label}{sep}through infinity after step {', '.join(str(g) for g in gaps)}"
+    whys: dict = {}
+    for g in gaps:
+        whys.setdefault(getattr(g, "why", INFINITY), []).append(str(int(g)))
+    if set(whys) == {INFINITY}:  # the words of a passage's break, as they always were
+        return f"{label}{sep}{INFINITY} after step {', '.join(whys[INFINITY])}"
+    parts = [f"{why} after step{'s' if len(k) > 1 else ''} {', '.join(k)}"
+             for why, k in whys.items()]
+    return f"{label}{sep}{'; '.join(parts)}"
 
 
 def mark_passages(axes, x, analysis) -> list:
@@ -207,4 +272,43 @@ def mark_passages(axes, x, analysis) -> list:
             ax.axvline(at, zorder=0.6, label="_passage", **look)
         out.append(Line2D([], [], label=f"joint {p.joint} through infinity between steps "
                           f"{p.before} and {p.after}", **look))
+    look = {"color": "0.35", "lw": 0.9, "ls": (0, (4, 2, 1, 2))}
+    for j in getattr(analysis, "jumps", ()):
+        if j.before is None:
+            continue
+        at = 0.5 * (float(x[j.before]) + float(x[j.after]))
+        for ax in axes:
+            ax.axvline(at, zorder=0.6, label="_jump", **look)
+        out.append(Line2D([], [], label=textwrap.fill(
+            f"{j.group}: assembly-mode jump between steps {j.before} and {j.after}", 48),
+            **look))
     return out
+
+
+def jump_note(analysis, jump, kinds: dict) -> str:
+    """One line saying where a Newton group jumps to another configuration of its assembly
+    mode and which paths break there, e.g. ``triad (class III) (link_BC, lever, ...) jumps
+    to another configuration of its assembly mode between steps 13 and 14 (A = 65.3° and
+    66.3°): the paths of points on link_BC, ... are not joined there``.
+
+    ``kinds`` maps each driven joint to ``"R"`` or ``"P"``.
+    """
+    how = "past a limit or singular position" if jump.limit else "as it is assembled again"
+    q = {name: d["q"] for name, d in analysis.drivers.items()}
+
+    def at(k):
+        return wording.driver_values_text({n: float(v[k]) for n, v in q.items()}, kinds)
+
+    values = f" ({at(jump.before)} and {at(jump.after)})" if q else ""
+    return (f"{jump.group} jumps to another configuration of its assembly mode {how} "
+            f"between steps {jump.before} and {jump.after}{values}: the paths of points on "
+            f"{', '.join(jump.links)} alone are not joined there")
+
+
+def jump_notes_text(scene, analysis, steps=None, width: int = 46) -> str:
+    """The :func:`jump_note` of every jump (those around one of ``steps`` when given),
+    wrapped to ``width`` characters, one paragraph each; ``""`` when there is none."""
+    kinds = {d.joint: d.kind for d in scene.drivers}
+    return "\n".join(textwrap.fill(jump_note(analysis, j, kinds), width)
+                     for j in getattr(analysis, "jumps", ()) if j.before is not None
+                     and (steps is None or set(steps) & {j.before, j.after}))

@@ -16,12 +16,15 @@ This module only draws results: it reads
 :attr:`Analysis.forces <linkage_sym.numeric.results.result.Analysis.forces>` (a
 :class:`~linkage_sym.numeric.results.result.Forces`) and never solves anything.
 Steps that are not ``ok`` are NaN in the results: they break the curves, and
-on plots against the driver they are also shaded and labelled.
+on plots against the driver they are also shaded and labelled.  A passage of a joint through
+infinity between two steps breaks every curve whose force it makes unbounded there
+(:mod:`linkage_sym.plotting.force_breaks`), and is marked and said.
 """
 
 from __future__ import annotations
 
 import math
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -30,6 +33,8 @@ from linkage_sym.model import Scene
 from linkage_sym.numeric.results.cycle_average import cycle_rms, whole_period
 from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.plotting import style
+from linkage_sym.plotting.breaks import gap_label, mark_passages, with_breaks
+from linkage_sym.plotting.force_breaks import effort_gaps, frame_gaps, reaction_gaps
 from linkage_sym.plotting.motion import driver_axis
 
 _TORQUE = "N·m"
@@ -90,6 +95,21 @@ def _bad_note(analysis: Analysis) -> str:
     if bad == 0:
         return ""
     return f"{bad} of {analysis.n_steps} steps not ok: gaps in the curves"
+
+
+def _passages_note(analysis: Analysis) -> str:
+    """What the passages through infinity and the Newton groups' jumps do to the
+    hodographs, or ``""``."""
+    words = [f"joint {p.joint} through infinity between steps {p.before} and {p.after}"
+             for p in analysis.passages if p.before is not None]
+    groups: dict = {}
+    for j in analysis.jumps:
+        if j.before is not None:
+            groups.setdefault(j.group.split(" (")[0], []).append(f"{j.before} and {j.after}")
+    jumps = [f"{g} jumps assembly mode between steps {', '.join(k)}" for g, k in groups.items()]
+    out = [f"{'; '.join(words)}: the reactions it makes unbounded are not joined there"] if words else []
+    out += [f"{'; '.join(jumps)}: the reactions it moves are not joined there"] if jumps else []
+    return "\n".join(textwrap.fill(line, 100) for line in out)
 
 
 def _forces_or_raise(analysis: Analysis):
@@ -177,7 +197,9 @@ def driving_effort_figure(scene: Scene, analysis: Analysis):
                 label = (f"{sym} at {name}{between}\n  RMS {style.fmt_number(rms)} {unit}, "
                          f"peak {style.fmt_number(peak)} {unit} at {style.fmt_number(float(x[k]))} {xunit}")
             ls = ("-", "--", "-.", ":")[mine.index(name) % 4]  # equal efforts stay visible
-            ax.plot(x, values, color=col, lw=1.8, ls=ls, label=label)
+            gaps = effort_gaps(analysis, scene, name)  # unbounded at a passage: not joined
+            ax.plot(*with_breaks(gaps, x, values), color=col, lw=1.8, ls=ls,
+                    label=gap_label(label, gaps, ",\n  "))
             if st is not None:
                 ax.plot([x[st[2]]], [st[1]], marker="o", ms=6, mfc="white", mec=col,
                         mew=1.6, ls="none", zorder=3, clip_on=False)
@@ -186,6 +208,7 @@ def driving_effort_figure(scene: Scene, analysis: Analysis):
                      else "no driver effort in this analysis")
 
     band_handles = style.shade_bad_steps(axes, x, analysis.status, label_ax=axes[0])
+    band_handles += mark_passages(axes, x, analysis)
     style.driver_ticks(axes[-1], x, xlabel, xunit)
     for ax in axes:
         ax.grid(True, color="0.9", lw=0.6)
@@ -239,7 +262,7 @@ def _grid(n: int) -> tuple[int, int]:
     return -(-n // cols), cols
 
 
-def hodograph(ax, vectors, *, color="C0", closed=False, label=None) -> float | None:
+def hodograph(ax, vectors, *, color="C0", closed=False, label=None, gaps=()) -> float | None:
     """Draw the hodograph of a force vector on a polar axis.
 
     The angle is the direction of the force from the global x axis, the
@@ -257,6 +280,10 @@ def hodograph(ax, vectors, *, color="C0", closed=False, label=None) -> float | N
         Join the last step to the first (the sweep is a whole cycle).
     label : str, optional
         Legend label of the curve.
+    gaps : tuple of int, optional
+        Steps after which the curve breaks though both ends are finite: a passage through
+        infinity lies between them and the next
+        (:func:`~linkage_sym.plotting.force_breaks.reaction_gaps`).
 
     Returns
     -------
@@ -269,7 +296,7 @@ def hodograph(ax, vectors, *, color="C0", closed=False, label=None) -> float | N
     ax.tick_params(axis="y", labelsize=7, labelcolor="0.35")
     ax.tick_params(axis="x", labelsize=7, pad=1)
     ax.grid(True, color="0.85", lw=0.6)
-    v = np.asarray(vectors, dtype=float).reshape(-1, 2)
+    v = with_breaks(gaps, np.asarray(vectors, dtype=float).reshape(-1, 2))[0]
     good = np.all(np.isfinite(v), axis=1)
     if not good.any():
         ax.set_rmax(1.0)
@@ -359,14 +386,16 @@ def reaction_hodographs_figure(scene: Scene, analysis: Analysis, joints=None):
     for i, name in enumerate(names):
         ax = fig.add_subplot(rows, cols, i + 1, projection="polar")
         joint = by_name.get(name)
+        gaps = reaction_gaps(analysis, scene, name)
         peak = hodograph(ax, forces.reactions[name], color=jcolors.get(name, "C0"),
-                         closed=closed)
+                         closed=closed, gaps=gaps)
         if joint is not None:
             kind = ", normal to the slide" if joint.type == "P" else ""
             head = f"{name}: {joint.links[0]} on {joint.links[1]}{kind}"
         else:
             head = name
         tail = f"peak |R| = {style.fmt_number(peak)} N" if peak is not None else "no solved step"
+        tail = gap_label(tail, gaps, ",\n")
         if joint is not None and joint.type == "P" and name in forces.reaction_moments:
             st = _stats(forces.reaction_moments[name], whole_period(scene))
             if st is not None:
@@ -379,6 +408,7 @@ def reaction_hodographs_figure(scene: Scene, analysis: Analysis, joints=None):
     lines = [line for line in lines if line]
     if cols >= 3:  # wide enough for two lines
         lines = [lines[0], "; ".join(lines[1:])]
+    lines += [note] if (note := _passages_note(analysis)) else []
     fig.suptitle("\n".join(lines), fontsize=11)
     fig.legend(handles=_legend_handles(), loc="outside lower center", ncols=2, fontsize=8,
                frameon=False)
@@ -449,8 +479,11 @@ def frame_loads_figure(scene: Scene, analysis: Analysis):
     polar = fig.add_subplot(gs[0, 0], projection="polar")
     ax = fig.add_subplot(gs[0, 1])
 
-    peak = hodograph(polar, forces.frame_force, color=style.PALETTE[0], closed=closed)
+    gaps = frame_gaps(analysis, scene)  # unbounded at a passage through infinity: not joined
+    peak = hodograph(polar, forces.frame_force, color=style.PALETTE[0], closed=closed,
+                     gaps=gaps)
     tail = f"peak |F| = {style.fmt_number(peak)} N" if peak is not None else "no solved step"
+    tail = gap_label(tail, gaps)
     polar.set_title(f"{fword} on the ground (N)\n{tail}", fontsize=10)
     polar.legend(handles=_legend_handles(style.PALETTE[0]), loc="upper center",
                  bbox_to_anchor=(0.5, -0.08), ncols=2, fontsize=8, frameon=False)
@@ -463,7 +496,8 @@ def frame_loads_figure(scene: Scene, analysis: Analysis):
         rms, pk, k = st
         label = (f"{mword}\n  RMS {style.fmt_number(rms)} N·m, peak {style.fmt_number(pk)} N·m "
                  f"at {style.fmt_number(float(x[k]))} {xunit}")
-    ax.plot(x, moment, color=style.PALETTE[1], lw=1.8, label=label)
+    ax.plot(*with_breaks(gaps, x, moment), color=style.PALETTE[1], lw=1.8,
+            label=gap_label(label, gaps, ",\n  "))
     if st is not None:
         ax.plot([x[st[2]]], [st[1]], marker="o", ms=6, mfc="white", mec=style.PALETTE[1],
                 mew=1.6, ls="none", zorder=3, clip_on=False)
@@ -472,6 +506,7 @@ def frame_loads_figure(scene: Scene, analysis: Analysis):
     ax.axhline(0.0, color="0.45", lw=0.8, zorder=0.5)
     ax.set_ylabel(f"{mword} M about the global origin (N·m)")
     band_handles = style.shade_bad_steps([ax], x, analysis.status, label_ax=ax)
+    band_handles += mark_passages([ax], x, analysis)
     style.driver_ticks(ax, x, xlabel, xunit)
     ax.grid(True, color="0.9", lw=0.6)
     ax.set_xlim(float(np.min(x)), float(np.max(x)))

@@ -22,7 +22,7 @@ import numpy as np
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.plotting import style
-from linkage_sym.plotting.breaks import gap_label, gaps_of, mark_passages, with_breaks
+from linkage_sym.plotting.breaks import JUMP, gap_label, gaps_of, mark_passages, with_breaks
 
 QUANTITIES = ("position", "velocity", "acceleration")
 _FILE_SUFFIX = {"position": "positions", "velocity": "velocities", "acceleration": "accelerations"}
@@ -230,11 +230,15 @@ def motion_figure(scene: Scene, analysis: Analysis, quantity: str):
                 twin = ax_links.twinx()
                 twin.set_ylabel("input link rotation (deg)")
             target = twin if on_twin else ax_links
+            # a Newton group's jump turns its links at once: not joined (a passage through
+            # infinity carries a link off along its slides without turning it)
+            gaps = tuple(g for g in gaps_of(analysis, names) if JUMP in g.why)
             target.plot(
-                x, values, color=colors.get(names[0]), lw=1.8,
+                *with_breaks(gaps, x, values), color=colors.get(names[0]), lw=1.8,
                 ls="--" if is_input else "-",
-                label=" = ".join(f"{sym} {n}" for n in names)
-                + (" (input, right axis)" if on_twin else " (input)" if is_input else ""),
+                label=gap_label(" = ".join(f"{sym} {n}" for n in names)
+                                + (" (input, right axis)" if on_twin else " (input)"
+                                   if is_input else ""), gaps),
             )
         ax_links.set_ylabel(ylabel)
         ax_links.axhline(0.0, color="0.5", lw=0.6, zorder=0.5)

@@ -25,8 +25,8 @@ from matplotlib.patches import Circle, Polygon
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.results.result import Analysis
 from linkage_sym.plotting import style
-from linkage_sym.plotting.breaks import (frame_passages, gap_label, gaps_of, passage_view,
-                                         with_breaks)
+from linkage_sym.plotting.breaks import (frame_passages, gap_label, gaps_of, note_jumps,
+                                         passage_view, with_breaks)
 from linkage_sym.plotting.cam_drawing import draw_cam
 
 
@@ -555,6 +555,8 @@ def coupler_curves_figure(scene: Scene, analysis: Analysis):
     ax.margins(0.08)
     if view is not None:  # the points carried through infinity leave the drawing
         frame_passages(ax, scene, analysis, view, scale)
+    else:
+        note_jumps(ax, scene, analysis)
     where = ", ".join(str(s) for s in snaps)
     ax.set_title(f"{scene.name}: {'coupler curves, ' if scene.points else ''}joint and centre-of-mass paths\n"
                  f"bold: assembly configuration; faded: steps {where}" if snaps else

@@ -31,6 +31,7 @@ import numpy as np
 from linkage_sym.errors import SceneError
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.numeric.results import accuracy
+from linkage_sym.numeric.results.jumps import assembly_jumps
 from linkage_sym.numeric.results.passages import infinity_passages
 from linkage_sym.numeric.continuation.messages import step_warnings
 from linkage_sym.numeric.engine import heap
@@ -121,11 +122,13 @@ def finish(res: Analysis, scene: Scene, notes, step_points, decomposition=None) 
     The warnings (assembly-mode jumps and ambiguous modes of Newton groups
     from their ``notes``, see :func:`~linkage_sym.numeric.continuation.messages.step_warnings`; then
     :func:`run_warnings`), the passages of joints through infinity among those notes
-    (:func:`~linkage_sym.numeric.results.passages.infinity_passages`), the transmission
+    (:func:`~linkage_sym.numeric.results.passages.infinity_passages`) and the Newton groups'
+    assembly-mode jumps (:func:`~linkage_sym.numeric.results.jumps.assembly_jumps`), the transmission
     angles, and the instant centres when the scene asks for them.
     """
     res.warnings.extend(step_warnings(notes, step_points))
     res.passages = infinity_passages(notes, step_points, scene, decomposition)
+    res.jumps = assembly_jumps(notes, step_points, scene, decomposition)
     if res.forces is not None:
         res.warnings.extend(res.forces.notes)
     res.warnings.extend(run_warnings(res))

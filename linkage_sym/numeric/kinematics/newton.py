@@ -23,6 +23,7 @@ from linkage_sym.numeric.continuation import batched_path
 from linkage_sym.numeric.continuation import messages as continuation_messages
 from linkage_sym.numeric.kinematics.constraints import jacobian, stack_rows
 from linkage_sym.numeric.kinematics.state import LinkState
+from linkage_sym.numeric.results.jumps import JumpNote
 
 SINGULAR_IND = 1e-14
 """Indicator (reciprocal condition of the group block) below which no rate is solved."""
@@ -100,8 +101,9 @@ class NewtonSolver:
             for i, f in sol.failures.items()
         }
         self.notes = [
-            (i, lambda step, n=n, i=i: continuation_messages.note_message(
-                self.group.label, self.links, n, step, where(i)))
+            JumpNote(i, lambda step, n=n, i=i: continuation_messages.note_message(
+                self.group.label, self.links, n, step, where(i)),
+                self.group.label, tuple(self.links), n[1] is not None)
             for n in sol.notes
             for i in [n[0]]
         ]

@@ -262,6 +262,11 @@ class Analysis:
         (:mod:`linkage_sym.numeric.results.passages`): the joint, the steps on either side
         and the links carried off, for the plots to break their lines there.  Each has its
         warning in ``warnings``; not written to the JSON (the warning is).
+    jumps : tuple of AssemblyJump
+        Where a group solved by Newton's method goes on in another configuration of its
+        assembly mode between two steps (:mod:`linkage_sym.numeric.results.jumps`): the
+        group, the steps on either side and the links that jump, for the plots to break
+        their lines there.  Each has its warning in ``warnings``; not written to the JSON.
     """
 
     scene: str
@@ -282,6 +287,7 @@ class Analysis:
     extremes: dict | None = None
     instant_centres: object = None
     passages: tuple = ()
+    jumps: tuple = ()
 
     @property
     def ok(self) -> np.ndarray:
