@@ -212,8 +212,9 @@ class MotionEquations:
         cannot be solved.  One state, without a result's bookkeeping
         (:mod:`~linkage_sym.motion.lean`): the effort and ``J`` from one solve of the
         numeric plan (:func:`~linkage_sym.motion.lean.effort_inertia_at`), :meth:`effort`
-        and :meth:`inertia` to rounding.  With a ``piece`` (:class:`~linkage_sym.motion.pieces.Piece`), the
-        equation frozen on it: its effort plan and its motor line."""
+        and :meth:`inertia` to rounding.  With a ``piece``
+        (:class:`~linkage_sym.motion.pieces.Piece`), the equation frozen on it: its effort plan
+        and its motor line."""
         self.evaluations += 1
         plan = self.effort_plan if piece is None else piece.plan
         # the effort and J from one solve of the plan (lean.effort_inertia_at)
