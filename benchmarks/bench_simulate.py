@@ -5,8 +5,8 @@ Run on demand (not part of the tests)::
     python benchmarks/bench_simulate.py     # writes benchmarks/results/simulate.json
 
 Each evaluation of the equation of motion solves the mechanism at one state: the numeric
-plan's effort at ``qdd = 0`` and ``J`` from the generated functions
-(:mod:`linkage_sym.motion.lean`).  Timed: the whole ``simulate`` of the crank-rocker with its
+plan's effort at ``qdd = 0`` and ``J``, both from one solve of the plan
+(:func:`linkage_sym.motion.lean.effort_inertia_at`).  Timed: the whole ``simulate`` of the crank-rocker with its
 motor (``crank_rocker_motor``, 3 s from rest) and of the shaper with its flywheel
 (``shaper_flywheel``, 12 s from rest), LSODA at rtol 1e-10 (the default); CPU time
 (``time.process_time``) of one run after a first run that compiles and caches, with one

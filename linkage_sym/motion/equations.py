@@ -40,7 +40,11 @@ velocities the generated code returns *are* the velocity coefficients (``v_G / q
 both exact (no finite difference).  The symbolic layer derives no cam contact: a scene with
 one takes the same sums from the numeric solver's kinematics at ``qd = 1`` and ``qdd = 0``
 (:func:`~linkage_sym.motion.lean.numeric_inertia_at`; its velocities and accelerations are
-the same coefficients and their derivatives, exact as well).
+the same coefficients and their derivatives, exact as well).  The integrator's evaluations
+(:meth:`MotionEquations.acceleration`) read ``J`` alone, and take it from the numeric solve
+that gives the effort, at a second state of unit speed
+(:func:`~linkage_sym.motion.lean.effort_inertia_at`): one solve an evaluation, its ``J`` the
+derived equations' to rounding.
 """
 
 from __future__ import annotations
@@ -52,7 +56,7 @@ import numpy as np
 
 from linkage_sym.errors import SYMBOLIC_LACKS, SceneError
 from linkage_sym.model import GROUND, Scene
-from linkage_sym.motion.lean import effort_at, inertia_at, numeric_inertia_at
+from linkage_sym.motion.lean import effort_at, effort_inertia_at
 
 __all__ = ["MotionEquations", "StepFailure", "motor_effort"]
 
@@ -158,7 +162,6 @@ class MotionEquations:
         self.q0 = float(_assembly_value(scene))
         self.period = _reduction_period(scene)
         self.evaluations = 0
-        self._last = (None, None)  # the last q at which J was evaluated, and its J
         # friction (the contract's effects.friction) makes the effort nonlinear in qdd
         self.nonlinear = bool(getattr(scene.effects, "friction", False))
 
@@ -207,15 +210,15 @@ class MotionEquations:
     def acceleration(self, q: float, qd: float, piece=None) -> float:
         """``qdd`` at the state ``(q, qd)``; raises :class:`StepFailure` where the mechanism
         cannot be solved.  One state, without a result's bookkeeping
-        (:mod:`~linkage_sym.motion.lean`): the same solves as :meth:`effort` and
-        :meth:`inertia`.  With a ``piece`` (:class:`~linkage_sym.motion.pieces.Piece`), the
-        equation frozen on it: its effort plan and its motor line."""
+        (:mod:`~linkage_sym.motion.lean`): the effort and ``J`` from one solve of the
+        numeric plan (:func:`~linkage_sym.motion.lean.effort_inertia_at`), :meth:`effort`
+        and :meth:`inertia` to rounding.  With a ``piece``
+        (:class:`~linkage_sym.motion.pieces.Piece`), the equation frozen on it: its effort plan
+        and its motor line."""
         self.evaluations += 1
         plan = self.effort_plan if piece is None else piece.plan
-        e0 = self._effort_at(q, qd, 0.0, plan)
-        if q != self._last[0]:  # the solvers' Jacobians vary qd alone at one q: J is that q's
-            self._last = (q, self._inertia_at(q))
-        J = self._last[1]
+        # the effort and J from one solve of the plan (lean.effort_inertia_at)
+        e0, J = self._effort_at(q, qd, 0.0, plan, inertia=True)
         if not J > 0:
             raise StepFailure(q, qd, f"the equivalent moment of inertia J is {J:.3g}: the "
                               "motion has no equation there")
@@ -225,25 +228,20 @@ class MotionEquations:
             qdd = self._root(q, qd, qdd, M, J, abs(M) + abs(e0), plan)
         return float(qdd)
 
-    def _effort_at(self, q: float, qd: float, qdd: float, plan=None) -> float:
+    def _effort_at(self, q: float, qd: float, qdd: float, plan=None, inertia=False):
         """The driver's effort at one state (``q`` reduced) from ``plan`` (default the
-        scene's); :class:`StepFailure` where the step is not ``ok``."""
-        e, status, message = effort_at(self.effort_plan if plan is None else plan, self.joint,
-                                       float(self.reduce(q)), qd, qdd)
+        scene's), with ``J`` at ``q`` from the same solve where ``inertia`` (a pair then);
+        :class:`StepFailure` where the step is not ``ok``."""
+        plan = self.effort_plan if plan is None else plan
+        qr = float(self.reduce(q))
+        if inertia:
+            e, J, status, message = effort_inertia_at(plan, self.scene, self.joint, qr, qd, qdd)
+        else:
+            e, status, message = effort_at(plan, self.joint, qr, qd, qdd)
         if status != "ok":  # the status once, where the step's message does not begin with it
             raise StepFailure(q, qd, message if message.startswith(f"{status}:") else
                               f"{status}: {message}")
-        return e
-
-    def _inertia_at(self, q: float) -> float:
-        """``J`` at one driver value (``q`` reduced), by the full run where the lean one
-        declines the state."""
-        if self.numeric_inertia:
-            got = numeric_inertia_at(self.mechanism, self.scene, self.joint,
-                                     float(self.reduce(q)))
-            return self.inertia(q)[0][0] if got is None else got[0]
-        got = inertia_at(self.mechanism, self.scene, self.joint, float(self.reduce(q)))
-        return self.inertia(q)[0][0] if got is None else got[0]
+        return (e, J) if inertia else e
 
     def _root(self, q, qd, qdd, M, J, scale, plan=None):
         """``qdd`` where the effort equals ``M`` when the effort is not affine in ``qdd``

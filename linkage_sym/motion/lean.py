@@ -12,7 +12,13 @@ computations are called for the one state and only what the equation reads is ke
   rate systems, the same ``points`` function), summed as
   :meth:`~linkage_sym.motion.equations.MotionEquations.inertia` sums them;
 * :func:`effort_at`: the driver's effort from the numeric plan's solve
-  (:meth:`~linkage_sym.numeric.plan.Plan.driving`), with its status.
+  (:meth:`~linkage_sym.numeric.plan.Plan.driving`), with its status;
+* :func:`effort_inertia_at`: both of what the integrator's equation reads, the effort at
+  ``(q, qd, qdd)`` and ``J`` at ``q``, from **one** solve of the numeric plan over two
+  states at the same ``q`` (the second at unit speed and no acceleration, whose velocities
+  are the velocity coefficients): an evaluation's positions, rates and bookkeeping paid once
+  instead of once in each layer.  ``J`` is then the numeric solver's, equal to the derived
+  equations' to rounding (:func:`inertia_at`; 1e-12 in the tests).
 
 A state the generated code screens as near-singular (or cannot assemble) goes through the
 full run, so the result is the full run's in every case.
@@ -24,7 +30,7 @@ import numpy as np
 
 from linkage_sym.numeric.results.result import OK
 
-__all__ = ["effort_at", "inertia_at", "numeric_inertia_at"]
+__all__ = ["effort_at", "effort_inertia_at", "inertia_at", "numeric_inertia_at"]
 
 SCREEN = 1e-3
 """The Hadamard ratio under which the compiled mechanism's run computes a condition number
@@ -126,18 +132,58 @@ def numeric_inertia_at(plan, scene, joint: str, q: float):
                                  {joint: np.zeros(1)})
     if status[0] != OK:
         return None
+    return _unit_speed_sums(scene, S, 0, True)
+
+
+def effort_inertia_at(plan, scene, joint: str, q: float, qd: float, qdd: float) -> tuple:
+    """The driver's effort at the state ``(q, qd, qdd)`` and ``J`` at ``q``, from one solve
+    of the numeric ``plan`` (of ``scene``) over the two states ``(q, qd, qdd)`` and
+    ``(q, 1, 0)``: ``(effort, J, status, message)``, ``message`` ``None`` where the status is
+    ``ok`` (``J`` is read only then: the second state has the first one's positions, so the
+    same status).
+
+    Examples
+    --------
+    >>> import linkage_sym
+    >>> from linkage_sym.examples import example_dict
+    >>> from linkage_sym.motion.equations import MotionEquations
+    >>> eq = MotionEquations(linkage_sym.load_scene(example_dict("crank_rocker_motor")),
+    ...                      require_simulate=False)
+    >>> e, J, status, _ = effort_inertia_at(eq.effort_plan, eq.scene, eq.joint, 0.7, 10.0, 0.0)
+    >>> e0, _, _ = effort_at(eq.effort_plan, eq.joint, 0.7, 10.0, 0.0)
+    >>> Jd, _ = inertia_at(eq.mechanism, eq.scene, eq.joint, 0.7)
+    >>> bool(status == "ok" and abs(e - e0) <= 1e-13 * abs(e0) and abs(J - Jd) <= 1e-14 * Jd)
+    True
+    """
+    Q = np.array([q, q])
+    driving, S, status, messages = plan.driving_states(
+        {joint: Q}, {joint: np.array([qd, 1.0])}, {joint: np.array([qdd, 0.0])})
+    if status[0] != OK:
+        return float(driving[joint][0]), float("nan"), str(status[0]), messages[0]
+    return float(driving[joint][0]), _unit_speed_sums(scene, S, 1, False)[0], OK, None
+
+
+def _unit_speed_sums(scene, S, i: int, derivative: bool) -> tuple:
+    """``(J, J')`` summed from the links' states ``S`` at step ``i``, a state at unit speed
+    and no acceleration (``J'`` 0.0 unless ``derivative``)."""
     J = dJ = 0.0
     for link in scene.links:
         st = S[link.name]
         if link.mass > 0:
-            vx, vy = (float(np.asarray(v).reshape(-1)[0]) for v in st.point_velocity(link.com))
-            ax, ay = (float(np.asarray(a).reshape(-1)[0])
-                      for a in st.point_acceleration(link.com))
+            vx, vy = (_at(v, i) for v in st.point_velocity(link.com))
             J += link.mass * (vx * vx + vy * vy)
-            dJ += 2.0 * link.mass * (vx * ax + vy * ay)
+            if derivative:
+                ax, ay = (_at(a, i) for a in st.point_acceleration(link.com))
+                dJ += 2.0 * link.mass * (vx * ax + vy * ay)
         if link.inertia > 0:
-            w = float(np.asarray(st.w).reshape(-1)[0])
-            al = float(np.asarray(st.al).reshape(-1)[0])
+            w = _at(st.w, i)
             J += link.inertia * w * w
-            dJ += 2.0 * link.inertia * w * al
+            if derivative:
+                dJ += 2.0 * link.inertia * w * _at(st.al, i)
     return J, dJ
+
+
+def _at(value, i: int) -> float:
+    """Step ``i`` of a state's component (an array over the steps, or one value for all)."""
+    a = np.asarray(value).reshape(-1)
+    return float(a[i] if a.size > 1 else a[0])

@@ -196,12 +196,24 @@ class Plan:
         status, messages : ndarray, dict
             Each step's status and the messages of those not ``ok``, as :meth:`run` gives them.
         """
+        driving, _, status, messages = self.driving_states(q, qd, qdd, method)
+        return driving, status, messages
+
+    def driving_states(self, q, qd, qdd, method="dyad") -> tuple:
+        """:meth:`driving` and the links' states of the same solve (what
+        :meth:`link_states` gives): one solve where both are wanted.
+
+        Returns
+        -------
+        driving, states, status, messages
+            As :meth:`driving` and :meth:`link_states` give them.
+        """
         check_method(method)
         q = {k: np.asarray(v, dtype=float) for k, v in q.items()}
         qd = {k: np.asarray(v, dtype=float) for k, v in qd.items()}
         qdd = {k: np.asarray(v, dtype=float) for k, v in qdd.items()}
         got = self._solve(q, qd, qdd, self._path(q), False, method)
-        return got[5].driving, got[2], got[3]
+        return got[5].driving, got[0], got[2], got[3]
 
     def link_states(self, q, qd, qdd) -> tuple:
         """The links' positions, velocities and accelerations alone at the states
