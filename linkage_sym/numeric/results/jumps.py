@@ -15,9 +15,9 @@ shows a motion the mechanism never makes.  Both runtimes note such a jump as a
 read to break their lines there, as they do at a passage through infinity
 (:mod:`linkage_sym.numeric.results.passages`).
 
-The links that jump (:func:`placed_from`) are the group's, then every link of a group solved
-later that one of its joints (or a gear's carrier) ties to a link already in the set: its
-position is computed from theirs.
+The links that jump (:func:`~linkage_sym.numeric.results.passages.placed_from`) are the
+group's, then every link of a group solved later that one of its joints (or a gear's carrier)
+ties to a link already in the set: its position is computed from theirs.
 """
 
 from __future__ import annotations
@@ -27,10 +27,11 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from linkage_sym.model import GROUND, Scene
+from linkage_sym.model import Scene
+from linkage_sym.numeric.results.passages import placed_from
 from linkage_sym.structure.groups import Decomposition, decompose
 
-__all__ = ["AssemblyJump", "JumpNote", "assembly_jumps", "placed_from"]
+__all__ = ["AssemblyJump", "JumpNote", "assembly_jumps"]
 
 
 class JumpNote(NamedTuple):
@@ -70,8 +71,9 @@ class AssemblyJump:
         The steps on either side (``before`` is ``None`` when the jump lies between the
         assembly configuration and step 0); ``after`` is the step whose warning says it.
     links : tuple of str
-        The links that jump (:func:`placed_from`), in the scene's order: no point fixed on
-        them moves continuously from ``before`` to ``after``.
+        The links that jump (:func:`~linkage_sym.numeric.results.passages.placed_from`), in
+        the scene's order: no point fixed on them moves continuously from ``before`` to
+        ``after``.
     limit : bool
         True after a limit or singular position, False on re-entry after steps that could
         not be assembled.
@@ -82,41 +84,6 @@ class AssemblyJump:
     after: int
     links: tuple[str, ...]
     limit: bool
-
-
-def placed_from(scene: Scene, links, decomposition: Decomposition | None = None) -> tuple:
-    """``links`` and every link of a group solved after theirs that one of its joints (or a
-    gear's carrier) ties to a link already in the set, in the order of
-    :attr:`Scene.link_names`.
-
-    Examples
-    --------
-    >>> import linkage_sym
-    >>> scene = linkage_sym.load_scene({
-    ...     "name": "four-bar", "links": [{"name": "crank"}, {"name": "coupler"},
-    ...                                   {"name": "rocker"}],
-    ...     "joints": [
-    ...         {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0, 0]},
-    ...         {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": [0, 0.1]},
-    ...         {"name": "C", "type": "R", "links": ["coupler", "rocker"], "at": [0.3, 0.2]},
-    ...         {"name": "D", "type": "R", "links": ["rocker", "ground"], "at": [0.3, 0]}],
-    ...     "drivers": [{"joint": "A", "toward": "B", "start_deg": 90, "stop_deg": 100,
-    ...                  "steps": 3, "speed": 1.0}]})
-    >>> placed_from(scene, ["crank"]), placed_from(scene, ["rocker"])
-    (('crank', 'coupler', 'rocker'), ('rocker',))
-    """
-    dec = decomposition if decomposition is not None else decompose(scene)
-    out = set(links)
-    first = min((i for i, g in enumerate(dec.groups) if out & set(g.links)), default=None)
-    if first is not None:
-        for g in dec.groups[first + 1:]:
-            ties = set()
-            for name in g.joints:
-                j = scene.joint(name)
-                ties |= set(j.links) | ({j.carrier} if j.carrier else set())
-            if (ties - set(g.links) - {GROUND}) & out:
-                out |= set(g.links)
-    return tuple(n for n in scene.link_names if n in out)
 
 
 def assembly_jumps(notes, step_points, scene: Scene,

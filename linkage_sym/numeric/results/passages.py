@@ -29,7 +29,7 @@ import numpy as np
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.structure.groups import Decomposition, decompose
 
-__all__ = ["InfinityPassage", "PassageNote", "far_links", "infinity_passages"]
+__all__ = ["InfinityPassage", "PassageNote", "far_links", "infinity_passages", "placed_from"]
 
 
 class PassageNote(NamedTuple):
@@ -75,6 +75,41 @@ class InfinityPassage:
     links: tuple[str, ...]
 
 
+def placed_from(scene: Scene, links, decomposition: Decomposition | None = None) -> tuple:
+    """``links`` and every link of a group solved after theirs that one of its joints (or a
+    gear's carrier) ties to a link already in the set, in the order of
+    :attr:`Scene.link_names`.
+
+    Examples
+    --------
+    >>> import linkage_sym
+    >>> scene = linkage_sym.load_scene({
+    ...     "name": "four-bar", "links": [{"name": "crank"}, {"name": "coupler"},
+    ...                                   {"name": "rocker"}],
+    ...     "joints": [
+    ...         {"name": "A", "type": "R", "links": ["ground", "crank"], "at": [0, 0]},
+    ...         {"name": "B", "type": "R", "links": ["crank", "coupler"], "at": [0, 0.1]},
+    ...         {"name": "C", "type": "R", "links": ["coupler", "rocker"], "at": [0.3, 0.2]},
+    ...         {"name": "D", "type": "R", "links": ["rocker", "ground"], "at": [0.3, 0]}],
+    ...     "drivers": [{"joint": "A", "toward": "B", "start_deg": 90, "stop_deg": 100,
+    ...                  "steps": 3, "speed": 1.0}]})
+    >>> placed_from(scene, ["crank"]), placed_from(scene, ["rocker"])
+    (('crank', 'coupler', 'rocker'), ('rocker',))
+    """
+    dec = decomposition if decomposition is not None else decompose(scene)
+    out = set(links)
+    first = min((i for i, g in enumerate(dec.groups) if out & set(g.links)), default=None)
+    if first is not None:
+        for g in dec.groups[first + 1:]:
+            ties = set()
+            for name in g.joints:
+                j = scene.joint(name)
+                ties |= set(j.links) | ({j.carrier} if j.carrier else set())
+            if (ties - set(g.links) - {GROUND}) & out:
+                out |= set(g.links)
+    return tuple(n for n in scene.link_names if n in out)
+
+
 def far_links(scene: Scene, joint: str, decomposition: Decomposition | None = None) -> tuple:
     """The links a dyad of two slides carries through infinity with its joint ``joint``.
 
@@ -118,19 +153,10 @@ def far_links(scene: Scene, joint: str, decomposition: Decomposition | None = No
     ('rod', 'block')
     """
     dec = decomposition if decomposition is not None else decompose(scene)
-    k = next(i for i, g in enumerate(dec.groups) if g.kind == "dyad" and joint in g.joints)
-    dyad = dec.groups[k]
+    dyad = next(g for g in dec.groups if g.kind == "dyad" and joint in g.joints)
     pinned = {link for name in dyad.external if scene.joint(name).type == "R"
               for link in scene.joint(name).links if link in dyad.links}
-    far = set(dyad.links) - pinned
-    for g in dec.groups[k + 1:]:
-        ties = set()
-        for name in g.joints:
-            j = scene.joint(name)
-            ties |= set(j.links) | ({j.carrier} if j.carrier else set())
-        if (ties - set(g.links) - {GROUND}) & far:
-            far |= set(g.links)
-    return tuple(n for n in scene.link_names if n in far)
+    return placed_from(scene, set(dyad.links) - pinned, dec)
 
 
 def infinity_passages(notes, step_points, scene: Scene,
