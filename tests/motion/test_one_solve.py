@@ -31,6 +31,7 @@ from linkage_sym.examples import example_dict
 from linkage_sym.motion.equations import MotionEquations, StepFailure, motor_effort
 from linkage_sym.motion.lean import effort_at, effort_inertia_at, inertia_at, numeric_inertia_at
 from linkage_sym.motion.pieces import Pieces
+from tests.support.marks import fast_cases
 
 Q = np.linspace(-6 * np.pi, 6 * np.pi, 41) + 0.137  # three turns either way, not on a knot
 QD = np.concatenate([np.linspace(-25.0, 25.0, 40), [0.0]])
@@ -42,8 +43,9 @@ def equations(name):
     return MotionEquations(linkage_sym.load_scene(data), require_simulate=False)
 
 
-@pytest.mark.parametrize("name", ["crank_rocker_motor", "shaper_flywheel", "sixbar_class3",
-                                  "cam_eccentric_rocker", "slider_crank_press_friction"])
+@pytest.mark.parametrize("name", fast_cases(
+    ["crank_rocker_motor", "shaper_flywheel", "sixbar_class3", "cam_eccentric_rocker",
+     "slider_crank_press_friction"], {"crank_rocker_motor"}))
 def test_one_solve_gives_the_effort_and_the_inertia_of_two(name):
     eq = equations(name)
     for q, qd in zip(Q, QD):
@@ -60,8 +62,9 @@ def test_one_solve_gives_the_effort_and_the_inertia_of_two(name):
         assert abs(e - e1) <= 1e-12 * max(abs(e1), J1 * qd * qd, J1)
 
 
-@pytest.mark.parametrize("name", ["crank_rocker_motor", "sixbar_class3", "cam_eccentric_rocker",
-                                  "slider_crank_press_friction"])
+@pytest.mark.parametrize("name", fast_cases(
+    ["crank_rocker_motor", "sixbar_class3", "cam_eccentric_rocker",
+     "slider_crank_press_friction"], {"crank_rocker_motor"}))
 def test_one_state_acceleration_is_the_full_runs_over_turns(name):
     eq = equations(name)
     want, J, _ = eq.accelerations(Q, QD)
