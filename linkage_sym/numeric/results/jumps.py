@@ -25,10 +25,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, NamedTuple
 
-import numpy as np
-
 from linkage_sym.model import Scene
-from linkage_sym.numeric.results.passages import placed_from
+from linkage_sym.numeric.results.passages import notes_on_steps, placed_from
 from linkage_sym.structure.groups import Decomposition, decompose
 
 __all__ = ["AssemblyJump", "JumpNote", "assembly_jumps"]
@@ -105,14 +103,8 @@ def assembly_jumps(notes, step_points, scene: Scene,
         In the order of the notes; a jump past the last step (on no step's way) is left out,
         as its warning is.
     """
-    step_points = np.asarray(step_points)
     out = []
-    for note in notes:
-        if not isinstance(note, JumpNote):
-            continue
-        k = int(np.searchsorted(step_points, note.point))
-        if k >= len(step_points):
-            continue
+    for note, k in notes_on_steps(notes, JumpNote, step_points):
         if decomposition is None:
             decomposition = decompose(scene)
         out.append(AssemblyJump(f"{note.group} ({', '.join(note.links)})",

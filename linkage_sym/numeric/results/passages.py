@@ -29,7 +29,8 @@ import numpy as np
 from linkage_sym.model import GROUND, Scene
 from linkage_sym.structure.groups import Decomposition, decompose
 
-__all__ = ["InfinityPassage", "PassageNote", "far_links", "infinity_passages", "placed_from"]
+__all__ = ["InfinityPassage", "PassageNote", "far_links", "infinity_passages", "notes_on_steps",
+           "placed_from"]
 
 
 class PassageNote(NamedTuple):
@@ -178,16 +179,30 @@ def infinity_passages(notes, step_points, scene: Scene,
         In the order of the notes; a passage past the last step (on no step's way) is left
         out, as its warning is.
     """
-    step_points = np.asarray(step_points)
     out = []
-    for note in notes:
-        if not isinstance(note, PassageNote):
-            continue
-        k = int(np.searchsorted(step_points, note.point))
-        if k >= len(step_points):
-            continue
+    for note, k in notes_on_steps(notes, PassageNote, step_points):
         if decomposition is None:
             decomposition = decompose(scene)
         out.append(InfinityPassage(note.joint, k - 1 if k > 0 else None, k,
                                    far_links(scene, note.joint, decomposition)))
     return tuple(out)
+
+
+def notes_on_steps(notes, kind: type, step_points):
+    """Each of a runtime's ``notes`` of the type ``kind`` with the step on whose way from the
+    step before it lies, ``(note, k)``: the first step at or after the note's path point
+    (``0``: on the way from the assembly configuration); a note past the last step is left
+    out, as its warning is.
+
+    Examples
+    --------
+    >>> notes = [PassageNote(3, "a", "C"), "other", PassageNote(9, "b", "C")]
+    >>> [(n.text, k) for n, k in notes_on_steps(notes, PassageNote, [0, 2, 4, 6])]
+    [('a', 2)]
+    """
+    step_points = np.asarray(step_points)
+    for note in notes:
+        if isinstance(note, kind):
+            k = int(np.searchsorted(step_points, note.point))
+            if k < len(step_points):
+                yield note, k
