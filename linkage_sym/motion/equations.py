@@ -38,9 +38,9 @@ velocities the generated code returns *are* the velocity coefficients (``v_G / q
     J  = sum m |v_G|^2 + I w^2,   J' = 2 sum m v_G . a_G + I w alpha   (at qd = 1, qdd = 0)
 
 both exact (no finite difference).  The symbolic layer derives no cam contact: a scene with
-one takes the same sums from the numeric solver's kinematics at ``qd = 1`` and ``qdd = 0``
-(:func:`~linkage_sym.motion.lean.numeric_inertia_at`; its velocities and accelerations are
-the same coefficients and their derivatives, exact as well).  The integrator's evaluations
+one takes the same sums from the numeric plan's kinematics at ``qd = 1`` and ``qdd = 0``
+(its velocities and accelerations are the same coefficients and their derivatives, exact as
+well).  The integrator's evaluations
 (:meth:`MotionEquations.acceleration`) read ``J`` alone, and take it from the numeric solve
 that gives the effort, at a second state of unit speed
 (:func:`~linkage_sym.motion.lean.effort_inertia_at`): one solve an evaluation, its ``J`` the

@@ -20,8 +20,9 @@ computations are called for the one state and only what the equation reads is ke
   instead of once in each layer.  ``J`` is then the numeric solver's, equal to the derived
   equations' to rounding (:func:`inertia_at`; 1e-12 in the tests).
 
-A state the generated code screens as near-singular (or cannot assemble) goes through the
-full run, so the result is the full run's in every case.
+:func:`inertia_at` and :func:`numeric_inertia_at` (one state, ``J`` and ``J'``) are the
+references the tests hold :func:`effort_inertia_at`'s ``J`` to; :func:`inertia_at` declines
+(``None``) a state the generated code screens as near-singular or cannot assemble.
 """
 
 from __future__ import annotations
